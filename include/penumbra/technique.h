@@ -1,0 +1,48 @@
+// The closed set of shadow-map techniques, their ids, and the CPU reference of their math:
+// encode a depth into channels, say how each channel is filtered, reconstruct visibility.
+// Every formula lives in src/shaders/shared/ and is compiled here as C++ (see technique_dispatch.h).
+#pragma once
+
+#include <span>
+#include <string>
+#include <string_view>
+
+#include "shared/technique_params.h"
+
+namespace penumbra {
+
+enum class Technique { Hard, Pcf, Vsm, Lvsm, Evsm2, Evsm4, Esm, Csm, PowerCdf, Msm };
+
+// Channel reductions for filtering, mirroring the shared kReduce* constants.
+enum class ChannelReduction { Mean, Min, Max, LogMeanExp };
+
+using TechniqueParams = shaders::TechniqueParams;
+
+// All techniques, in the order reports list them.
+std::span<const Technique> allTechniques();
+
+// The id used on the command line, in JSON, CSV and file names: "hard", "pcf", "vsm", "lvsm",
+// "evsm2", "evsm4", "esm", "csm", "powercdf", "msm".
+std::string_view techniqueId(Technique technique);
+// A human-readable name with its source, e.g. "Variance shadow maps (thesis ch. 3)".
+std::string_view techniqueTitle(Technique technique);
+// Parses an id; throws Error naming the valid ids when it is unknown.
+Technique parseTechnique(std::string_view id);
+// The valid ids joined by ", ".
+std::string techniqueIdList();
+
+// The papers' defaults for every technique.
+TechniqueParams defaultTechniqueParams();
+
+int channelCount(Technique technique, const TechniqueParams& params);
+// Encodes a linear light-space depth in [0,1] into channelCount() values.
+void encodeDepth(Technique technique, const TechniqueParams& params, float depth,
+                 std::span<float> channels);
+ChannelReduction channelReduction(Technique technique, const TechniqueParams& params, int channel);
+// Visibility in [0,1] from filtered channels (channelCount() values) for a receiver depth.
+float reconstructVisibility(Technique technique, const TechniqueParams& params,
+                            std::span<const float> filteredChannels, float receiverDepth);
+// PCF filters the test results, not the channels.
+bool filtersAfterTest(Technique technique);
+
+}  // namespace penumbra

@@ -1,0 +1,72 @@
+// Summed-area tables in wrapping 64-bit fixed point (see the header for the error bound).
+#include "penumbra/summed_area_table.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+
+#include "parallel.h"
+
+namespace penumbra {
+
+namespace {
+constexpr double kStepsPerUnit = 2147483648.0;  // 2^31 fixed-point steps per unit of R
+}
+
+SummedAreaTable::SummedAreaTable(const Image& image)
+    : width_(image.width()), height_(image.height()), channels_(image.channels()) {
+  const size_t texels = size_t(width_) * size_t(height_);
+  centre_.assign(size_t(channels_), 0.0);
+  step_.assign(size_t(channels_), 1.0);
+  for (int c = 0; c < channels_; ++c) {
+    double sum = 0.0;
+    for (size_t i = 0; i < texels; ++i) sum += image.data()[i * size_t(channels_) + size_t(c)];
+    const double centre = sum / double(texels);
+    double deviation = 0.0;
+    for (size_t i = 0; i < texels; ++i) {
+      deviation = std::max(deviation,
+                           std::abs(double(image.data()[i * size_t(channels_) + size_t(c)]) - centre));
+    }
+    centre_[size_t(c)] = centre;
+    step_[size_t(c)] = (deviation > 0.0 ? deviation : 1.0) / kStepsPerUnit;
+  }
+  sums_.assign(texels * size_t(channels_), 0);
+  // Row prefix sums in parallel, then column prefix sums; unsigned arithmetic wraps by design.
+  detail::parallelForRows(height_, [&](int y) {
+    for (int c = 0; c < channels_; ++c) {
+      uint64_t running = 0;
+      for (int x = 0; x < width_; ++x) {
+        const double centred = double(image.at(x, y, c)) - centre_[size_t(c)];
+        const int64_t fixed = std::llround(centred / step_[size_t(c)]);
+        running += uint64_t(fixed);
+        sums_[(size_t(y) * size_t(width_) + size_t(x)) * size_t(channels_) + size_t(c)] = running;
+      }
+    }
+  });
+  for (int y = 1; y < height_; ++y) {
+    const size_t row = size_t(y) * size_t(width_) * size_t(channels_);
+    const size_t above = row - size_t(width_) * size_t(channels_);
+    for (size_t i = 0; i < size_t(width_) * size_t(channels_); ++i) sums_[row + i] += sums_[above + i];
+  }
+}
+
+uint64_t SummedAreaTable::prefix(int x, int y, int channel) const {
+  if (x < 0 || y < 0) return 0;
+  return sums_[(size_t(y) * size_t(width_) + size_t(x)) * size_t(channels_) + size_t(channel)];
+}
+
+double SummedAreaTable::boxMean(int x0, int y0, int x1, int y1, int channel) const {
+  assert(x0 <= x1 && y0 <= y1);
+  x0 = std::clamp(x0, 0, width_ - 1);
+  x1 = std::clamp(x1, 0, width_ - 1);
+  y0 = std::clamp(y0, 0, height_ - 1);
+  y1 = std::clamp(y1, 0, height_ - 1);
+  const uint64_t wrapped = prefix(x1, y1, channel) - prefix(x0 - 1, y1, channel) -
+                           prefix(x1, y0 - 1, channel) + prefix(x0 - 1, y0 - 1, channel);
+  const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
+  return double(int64_t(wrapped)) * step_[size_t(channel)] / area + centre_[size_t(channel)];
+}
+
+double SummedAreaTable::errorBound(int channel) const { return 0.5 * step_[size_t(channel)]; }
+
+}  // namespace penumbra

@@ -1,0 +1,117 @@
+// Technique ids and the C++ side of the shared dispatcher (src/shaders/shared/technique_dispatch.h).
+#include "penumbra/technique.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+
+#include "penumbra/error.h"
+#include "shared/technique_dispatch.h"
+
+namespace penumbra {
+namespace {
+
+struct TechniqueInfo {
+  Technique technique;
+  int sharedId;
+  std::string_view id;
+  std::string_view title;
+};
+
+constexpr std::array<TechniqueInfo, 10> kTechniques{{
+    {Technique::Hard, shaders::kTechniqueHard, "hard", "Hard shadow map test with bias"},
+    {Technique::Pcf, shaders::kTechniquePcf, "pcf", "Percentage-closer filtering (thesis ch. 2)"},
+    {Technique::Vsm, shaders::kTechniqueVsm, "vsm", "Variance shadow maps (thesis ch. 3)"},
+    {Technique::Lvsm, shaders::kTechniqueLvsm, "lvsm", "Layered variance shadow maps (thesis 4.1)"},
+    {Technique::Evsm2, shaders::kTechniqueEvsm2, "evsm2",
+     "Exponential VSM, positive warp (thesis 4.2)"},
+    {Technique::Evsm4, shaders::kTechniqueEvsm4, "evsm4",
+     "Exponential VSM, positive and negative warps (thesis 4.2)"},
+    {Technique::Esm, shaders::kTechniqueEsm, "esm", "Exponential shadow maps (Annen et al. 2008)"},
+    {Technique::Csm, shaders::kTechniqueCsm, "csm", "Convolution shadow maps (Annen et al. 2007)"},
+    {Technique::PowerCdf, shaders::kTechniquePowerCdf, "powercdf",
+     "Power-function CDF (Gumbau et al. 2011)"},
+    {Technique::Msm, shaders::kTechniqueMsm, "msm",
+     "Moment shadow maps, Hamburger 4MSM (Peters & Klein 2015)"},
+}};
+
+constexpr std::array<Technique, 10> kAll{Technique::Hard,  Technique::Pcf,   Technique::Vsm,
+                                         Technique::Lvsm,  Technique::Evsm2, Technique::Evsm4,
+                                         Technique::Esm,   Technique::Csm,   Technique::PowerCdf,
+                                         Technique::Msm};
+
+const TechniqueInfo& info(Technique technique) {
+  const TechniqueInfo& i = kTechniques[static_cast<size_t>(technique)];
+  assert(i.technique == technique);
+  return i;
+}
+
+int sharedId(Technique technique) { return info(technique).sharedId; }
+
+static_assert(kTechniques.size() == size_t(shaders::kTechniqueCount));
+static_assert(int(ChannelReduction::Mean) == shaders::kReduceMean);
+static_assert(int(ChannelReduction::Min) == shaders::kReduceMin);
+static_assert(int(ChannelReduction::Max) == shaders::kReduceMax);
+static_assert(int(ChannelReduction::LogMeanExp) == shaders::kReduceLogMeanExp);
+// GPU-mirrored blocks keep std140/std430 layout: whole vec4 rows.
+static_assert(sizeof(shaders::LayerSplits) % 16 == 0);
+static_assert(sizeof(TechniqueParams) % 16 == 0);
+
+}  // namespace
+
+std::span<const Technique> allTechniques() { return kAll; }
+
+std::string_view techniqueId(Technique technique) { return info(technique).id; }
+
+std::string_view techniqueTitle(Technique technique) { return info(technique).title; }
+
+std::string techniqueIdList() {
+  std::string list;
+  for (const TechniqueInfo& i : kTechniques) {
+    if (!list.empty()) list += ", ";
+    list += i.id;
+  }
+  return list;
+}
+
+Technique parseTechnique(std::string_view id) {
+  for (const TechniqueInfo& i : kTechniques) {
+    if (i.id == id) return i.technique;
+  }
+  throw Error("unknown technique '" + std::string(id) + "'; valid techniques: " +
+              techniqueIdList());
+}
+
+TechniqueParams defaultTechniqueParams() { return shaders::defaultTechniqueParams(); }
+
+int channelCount(Technique technique, const TechniqueParams& params) {
+  return shaders::techniqueChannelCount(sharedId(technique), params);
+}
+
+void encodeDepth(Technique technique, const TechniqueParams& params, float depth,
+                 std::span<float> channels) {
+  const int count = channelCount(technique, params);
+  assert(int(channels.size()) >= count);
+  for (int c = 0; c < count; ++c) {
+    channels[size_t(c)] = shaders::encodeChannel(sharedId(technique), depth, c, params);
+  }
+}
+
+ChannelReduction channelReduction(Technique technique, const TechniqueParams& params,
+                                  int channel) {
+  return ChannelReduction(shaders::channelReduction(sharedId(technique), channel, params));
+}
+
+float reconstructVisibility(Technique technique, const TechniqueParams& params,
+                            std::span<const float> filteredChannels, float receiverDepth) {
+  float channels[shaders::kMaxChannels] = {};
+  const size_t count = std::min(filteredChannels.size(), size_t(shaders::kMaxChannels));
+  for (size_t i = 0; i < count; ++i) channels[i] = filteredChannels[i];
+  return shaders::reconstructVisibility(sharedId(technique), channels, receiverDepth, params);
+}
+
+bool filtersAfterTest(Technique technique) {
+  return shaders::techniqueFiltersAfterTest(sharedId(technique));
+}
+
+}  // namespace penumbra

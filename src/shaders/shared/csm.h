@@ -1,0 +1,78 @@
+// Convolution shadow maps (CSM paper §3): the step H(z - d) expanded in a truncated Fourier
+// series of M terms whose sin/cos basis images of the depth z are filtered linearly.
+#ifndef PENUMBRA_SHARED_CSM_H
+#define PENUMBRA_SHARED_CSM_H
+#include "prelude.h"
+#include "constants.h"
+PENUMBRA_BEGIN_SHARED
+
+const int kCsmMaxTerms = 16;
+
+struct CsmParams {
+  int termCount;       // M in [1, 16]; M/2 RGBA textures (CSM paper §4)
+  float attenuation;   // alpha of the ringing attenuation exp(-alpha (k/M)^2) (§3.2.1), [0, 20]
+  float offsetScale;   // receiver offset in units of 1/(2M) (§3.2.2), [0, 4]; 1 puts the first
+                       // ringing maximum on a lit receiver so lit surfaces come out lit
+  float scale;         // the reconstruction is multiplied by this (§3.2.2: 2), [1, 4]
+  int storage;         // kStorageUnorm8 (paper), kStorageFloat16 or kStorageFloat32
+  int pad0;
+  int pad1;
+  int pad2;
+};
+
+PENUMBRA_INLINE CsmParams csmDefaultParams() {
+  CsmParams p;
+  p.termCount = 16;
+  p.attenuation = 1.0f;
+  p.offsetScale = 1.0f;
+  p.scale = 1.0f;
+  p.storage = kStorageUnorm8;
+  p.pad0 = 0;
+  p.pad1 = 0;
+  p.pad2 = 0;
+  return p;
+}
+
+// c_k = pi (2k - 1), k = 1..M (CSM eq. 11).
+PENUMBRA_INLINE float csmFrequency(int k) { return kPi * float(2 * k - 1); }
+
+// Basis texture `index` holds terms k = 2 index + 1 and 2 index + 2 as
+// (sin c_k z, cos c_k z, sin c_k+1 z, cos c_k+1 z) (eq. 14), mapped from [-1,1] to [0,1] so that
+// unorm8 storage holds them; the map is affine, so filtering commutes with it.
+PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index) {
+  float c0 = csmFrequency(2 * index + 1);
+  float c1 = csmFrequency(2 * index + 2);
+  vec4 basis = vec4(sin(c0 * depth), cos(c0 * depth), sin(c1 * depth), cos(c1 * depth));
+  return basis * 0.5f + vec4(0.5f);
+}
+
+PENUMBRA_INLINE int csmTextureCount(CsmParams p) { return (p.termCount + 1) / 2; }
+
+PENUMBRA_INLINE float csmAttenuationFactor(int k, CsmParams p) {
+  float x = float(k) / float(p.termCount);
+  return exp(-p.attenuation * x * x);
+}
+
+// The offset subtracted from the receiver depth: the truncated square wave first peaks at 1/(2M).
+PENUMBRA_INLINE float csmReceiverOffset(CsmParams p) {
+  return p.offsetScale / (2.0f * float(p.termCount));
+}
+
+// f(d, z) = 1/2 + sum_k 2/c_k [sin(c_k z) cos(c_k d) - cos(c_k z) sin(c_k d)] (eq. 11-13, with
+// the step oriented as visibility H(z - d)), attenuated, offset, scaled and clamped (§3.2).
+PENUMBRA_INLINE float csmVisibility(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
+  float d = receiverDepth - csmReceiverOffset(p);
+  float f = 0.5f;
+  for (int k = 1; k <= p.termCount; ++k) {
+    int texel = (k - 1) / 2;
+    int component = 2 * ((k - 1) % 2);
+    float sinZ = 2.0f * filteredBasis[texel][component] - 1.0f;
+    float cosZ = 2.0f * filteredBasis[texel][component + 1] - 1.0f;
+    float c = csmFrequency(k);
+    f += csmAttenuationFactor(k, p) * (2.0f / c) * (sinZ * cos(c * d) - cosZ * sin(c * d));
+  }
+  return clamp(p.scale * f, 0.0f, 1.0f);
+}
+
+PENUMBRA_END_SHARED
+#endif

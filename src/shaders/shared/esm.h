@@ -1,0 +1,67 @@
+// Exponential shadow maps (ESM paper §3; Salvi): the step approximated by exp(-c(d - z)), which
+// factors into exp(c z) filtered over the kernel times exp(-c d). Linear-space filtering stores
+// exp(c z) (c up to 88 in fp32); log-space filtering stores z and filters
+// (1/c) ln sum w exp(c z) with the helpers below, finite for any c.
+#ifndef PENUMBRA_SHARED_ESM_H
+#define PENUMBRA_SHARED_ESM_H
+#include "prelude.h"
+#include "constants.h"
+PENUMBRA_BEGIN_SHARED
+
+const int kEsmFilterLinear = 0;
+const int kEsmFilterLog = 1;
+// exp(88) = 1.65e38 < FLT_MAX: the largest c whose exp(c z) fp32 stores for z in [0,1].
+const float kEsmMaxLinearExponent = 88.0f;
+
+struct EsmParams {
+  float exponent;    // c: 80 for fp32 (ESM paper §3.2); (0, 88] linear, (0, 10000] log space
+  int filterSpace;   // kEsmFilterLinear or kEsmFilterLog
+  float threshold;   // epsilon of threshold classification (ESM paper §3.3), [0, 10]
+  float pad0;
+};
+
+PENUMBRA_INLINE EsmParams esmDefaultParams() {
+  EsmParams p;
+  p.exponent = 80.0f;
+  p.filterSpace = kEsmFilterLinear;
+  p.threshold = 0.05f;
+  p.pad0 = 0.0f;
+  return p;
+}
+
+// The stored value: exp(c z) for linear-space filtering, z itself for log-space filtering.
+PENUMBRA_INLINE float esmEncode(float depth, EsmParams p) {
+  return p.filterSpace == kEsmFilterLog ? depth : exp(p.exponent * depth);
+}
+
+// Log-space filtering (Salvi). A log-space value v stands for exp(c v); these keep sums of such
+// terms as log-space values without ever forming exp(c v). Weights must be > 0.
+PENUMBRA_INLINE float esmLogSpaceWeighted(float value, float weight, float exponent) {
+  return value + log(weight) / exponent;
+}
+
+// The log-space value of exp(c a) + exp(c b): max + ln(1 + exp(-c |a - b|)) / c.
+PENUMBRA_INLINE float esmLogSpaceAdd(float a, float b, float exponent) {
+  return max(a, b) + log(1.0f + exp(-exponent * abs(a - b))) / exponent;
+}
+
+// ln of the filtered test exp(c (z - d)) summed over the kernel: ln E / exp(c d), where E is the
+// filtered store. Positive values mean some occluder lies behind the receiver (paper §3.3).
+PENUMBRA_INLINE float esmLogShadowTest(float filtered, float receiverDepth, EsmParams p) {
+  if (p.filterSpace == kEsmFilterLog) return p.exponent * (filtered - receiverDepth);
+  // Evaluated as a difference of logs: exp(-c d) alone underflows to a denormal near d = 1.
+  return log(max(filtered, 1.0e-30f)) - p.exponent * receiverDepth;
+}
+
+// ESM paper eq. 3, clamped to 1 where the planar-receiver assumption fails.
+PENUMBRA_INLINE float esmVisibility(float filtered, float receiverDepth, EsmParams p) {
+  return exp(min(esmLogShadowTest(filtered, receiverDepth, p), 0.0f));
+}
+
+// Threshold classification (ESM paper §3.3): the unclamped ESM value exceeds 1 + epsilon.
+PENUMBRA_INLINE bool esmFailsThreshold(float filtered, float receiverDepth, EsmParams p) {
+  return esmLogShadowTest(filtered, receiverDepth, p) > log(1.0f + p.threshold);
+}
+
+PENUMBRA_END_SHARED
+#endif

@@ -1,0 +1,46 @@
+// Filter weights shared by the prefilter passes, PCF lookups and the CPU reference filters.
+#ifndef PENUMBRA_SHARED_FILTER_WEIGHTS_H
+#define PENUMBRA_SHARED_FILTER_WEIGHTS_H
+#include "prelude.h"
+PENUMBRA_BEGIN_SHARED
+
+const int kKernelBox = 0;
+const int kKernelGaussian = 1;
+const int kKernelBilinear = 2;  // box of 2r+1 texels convolved with the bilinear tent
+
+// Unnormalised Gaussian weight of a tap `offset` texels from the centre.
+PENUMBRA_INLINE float gaussianTapWeight(int offset, float sigma) {
+  float x = float(offset);
+  return exp(-(x * x) / (2.0f * sigma * sigma));
+}
+
+// Sum of the Gaussian taps -radius..radius, to normalise them to a unit sum.
+PENUMBRA_INLINE float gaussianWeightSum(int radius, float sigma) {
+  float sum = 0.0f;
+  for (int i = -radius; i <= radius; ++i) {
+    sum += gaussianTapWeight(i, sigma);
+  }
+  return sum;
+}
+
+// Normalised 1D weight of tap `tap` of a kernel of `radius` (2r+1 taps; the bilinear kernel has
+// taps -r..r+1 and `fraction` is the lookup's sub-texel position in [0,1)). Taps outside the kernel
+// weigh 0. 2D kernels are the product of two 1D weights.
+PENUMBRA_INLINE float kernelWeight1D(int kernel, int tap, int radius, float sigma, float fraction) {
+  float width = float(2 * radius + 1);
+  if (kernel == kKernelGaussian) {
+    if (tap < -radius || tap > radius) return 0.0f;
+    return gaussianTapWeight(tap, sigma) / gaussianWeightSum(radius, sigma);
+  }
+  if (kernel == kKernelBilinear) {
+    if (tap < -radius || tap > radius + 1) return 0.0f;
+    if (tap == -radius) return (1.0f - fraction) / width;
+    if (tap == radius + 1) return fraction / width;
+    return 1.0f / width;
+  }
+  if (tap < -radius || tap > radius) return 0.0f;
+  return 1.0f / width;
+}
+
+PENUMBRA_END_SHARED
+#endif

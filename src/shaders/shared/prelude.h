@@ -1,0 +1,21 @@
+// The only glue between GLSL 4.50 and C++20 for the shared headers in this folder.
+// Shared code uses the common subset: GLM mirrors GLSL's types and functions on the C++ side.
+// Rules: include guards, `f` literals, no swizzles, no out/inout, no texture access, structs
+// built member by member (constructor syntax differs), every function marked PENUMBRA_INLINE.
+#ifndef PENUMBRA_SHARED_PRELUDE_H
+#define PENUMBRA_SHARED_PRELUDE_H
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+#define PENUMBRA_INLINE inline
+#define PENUMBRA_BEGIN_SHARED \
+  namespace penumbra::shaders {   \
+  using namespace glm;
+#define PENUMBRA_END_SHARED }
+#else
+#define PENUMBRA_INLINE
+#define PENUMBRA_BEGIN_SHARED
+#define PENUMBRA_END_SHARED
+#endif
+
+#endif

@@ -1,0 +1,95 @@
+// One dispatcher over the closed set of techniques, on flat channel arrays: how many channels a
+// technique stores, how each is encoded from depth and reduced when filtered, and how the
+// filtered channels become visibility. The C++ reference and the GPU parity test both run it.
+#ifndef PENUMBRA_SHARED_TECHNIQUE_DISPATCH_H
+#define PENUMBRA_SHARED_TECHNIQUE_DISPATCH_H
+#include "prelude.h"
+#include "constants.h"
+#include "technique_params.h"
+PENUMBRA_BEGIN_SHARED
+
+PENUMBRA_INLINE int techniqueChannelCount(int technique, TechniqueParams p) {
+  if (technique == kTechniqueVsm || technique == kTechniqueEvsm2) return 2;
+  if (technique == kTechniqueLvsm) return 2 * p.lvsm.splits.layerCount;
+  if (technique == kTechniqueEvsm4 || technique == kTechniqueMsm) return 4;
+  if (technique == kTechniqueCsm) return 2 * p.csm.termCount;
+  if (technique == kTechniquePowerCdf) return 3 * p.powerCdf.splits.layerCount;
+  return 1;  // hard, PCF and ESM store one value
+}
+
+// True where the filter must run after the test (PCF): its channel is raw depth.
+PENUMBRA_INLINE bool techniqueFiltersAfterTest(int technique) {
+  return technique == kTechniquePcf;
+}
+
+PENUMBRA_INLINE float encodeChannel(int technique, float depth, int channel, TechniqueParams p) {
+  if (technique == kTechniqueVsm) return vsmEncode(depth)[channel];
+  if (technique == kTechniqueLvsm) return lvsmEncodeLayer(depth, channel / 2, p.lvsm)[channel % 2];
+  if (technique == kTechniqueEvsm2 || technique == kTechniqueEvsm4) {
+    return evsmEncode(depth, p.evsm)[channel];
+  }
+  if (technique == kTechniqueEsm) return esmEncode(depth, p.esm);
+  if (technique == kTechniqueCsm) return csmEncodeTexture(depth, channel / 4)[channel % 4];
+  if (technique == kTechniquePowerCdf) {
+    return powerCdfEncodeLayer(depth, channel / 3, p.powerCdf)[channel % 3];
+  }
+  if (technique == kTechniqueMsm) return msmEncode(depth, p.msm)[channel];
+  return depth;
+}
+
+PENUMBRA_INLINE int channelReduction(int technique, int channel, TechniqueParams p) {
+  if (technique == kTechniquePowerCdf) {
+    int role = channel % 3;
+    return role == 0 ? kReduceMin : (role == 1 ? kReduceMax : kReduceMean);
+  }
+  if (technique == kTechniqueEsm && p.esm.filterSpace == kEsmFilterLog) return kReduceLogMeanExp;
+  return kReduceMean;
+}
+
+// Visibility in [0,1] of a receiver at `receiverDepth` (linear light-space depth in [0,1]) from
+// the technique's filtered channels. For PCF and the hard test the channel is one depth texel.
+PENUMBRA_INLINE float reconstructVisibility(int technique, float channels[kMaxChannels],
+                                            float receiverDepth, TechniqueParams p) {
+  if (technique == kTechniqueHard || technique == kTechniquePcf) {
+    HardParams bias = technique == kTechniqueHard ? p.hard : p.pcf.bias;
+    return hardVisibility(channels[0], biasedReceiverDepth(receiverDepth, 0.0f, bias));
+  }
+  if (technique == kTechniqueVsm) {
+    return vsmVisibility(vec2(channels[0], channels[1]), receiverDepth, p.vsm);
+  }
+  if (technique == kTechniqueLvsm) {
+    int layer = selectLayer(receiverDepth, p.lvsm.splits);
+    int next = min(layer + 1, p.lvsm.splits.layerCount - 1);
+    vec2 moments = vec2(channels[2 * layer], channels[2 * layer + 1]);
+    vec2 nextMoments = vec2(channels[2 * next], channels[2 * next + 1]);
+    return lvsmVisibility(moments, nextMoments, receiverDepth, p.lvsm);
+  }
+  if (technique == kTechniqueEvsm2) {
+    return evsm2Visibility(vec2(channels[0], channels[1]), receiverDepth, p.evsm);
+  }
+  if (technique == kTechniqueEvsm4) {
+    vec4 moments = vec4(channels[0], channels[1], channels[2], channels[3]);
+    return evsm4Visibility(moments, receiverDepth, p.evsm);
+  }
+  if (technique == kTechniqueEsm) return esmVisibility(channels[0], receiverDepth, p.esm);
+  if (technique == kTechniqueCsm) {
+    vec4 basis[8];
+    for (int i = 0; i < 8; ++i) {
+      basis[i] = vec4(0.5f);
+    }
+    for (int i = 0; i < 2 * p.csm.termCount; ++i) {
+      basis[i / 4][i % 4] = channels[i];
+    }
+    return csmVisibility(basis, receiverDepth, p.csm);
+  }
+  if (technique == kTechniquePowerCdf) {
+    int layer = selectLayer(receiverDepth, p.powerCdf.splits);
+    vec3 stats = vec3(channels[3 * layer], channels[3 * layer + 1], channels[3 * layer + 2]);
+    return powerCdfVisibility(stats, receiverDepth, p.powerCdf);
+  }
+  vec4 moments = vec4(channels[0], channels[1], channels[2], channels[3]);
+  return msmVisibility(moments, receiverDepth, p.msm);
+}
+
+PENUMBRA_END_SHARED
+#endif

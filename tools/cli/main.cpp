@@ -1,0 +1,22 @@
+// The `penumbra` command line: subcommands register themselves; errors become a message and a
+// non-zero exit.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "curves_command.h"
+#include "penumbra/error.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
+  app.require_subcommand(1);
+  penumbra::cli::registerCurvesCommand(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const penumbra::Error& e) {
+    std::cerr << "penumbra: error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

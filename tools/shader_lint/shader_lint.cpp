@@ -1,0 +1,102 @@
+// Offline shader validation: expands each shader like the renderer does and pipes it to
+// glslangValidator. Usage: penumbra-shader-lint [EXTRA_NAME=FILE ...]; exits non-zero on failure.
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "penumbra/error.h"
+#include "penumbra/shader_library.h"
+
+namespace {
+
+bool endsWith(const std::string& s, const std::string& suffix) {
+  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+}
+
+std::string stageOf(const std::string& path) {
+  for (const char* stage : {"comp", "vert", "frag", "geom", "tesc", "tese"}) {
+    if (endsWith(path, std::string(".") + stage)) return stage;
+  }
+  return "";
+}
+
+// Runs glslangValidator on the expanded text; returns its output, empty when it passed.
+std::string validate(const penumbra::ExpandedShader& shader, const std::string& stage) {
+  char scratch[] = "/tmp/penumbra-lint-XXXXXX";
+  const int fd = mkstemp(scratch);
+  if (fd < 0) return "cannot create a temporary file";
+  close(fd);
+  const std::string input = std::string(scratch) + "." + stage;
+  {
+    std::ofstream out(input);
+    out << shader.source;
+  }
+  std::string output;
+  FILE* pipe = popen(("glslangValidator -S " + stage + " " + input + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return "cannot run glslangValidator";
+  char buffer[4096];
+  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
+  const int status = pclose(pipe);
+  std::remove(input.c_str());
+  std::remove(scratch);
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
+  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
+    return "glslangValidator not found: run scripts/install-deps (Debian package glslang-tools)";
+  }
+  return shader.translateLog(output);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  penumbra::ShaderLibrary library;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const size_t eq = arg.find('=');
+    if (eq == std::string::npos) {
+      std::cerr << "usage: penumbra-shader-lint [NAME=FILE ...]\n";
+      return 2;
+    }
+    std::ifstream in(arg.substr(eq + 1));
+    if (!in) {
+      std::cerr << "cannot read " << arg.substr(eq + 1) << "\n";
+      return 2;
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    library.addFile(arg.substr(0, eq), text.str());
+  }
+  int failures = 0;
+  int checked = 0;
+  for (const std::string& path : library.paths()) {
+    std::string stage = stageOf(path);
+    std::string target = path;
+    if (stage.empty() && endsWith(path, ".h")) {
+      // A shared header on its own: it must compile with nothing else included first.
+      target = "lint/" + path + ".comp";
+      library.addFile(target, "#include \"" + path +
+                                  "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+      stage = "comp";
+    }
+    if (stage.empty()) continue;
+    try {
+      const std::string problems = validate(library.expand(target), stage);
+      ++checked;
+      if (!problems.empty()) {
+        ++failures;
+        std::cerr << "FAIL " << path << "\n" << problems << "\n";
+      } else {
+        std::cout << "ok   " << path << "\n";
+      }
+    } catch (const penumbra::Error& e) {
+      ++failures;
+      std::cerr << "FAIL " << path << ": " << e.what() << "\n";
+    }
+  }
+  std::cout << checked << " shaders checked, " << failures << " failed\n";
+  return failures == 0 && checked > 0 ? 0 : 1;
+}
