@@ -3,7 +3,6 @@
 // over that region would produce. This is how the papers plot their shadow tests.
 #pragma once
 
-#include <span>
 #include <string_view>
 #include <vector>
 
@@ -21,19 +20,19 @@ struct DepthSample {
 std::vector<DepthSample> parseDepthDistribution(std::string_view text);
 
 // The occluders plus the planar receiver itself: weight 1 - sum(w) at the receiver's depth.
-std::vector<DepthSample> regionWithReceiver(std::span<const DepthSample> occluders,
+std::vector<DepthSample> regionWithReceiver(const std::vector<DepthSample>& occluders,
                                             float receiverDepth);
 
 // The exact filtered shadow test: the weight of samples at or behind the receiver.
-float exactVisibility(std::span<const DepthSample> region, float receiverDepth);
+float exactVisibility(const std::vector<DepthSample>& region, float receiverDepth);
 
 // The technique's filtered channels over the region (weights normalised to sum 1).
 std::vector<float> filterRegion(Technique technique, const TechniqueParams& params,
-                                std::span<const DepthSample> region);
+                                const std::vector<DepthSample>& region);
 
 // The technique's visibility for a receiver over the region: PCF tests then filters; the others
 // filter their channels then reconstruct.
 float evaluateOnRegion(Technique technique, const TechniqueParams& params,
-                       std::span<const DepthSample> region, float receiverDepth);
+                       const std::vector<DepthSample>& region, float receiverDepth);
 
 }  // namespace penumbra

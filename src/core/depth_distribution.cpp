@@ -25,7 +25,7 @@ float parseFloat(std::string_view text, std::string_view what, size_t index) {
   return value;
 }
 
-float totalWeight(std::span<const DepthSample> region) {
+float totalWeight(const std::vector<DepthSample>& region) {
   float sum = 0.0f;
   for (const DepthSample& s : region) sum += s.weight;
   return sum;
@@ -69,7 +69,7 @@ std::vector<DepthSample> parseDepthDistribution(std::string_view text) {
   return samples;
 }
 
-std::vector<DepthSample> regionWithReceiver(std::span<const DepthSample> occluders,
+std::vector<DepthSample> regionWithReceiver(const std::vector<DepthSample>& occluders,
                                             float receiverDepth) {
   std::vector<DepthSample> region(occluders.begin(), occluders.end());
   const float rest = 1.0f - totalWeight(occluders);
@@ -77,7 +77,7 @@ std::vector<DepthSample> regionWithReceiver(std::span<const DepthSample> occlude
   return region;
 }
 
-float exactVisibility(std::span<const DepthSample> region, float receiverDepth) {
+float exactVisibility(const std::vector<DepthSample>& region, float receiverDepth) {
   float lit = 0.0f;
   for (const DepthSample& s : region) {
     if (s.depth >= receiverDepth) lit += s.weight;
@@ -86,7 +86,7 @@ float exactVisibility(std::span<const DepthSample> region, float receiverDepth) 
 }
 
 std::vector<float> filterRegion(Technique technique, const TechniqueParams& params,
-                                std::span<const DepthSample> region) {
+                                const std::vector<DepthSample>& region) {
   const int count = channelCount(technique, params);
   const StorageFormat storage = techniqueStorage(technique, params);
   const float total = totalWeight(region);
@@ -126,7 +126,7 @@ std::vector<float> filterRegion(Technique technique, const TechniqueParams& para
 }
 
 float evaluateOnRegion(Technique technique, const TechniqueParams& params,
-                       std::span<const DepthSample> region, float receiverDepth) {
+                       const std::vector<DepthSample>& region, float receiverDepth) {
   if (filtersAfterTest(technique)) {
     float visibility = 0.0f;
     for (const DepthSample& s : region) {

@@ -36,13 +36,23 @@ PENUMBRA_INLINE CsmParams csmDefaultParams() {
 // c_k = pi (2k - 1), k = 1..M (CSM eq. 11).
 PENUMBRA_INLINE float csmFrequency(int k) { return kPi * float(2 * k - 1); }
 
+// The expansion is a square wave of period 2 in t = z - d (eq. 10), a step only for |t| < 1, and
+// its ringing spreads each jump over about 1/(2M). Depths in [0,1] are scaled by kappa before
+// the expansion so that t plus the receiver offset stays clear of the jumps at t = +-1 for every
+// pair of depths (the paper uses kappa = 1 and gets the wrong answer for receivers near the
+// light with occluders near the far plane). The cost: the step is kappa times less steep.
+PENUMBRA_INLINE float csmDepthScale(CsmParams p) {
+  return max(0.5f, 1.0f - (1.0f + p.offsetScale) / (2.0f * float(p.termCount)));
+}
+
 // Basis texture `index` holds terms k = 2 index + 1 and 2 index + 2 as
-// (sin c_k z, cos c_k z, sin c_k+1 z, cos c_k+1 z) (eq. 14), mapped from [-1,1] to [0,1] so that
-// unorm8 storage holds them; the map is affine, so filtering commutes with it.
-PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index) {
+// (sin c_k z, cos c_k z, sin c_k+1 z, cos c_k+1 z) of the scaled depth (eq. 14), mapped from
+// [-1,1] to [0,1] so that unorm8 storage holds them; the map is affine, so filtering commutes.
+PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index, CsmParams p) {
+  float z = csmDepthScale(p) * depth;
   float c0 = csmFrequency(2 * index + 1);
   float c1 = csmFrequency(2 * index + 2);
-  vec4 basis = vec4(sin(c0 * depth), cos(c0 * depth), sin(c1 * depth), cos(c1 * depth));
+  vec4 basis = vec4(sin(c0 * z), cos(c0 * z), sin(c1 * z), cos(c1 * z));
   return basis * 0.5f + vec4(0.5f);
 }
 
@@ -53,15 +63,15 @@ PENUMBRA_INLINE float csmAttenuationFactor(int k, CsmParams p) {
   return exp(-p.attenuation * x * x);
 }
 
-// The offset subtracted from the receiver depth: the truncated square wave first peaks at 1/(2M).
+// The offset subtracted from the scaled receiver depth: the truncated wave first peaks at 1/(2M).
 PENUMBRA_INLINE float csmReceiverOffset(CsmParams p) {
   return p.offsetScale / (2.0f * float(p.termCount));
 }
 
-// f(d, z) = 1/2 + sum_k 2/c_k [sin(c_k z) cos(c_k d) - cos(c_k z) sin(c_k d)] (eq. 11-13, with
-// the step oriented as visibility H(z - d)), attenuated, offset, scaled and clamped (§3.2).
-PENUMBRA_INLINE float csmVisibility(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
-  float d = receiverDepth - csmReceiverOffset(p);
+// The truncated series f(d, z) = 1/2 + sum_k 2/c_k [sin(c_k z) cos(c_k d) - cos(c_k z) sin(c_k d)]
+// (eq. 11-13, the step oriented as visibility H(z - d)), attenuated and offset (§3.2), unclamped.
+PENUMBRA_INLINE float csmSeries(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
+  float d = csmDepthScale(p) * receiverDepth - csmReceiverOffset(p);
   float f = 0.5f;
   for (int k = 1; k <= p.termCount; ++k) {
     int texel = (k - 1) / 2;
@@ -71,7 +81,12 @@ PENUMBRA_INLINE float csmVisibility(vec4 filteredBasis[8], float receiverDepth, 
     float c = csmFrequency(k);
     f += csmAttenuationFactor(k, p) * (2.0f / c) * (sinZ * cos(c * d) - cosZ * sin(c * d));
   }
-  return clamp(p.scale * f, 0.0f, 1.0f);
+  return f;
+}
+
+// The series scaled and clamped to [0,1] (§3.2.2).
+PENUMBRA_INLINE float csmVisibility(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
+  return clamp(p.scale * csmSeries(filteredBasis, receiverDepth, p), 0.0f, 1.0f);
 }
 
 PENUMBRA_END_SHARED

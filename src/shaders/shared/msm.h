@@ -10,7 +10,8 @@ PENUMBRA_BEGIN_SHARED
 
 struct MsmParams {
   float momentBias;      // alpha of the moment bias: 3e-5 suits 16-bit storage, 3e-6 fp32
-  float depthBias;       // subtracted from the receiver depth, [0, 0.1]
+  float depthBias;       // subtracted from the receiver depth, [0, 0.1]; 0.001 keeps planar
+                         // receivers lit under 16-bit quantisation (msm_test)
   float bleedReduction;  // thesis §3.4 clamp applied to the visibility, [0, 0.99]
   int storage;           // kStorageUnorm16 (optimised quantisation) or kStorageFloat32
 };
@@ -18,7 +19,7 @@ struct MsmParams {
 PENUMBRA_INLINE MsmParams msmDefaultParams() {
   MsmParams p;
   p.momentBias = 0.00003f;
-  p.depthBias = 0.0f;
+  p.depthBias = 0.001f;
   p.bleedReduction = 0.0f;
   p.storage = kStorageUnorm16;
   return p;
@@ -58,43 +59,56 @@ PENUMBRA_INLINE vec4 msmEncode(float depth, MsmParams p) {
 
 PENUMBRA_INLINE vec4 msmDecode(vec4 stored, MsmParams p) {
   if (p.storage != kStorageUnorm16) return stored;
-  return msmDequantizationMatrix() * (stored - vec4(kMsmQuantizationOffset, 0.0f, 0.0f, 0.0f));
+  PENUMBRA_PRECISE vec4 b =
+      msmDequantizationMatrix() * (stored - vec4(kMsmQuantizationOffset, 0.0f, 0.0f, 0.0f));
+  return b;
+}
+
+const float kMsmFarRoot = 1.0e6f;
+
+// a / b clamped to [-kMsmFarRoot, kMsmFarRoot], the sign kept when b is 0.
+PENUMBRA_INLINE float msmSafeDivide(float a, float b) {
+  PENUMBRA_PRECISE float limit = kMsmFarRoot * abs(b);
+  if (abs(a) >= limit) return (a < 0.0f) != (b < 0.0f) ? -kMsmFarRoot : kMsmFarRoot;
+  return a / b;
 }
 
 // Shadow intensity G in [0,1] (fraction occluded) from filtered power moments b, following the
 // notes' steps 1-4: bias, Cholesky solve of the Hankel system, quadratic roots, three cases.
 PENUMBRA_INLINE float msmShadowIntensity(vec4 b, float receiverDepth, float momentBias) {
-  vec4 bb = mix(b, vec4(0.5f), momentBias);
-  float zf = receiverDepth;
+  PENUMBRA_PRECISE vec4 bb = mix(b, vec4(0.5f), momentBias);
+  PENUMBRA_PRECISE float zf = receiverDepth;
   // LDL^T of [[1, b1, b2], [b1, b2, b3], [b2, b3, b4]]; the bias keeps d22, d33 > 0.
-  float d22 = max(bb.y - bb.x * bb.x, 1.0e-12f);
-  float l32 = (bb.z - bb.x * bb.y) / d22;
-  float d33 = max(bb.w - bb.y * bb.y - l32 * l32 * d22, 1.0e-12f);
+  PENUMBRA_PRECISE float d22 = max(bb.y - bb.x * bb.x, 1.0e-12f);
+  PENUMBRA_PRECISE float l32 = (bb.z - bb.x * bb.y) / d22;
+  PENUMBRA_PRECISE float d33 = max(bb.w - bb.y * bb.y - l32 * l32 * d22, 1.0e-12f);
   // Forward, diagonal and back substitution for c with rhs (1, zf, zf^2).
-  float w2 = zf - bb.x;
-  float w3 = zf * zf - bb.y - l32 * w2;
-  float c3 = w3 / d33;
-  float c2 = w2 / d22 - l32 * c3;
-  float c1 = 1.0f - bb.x * c2 - bb.y * c3;
-  // Roots z2 <= z3 of c3 z^2 + c2 z + c1 = 0.
-  float safeC3 = abs(c3) < 1.0e-20f ? (c3 < 0.0f ? -1.0e-20f : 1.0e-20f) : c3;
-  float halfP = 0.5f * c2 / safeC3;
-  float q = c1 / safeC3;
-  float r = sqrt(max(halfP * halfP - q, 0.0f));
-  float z2 = -halfP - r;
-  float z3 = -halfP + r;
+  PENUMBRA_PRECISE float w2 = zf - bb.x;
+  PENUMBRA_PRECISE float w3 = zf * zf - bb.y - l32 * w2;
+  PENUMBRA_PRECISE float c3 = w3 / d33;
+  PENUMBRA_PRECISE float c2 = w2 / d22 - l32 * c3;
+  PENUMBRA_PRECISE float c1 = 1.0f - bb.x * c2 - bb.y * c3;
+  // Roots z2 <= z3 of c3 z^2 + c2 z + c1 = 0 in the cancellation-free form q / c3, c1 / q. When
+  // the moments are (numerically) those of at most two atoms, c3 vanishes and one root runs off
+  // to infinity; roots are clamped to +-kMsmFarRoot, which is infinity for depths in [0,1].
+  PENUMBRA_PRECISE float discriminant = max(c2 * c2 - 4.0f * c1 * c3, 0.0f);
+  PENUMBRA_PRECISE float q = -0.5f * (c2 + (c2 < 0.0f ? -1.0f : 1.0f) * sqrt(discriminant));
+  PENUMBRA_PRECISE float rootA = msmSafeDivide(q, c3);
+  PENUMBRA_PRECISE float rootB = msmSafeDivide(c1, q);
+  PENUMBRA_PRECISE float z2 = min(rootA, rootB);
+  PENUMBRA_PRECISE float z3 = max(rootA, rootB);
   if (zf <= z2) return 0.0f;
   if (zf <= z3) {
     float denominator = max((z3 - z2) * (zf - z2), 1.0e-30f);
     return clamp((zf * z3 - bb.x * (zf + z3) + bb.y) / denominator, 0.0f, 1.0f);
   }
-  float denominator = max((zf - z2) * (zf - z3), 1.0e-30f);
+  PENUMBRA_PRECISE float denominator = max((zf - z2) * (zf - z3), 1.0e-30f);
   return clamp(1.0f - (z2 * z3 - bb.x * (z2 + z3) + bb.y) / denominator, 0.0f, 1.0f);
 }
 
 PENUMBRA_INLINE float msmVisibility(vec4 filteredStored, float receiverDepth, MsmParams p) {
-  vec4 b = msmDecode(filteredStored, p);
-  float g = msmShadowIntensity(b, receiverDepth - p.depthBias, p.momentBias);
+  PENUMBRA_PRECISE vec4 b = msmDecode(filteredStored, p);
+  PENUMBRA_PRECISE float g = msmShadowIntensity(b, receiverDepth - p.depthBias, p.momentBias);
   return reduceLightBleeding(1.0f - g, p.bleedReduction);
 }
 

@@ -2,18 +2,22 @@
 // Shared code uses the common subset: GLM mirrors GLSL's types and functions on the C++ side.
 // Rules: include guards, `f` literals, no swizzles, no out/inout, no texture access, structs
 // built member by member (constructor syntax differs), every function marked PENUMBRA_INLINE.
+// PENUMBRA_PRECISE marks ill-conditioned arithmetic (MSM's Hankel solve) where GLSL compilers
+// must not fuse or reorder operations, so the GPU rounds as the C++ reference does.
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
 
 #ifdef __cplusplus
 #include <glm/glm.hpp>
 #define PENUMBRA_INLINE inline
+#define PENUMBRA_PRECISE
 #define PENUMBRA_BEGIN_SHARED \
   namespace penumbra::shaders {   \
   using namespace glm;
 #define PENUMBRA_END_SHARED }
 #else
 #define PENUMBRA_INLINE
+#define PENUMBRA_PRECISE precise
 #define PENUMBRA_BEGIN_SHARED
 #define PENUMBRA_END_SHARED
 #endif

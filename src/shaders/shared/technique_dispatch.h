@@ -29,7 +29,7 @@ PENUMBRA_INLINE float encodeChannel(int technique, float depth, int channel, Tec
     return evsmEncode(depth, p.evsm)[channel];
   }
   if (technique == kTechniqueEsm) return esmEncode(depth, p.esm);
-  if (technique == kTechniqueCsm) return csmEncodeTexture(depth, channel / 4)[channel % 4];
+  if (technique == kTechniqueCsm) return csmEncodeTexture(depth, channel / 4, p.csm)[channel % 4];
   if (technique == kTechniquePowerCdf) {
     return powerCdfEncodeLayer(depth, channel / 3, p.powerCdf)[channel % 3];
   }

@@ -1,0 +1,141 @@
+// CSM (CSM paper §3): the Fourier step reconstruction improves with M, attenuation trades
+// ringing for steepness, the offset lights lit surfaces, the basis fits 8-bit storage.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "penumbra/depth_distribution.h"
+#include "region_helpers.h"
+#include "shared/csm.h"
+
+namespace penumbra {
+namespace {
+
+using testing::float32Params;
+
+shaders::CsmParams plainSeries(int terms) {
+  shaders::CsmParams p = shaders::csmDefaultParams();
+  p.termCount = terms;
+  p.attenuation = 0.0f;
+  p.offsetScale = 0.0f;
+  p.scale = 1.0f;
+  return p;
+}
+
+// The unclamped series for one occluder at z and a receiver at d.
+float series(float occluder, float receiver, const shaders::CsmParams& p) {
+  glm::vec4 basis[8];
+  for (int t = 0; t < 8; ++t) basis[t] = shaders::csmEncodeTexture(occluder, t, p);
+  return shaders::csmSeries(basis, receiver, p);
+}
+
+// Mean |f - H(z - d)| over z - d in [-0.9, 0.9], skipping the jump's immediate neighbourhood.
+// Depths are scaled by kappa inside the expansion; z - d here is in those scaled units.
+float meanStepError(const shaders::CsmParams& p) {
+  double error = 0.0;
+  int count = 0;
+  for (int i = -900; i <= 900; ++i) {
+    const float t = float(i) / 1000.0f;
+    if (std::abs(t) < 0.02f) continue;
+    const float kappa = shaders::csmDepthScale(p);
+    const float z = (0.5f + t / 2.0f) / kappa, d = (0.5f - t / 2.0f) / kappa;  // kappa z - kappa d = t
+    error += std::abs(series(z, d, p) - (t > 0.0f ? 1.0f : 0.0f));
+    ++count;
+  }
+  return float(error / count);
+}
+
+TEST(Csm, StepReconstructionErrorShrinksFromFourToEightToSixteenTerms) {
+  const float e4 = meanStepError(plainSeries(4));
+  const float e8 = meanStepError(plainSeries(8));
+  const float e16 = meanStepError(plainSeries(16));
+  EXPECT_GT(e4, e8);
+  EXPECT_GT(e8, e16);
+  EXPECT_LT(e16, 0.03f);
+}
+
+TEST(Csm, SeriesIsTheFourierExpansionOfTheStep) {
+  // CSM eq. 11 evaluated directly for one occluder: 1/2 + sum 2/c_k sin(c_k (z - d)).
+  const shaders::CsmParams p = plainSeries(5);
+  const float z = 0.62f, d = 0.41f;
+  const double kappa = 1.0 - 1.0 / 10.0;  // 1 - (1 + offset 0) / (2M)
+  EXPECT_FLOAT_EQ(shaders::csmDepthScale(p), float(kappa));
+  double expected = 0.5;
+  for (int k = 1; k <= 5; ++k) {
+    const double c = M_PI * (2 * k - 1);
+    expected += 2.0 / c * std::sin(c * kappa * (z - d));
+  }
+  EXPECT_NEAR(series(z, d, p), expected, 2e-5);
+}
+
+TEST(Csm, AttenuationReducesOvershoot) {
+  auto overshoot = [](float alpha) {
+    shaders::CsmParams p = plainSeries(8);
+    p.attenuation = alpha;
+    float peak = 0.0f;
+    for (int i = 1; i < 500; ++i) peak = std::max(peak, series(0.5f, 0.5f - float(i) / 1000.0f, p));
+    return peak - 1.0f;
+  };
+  EXPECT_GT(overshoot(0.0f), 0.05f);  // Gibbs: about 9% of the jump
+  EXPECT_LT(overshoot(1.0f), overshoot(0.0f));
+  EXPECT_LT(overshoot(4.0f), overshoot(1.0f));
+}
+
+TEST(Csm, OffsetMakesALitReceiverLit) {
+  for (int terms : {4, 8, 16}) {
+    shaders::CsmParams p = plainSeries(terms);
+    EXPECT_NEAR(series(0.4f, 0.4f, p), 0.5f, 1e-5f) << "unshifted series is half lit at z = d";
+    p.offsetScale = 1.0f;
+    EXPECT_GT(series(0.4f, 0.4f, p), 0.99f) << "M = " << terms;
+    glm::vec4 basis[8];
+    for (int t = 0; t < 8; ++t) basis[t] = shaders::csmEncodeTexture(0.4f, t, p);
+    EXPECT_EQ(shaders::csmVisibility(basis, 0.4f, p), 1.0f);
+  }
+}
+
+TEST(Csm, NoDepthPairWrapsAroundThePeriod) {
+  // A receiver at the light with an occluder at the far plane is lit; the reverse is shadowed.
+  for (int terms : {4, 8, 16}) {
+    shaders::CsmParams p = shaders::csmDefaultParams();
+    p.termCount = terms;
+    EXPECT_GT(series(1.0f, 0.0f, p), 0.95f) << "M = " << terms;
+    EXPECT_LT(series(0.0f, 1.0f, p), 0.05f) << "M = " << terms;
+  }
+}
+
+TEST(Csm, ScalingByTwoLightsLitSurfacesAndSharpensTheStep) {
+  shaders::CsmParams p = plainSeries(8);
+  p.scale = 2.0f;
+  glm::vec4 basis[8];
+  for (int t = 0; t < 8; ++t) basis[t] = shaders::csmEncodeTexture(0.4f, t, p);
+  EXPECT_EQ(shaders::csmVisibility(basis, 0.4f, p), 1.0f);
+}
+
+TEST(Csm, BasisFitsUnorm8AndPacksTwoTermsPerTexture) {
+  for (int i = 0; i <= 100; ++i) {
+    const glm::vec4 b = shaders::csmEncodeTexture(float(i) / 100.0f, 3, shaders::csmDefaultParams());
+    for (int c = 0; c < 4; ++c) {
+      EXPECT_GE(b[c], 0.0f);
+      EXPECT_LE(b[c], 1.0f);
+    }
+  }
+  shaders::CsmParams p = shaders::csmDefaultParams();
+  p.termCount = 16;
+  EXPECT_EQ(shaders::csmTextureCount(p), 8);  // 2M channels = M/2 RGBA textures
+  p.termCount = 4;
+  EXPECT_EQ(shaders::csmTextureCount(p), 2);
+}
+
+TEST(Csm, EightBitStorageStaysCloseToFloat) {
+  TechniqueParams exact = float32Params();
+  TechniqueParams bytes = exact;
+  bytes.csm.storage = shaders::kStorageUnorm8;
+  const std::vector<DepthSample> region{{0.3f, 0.4f}, {0.6f, 0.6f}};
+  for (float receiver : {0.2f, 0.45f, 0.7f}) {
+    EXPECT_NEAR(evaluateOnRegion(Technique::Csm, bytes, region, receiver),
+                evaluateOnRegion(Technique::Csm, exact, region, receiver), 0.05f);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

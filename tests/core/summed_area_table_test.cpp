@@ -1,0 +1,75 @@
+// Summed-area tables: box means equal brute force within the stated bound R * 2^-32, at the
+// sizes where a float SAT falls apart (2048^2, 4096^2).
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "penumbra/summed_area_table.h"
+
+namespace penumbra {
+namespace {
+
+// Moment-like content: a half-lit, half-dark map with noise, the worst case for float prefix sums.
+Image shadowLikeImage(int size, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> noise(0.0f, 0.1f);
+  Image image(size, size, 2);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      const float z = (x < size / 2 ? 0.2f : 0.9f) + noise(rng);
+      image.at(x, y, 0) = z;
+      image.at(x, y, 1) = z * z;
+    }
+  }
+  return image;
+}
+
+long double bruteMean(const Image& image, int x0, int y0, int x1, int y1, int c) {
+  long double sum = 0.0L;
+  for (int y = y0; y <= y1; ++y) {
+    for (int x = x0; x <= x1; ++x) sum += image.at(x, y, c);
+  }
+  return sum / ((long double)(x1 - x0 + 1) * (y1 - y0 + 1));
+}
+
+void expectBoxesWithinBound(int size) {
+  const Image image = shadowLikeImage(size, unsigned(size));
+  const SummedAreaTable sat(image);
+  std::mt19937 rng(1);
+  std::uniform_int_distribution<int> coordinate(0, size - 1);
+  double worst = 0.0;
+  // Single texels, small boxes, and boxes spanning most of the map.
+  for (int i = 0; i < 60; ++i) {
+    int x0 = coordinate(rng), y0 = coordinate(rng);
+    const int extent = i < 20 ? 0 : (i < 40 ? 7 : size / 2);
+    const int x1 = std::min(size - 1, x0 + extent), y1 = std::min(size - 1, y0 + extent);
+    for (int c = 0; c < 2; ++c) {
+      const double error = std::abs(sat.boxMean(x0, y0, x1, y1, c) - double(bruteMean(image, x0, y0, x1, y1, c)));
+      ASSERT_LE(error, sat.errorBound(c)) << size << "^2 box " << x0 << "," << y0 << " " << extent;
+      worst = std::max(worst, error);
+    }
+  }
+  EXPECT_LT(sat.errorBound(0), 1e-9);
+  ::testing::Test::RecordProperty("worst_error_" + std::to_string(size), std::to_string(worst));
+}
+
+TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt2048) { expectBoxesWithinBound(2048); }
+
+TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt4096) { expectBoxesWithinBound(4096); }
+
+TEST(SummedAreaTable, WholeImageAndClampedBoxes) {
+  const Image image = shadowLikeImage(64, 9);
+  const SummedAreaTable sat(image);
+  EXPECT_NEAR(sat.boxMean(0, 0, 63, 63, 0), double(bruteMean(image, 0, 0, 63, 63, 0)), sat.errorBound(0));
+  EXPECT_NEAR(sat.boxMean(-5, -5, 100, 100, 1), double(bruteMean(image, 0, 0, 63, 63, 1)), sat.errorBound(1));
+  EXPECT_NEAR(sat.boxMean(10, 3, 10, 3, 0), image.at(10, 3, 0), sat.errorBound(0));
+}
+
+TEST(SummedAreaTable, ConstantImagesAreExact) {
+  const Image image(32, 32, 1, 0.375f);
+  const SummedAreaTable sat(image);
+  EXPECT_EQ(sat.boxMean(3, 4, 20, 30, 0), 0.375);
+}
+
+}  // namespace
+}  // namespace penumbra
