@@ -15,8 +15,8 @@ enum class BlurKernel { Box, Gaussian };
 
 struct BlurSpec {
   BlurKernel kernel = BlurKernel::Gaussian;
-  int radius = 2;       // (2r+1) taps per axis, r in [0, 64]
-  float sigma = 1.0f;   // Gaussian standard deviation in texels, > 0
+  int radius = 2;      // (2r+1) taps per axis, r in [0, 64]
+  float sigma = 1.0f;  // Gaussian standard deviation in texels, > 0
 };
 
 // The normalised 1D weights of the kernel, 2r+1 values (shared/filter_weights.h).
@@ -26,8 +26,7 @@ std::vector<float> blurWeights(const BlurSpec& spec);
 // Mean). Min and Max channels take the extreme over the kernel's support; LogMeanExp channels
 // (ESM log space) take the weighted log-mean-exp with exponent `logExponent`.
 Image separableFilter(const Image& image, const BlurSpec& spec,
-                      std::span<const ChannelReduction> reductions = {},
-                      float logExponent = 80.0f);
+                      std::span<const ChannelReduction> reductions = {}, float logExponent = 80.0f);
 
 Image boxBlur(const Image& image, int radius);
 Image gaussianBlur(const Image& image, int radius, float sigma);

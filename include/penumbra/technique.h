@@ -1,6 +1,7 @@
 // The closed set of shadow-map techniques, their ids, and the CPU reference of their math:
 // encode a depth into channels, say how each channel is filtered, reconstruct visibility.
-// Every formula lives in src/shaders/shared/ and is compiled here as C++ (see technique_dispatch.h).
+// Every formula lives in src/shaders/shared/ and is compiled here as C++ (see
+// technique_dispatch.h).
 #pragma once
 
 #include <span>

@@ -32,7 +32,8 @@ CurvesTable computeCurves(const CurvesRequest& request) {
       const float v = evaluateOnRegion(request.techniques[k], request.params, region, receiver);
       if (!std::isfinite(v)) {
         throw Error(std::string(techniqueId(request.techniques[k])) +
-                    " produced a non-finite visibility at receiver depth " + std::to_string(receiver));
+                    " produced a non-finite visibility at receiver depth " +
+                    std::to_string(receiver));
       }
       table.values[k + 1].push_back(v);
     }
@@ -75,8 +76,8 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
      << "plot " << gnuplotQuote(csvPath.string())
      << " using 1:2 with lines lw 3 lc rgb 'black' dt 2 title columnheader(2)";
   for (size_t c = 1; c < table.columns.size(); ++c) {
-    gp << ", '' using 1:" << c + 2 << " with lines lt " << c << " lw 2 title columnheader("
-       << c + 2 << ")";
+    gp << ", '' using 1:" << c + 2 << " with lines lt " << c << " lw 2 title columnheader(" << c + 2
+       << ")";
   }
   gp << "\n";
   runGnuplot(gp.str());

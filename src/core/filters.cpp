@@ -20,8 +20,9 @@ ChannelReduction reductionOf(std::span<const ChannelReduction> reductions, int c
 
 void checkReductions(const Image& image, std::span<const ChannelReduction> reductions) {
   if (!reductions.empty() && int(reductions.size()) != image.channels()) {
-    throw Error("filter given " + std::to_string(reductions.size()) + " channel reductions for an image of " +
-                std::to_string(image.channels()) + " channels");
+    throw Error("filter given " + std::to_string(reductions.size()) +
+                " channel reductions for an image of " + std::to_string(image.channels()) +
+                " channels");
   }
 }
 
@@ -87,7 +88,8 @@ std::vector<float> blurWeights(const BlurSpec& spec) {
   if (spec.kernel == BlurKernel::Gaussian && !(spec.sigma > 0.0f)) {
     throw Error("Gaussian sigma " + std::to_string(spec.sigma) + " must be positive");
   }
-  const int kernel = spec.kernel == BlurKernel::Box ? shaders::kKernelBox : shaders::kKernelGaussian;
+  const int kernel =
+      spec.kernel == BlurKernel::Box ? shaders::kKernelBox : shaders::kKernelGaussian;
   std::vector<float> weights;
   for (int i = -spec.radius; i <= spec.radius; ++i) {
     weights.push_back(shaders::kernelWeight1D(kernel, i, spec.radius, spec.sigma, 0.0f));

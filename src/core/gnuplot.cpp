@@ -1,13 +1,13 @@
 // gnuplot invocation through a temporary script file.
 #include "penumbra/gnuplot.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "penumbra/error.h"
 
@@ -32,8 +32,7 @@ void runGnuplot(const std::string& script) {
     out << script;
     if (!out) throw Error("cannot write the gnuplot script " + scriptPath.string());
   }
-  const std::string command =
-      "gnuplot " + scriptPath.string() + " > " + logPath.string() + " 2>&1";
+  const std::string command = "gnuplot " + scriptPath.string() + " > " + logPath.string() + " 2>&1";
   const int status = std::system(command.c_str());
   std::ifstream logFile(logPath);
   std::stringstream log;
@@ -42,7 +41,8 @@ void runGnuplot(const std::string& script) {
   fs::remove(logPath);
   if (status != 0) {
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
-      throw Error("gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
+      throw Error(
+          "gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
     }
     throw Error("gnuplot failed: " + log.str());
   }

@@ -106,8 +106,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
           splitList(kSplitsDoc, [](TechniqueParams& p) { return &p.lvsm.splits; }),
           real("overlap", "layer overlap delta, depth units (thesis §4.1.1)", 0.0, 0.1,
                [](TechniqueParams& p) { return &p.lvsm.overlap; }),
-          real("transition", "blend width below each split, depth units; at most overlap", 0.0,
-               0.1, [](TechniqueParams& p) { return &p.lvsm.transition; }),
+          real("transition", "blend width below each split, depth units; at most overlap", 0.0, 0.1,
+               [](TechniqueParams& p) { return &p.lvsm.transition; }),
           real("minVariance", kMinVarianceDoc, 0.0, 0.01,
                [](TechniqueParams& p) { return &p.lvsm.minVariance; }),
           real("bleedReduction", kBleedDoc, 0.0, 0.99,
@@ -118,8 +118,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
     case Technique::Evsm2:
     case Technique::Evsm4: {
       std::vector<ParamBinding> b{
-          real("cPositive", "positive warp exponent c+, clamped to 42 (fp32) or 5.54 (fp16)",
-               0.5, 42.0, [](TechniqueParams& p) { return &p.evsm.positiveExponent; }),
+          real("cPositive", "positive warp exponent c+, clamped to 42 (fp32) or 5.54 (fp16)", 0.5,
+               42.0, [](TechniqueParams& p) { return &p.evsm.positiveExponent; }),
       };
       if (technique == Technique::Evsm4) {
         b.push_back(real("cNegative",
@@ -148,8 +148,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
       return {
           integer("M", "Fourier terms M (CSM paper §3.1); M/2 RGBA textures", 1,
                   shaders::kCsmMaxTerms, [](TechniqueParams& p) { return &p.csm.termCount; }),
-          real("alpha", "ringing attenuation exp(-alpha (k/M)^2) (CSM §3.2.1); 0 = off", 0.0,
-               20.0, [](TechniqueParams& p) { return &p.csm.attenuation; }),
+          real("alpha", "ringing attenuation exp(-alpha (k/M)^2) (CSM §3.2.1); 0 = off", 0.0, 20.0,
+               [](TechniqueParams& p) { return &p.csm.attenuation; }),
           real("offset", "receiver offset in units of 1/(2M) (CSM §3.2.2); 0 = off", 0.0, 4.0,
                [](TechniqueParams& p) { return &p.csm.offsetScale; }),
           real("scale", "reconstruction scale (CSM §3.2.2 uses 2); 1 = off", 1.0, 4.0,
@@ -238,8 +238,8 @@ LayerSplits parseSplits(Technique technique, std::string_view text) {
   size_t start = 0;
   while (start <= text.size()) {
     size_t comma = text.find(',', start);
-    std::string_view item = text.substr(start, comma == std::string_view::npos ? text.npos
-                                                                               : comma - start);
+    std::string_view item =
+        text.substr(start, comma == std::string_view::npos ? text.npos : comma - start);
     values.push_back(float(parseNumber(technique, "splits", item)));
     if (comma == std::string_view::npos) break;
     start = comma + 1;
@@ -259,8 +259,8 @@ void validateSplits(Technique technique, const LayerSplits& splits) {
     float s = shaders::layerSplit(splits, i);
     if (!(s > previous && s < 1.0f)) {
       throw Error(context(technique, "splits") + ": split " + std::to_string(i) + " (" +
-                  formatNumber(s) + ") must be above the previous one (" +
-                  formatNumber(previous) + ") and below 1");
+                  formatNumber(s) + ") must be above the previous one (" + formatNumber(previous) +
+                  ") and below 1");
     }
     previous = s;
   }
@@ -340,7 +340,8 @@ void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams
                           std::string_view assignment) {
   size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0) {
-    throw Error("parameter '" + std::string(assignment) + "' must be NAME=VALUE or TECHNIQUE.NAME=VALUE");
+    throw Error("parameter '" + std::string(assignment) +
+                "' must be NAME=VALUE or TECHNIQUE.NAME=VALUE");
   }
   std::string_view name = assignment.substr(0, eq);
   std::string_view value = assignment.substr(eq + 1);
@@ -354,7 +355,8 @@ void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams
   std::string owners;
   for (Technique t : techniques) {
     const auto& b = bindings(t);
-    bool has = std::any_of(b.begin(), b.end(), [&](const ParamBinding& x) { return x.spec.name == name; });
+    bool has =
+        std::any_of(b.begin(), b.end(), [&](const ParamBinding& x) { return x.spec.name == name; });
     if (has) {
       setParam(t, params, name, value);
       applied = true;
@@ -363,17 +365,18 @@ void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams
   if (!applied) {
     for (Technique t : allTechniques()) {
       const auto& b = bindings(t);
-      if (std::any_of(b.begin(), b.end(), [&](const ParamBinding& x) { return x.spec.name == name; })) {
+      if (std::any_of(b.begin(), b.end(),
+                      [&](const ParamBinding& x) { return x.spec.name == name; })) {
         owners += (owners.empty() ? "" : ", ") + std::string(techniqueId(t));
       }
     }
     throw Error("parameter '" + std::string(name) + "' belongs to none of the selected techniques" +
-                (owners.empty() ? std::string(" nor to any other") : "; techniques that have it: " + owners));
+                (owners.empty() ? std::string(" nor to any other")
+                                : "; techniques that have it: " + owners));
   }
 }
 
-std::string formatParam(Technique technique, const TechniqueParams& params,
-                        std::string_view name) {
+std::string formatParam(Technique technique, const TechniqueParams& params, std::string_view name) {
   const ParamBinding& b = findBinding(technique, name);
   TechniqueParams p = params;  // the accessors take a mutable block; read a copy
   switch (b.spec.kind) {
@@ -404,7 +407,8 @@ void validateParams(Technique technique, const TechniqueParams& params) {
         int v = *b.integer(p);
         bool known = std::any_of(b.spec.choices.begin(), b.spec.choices.end(),
                                  [v](const ParamChoice& c) { return c.value == v; });
-        if (!known) throw Error(context(technique, b.spec.name) + ": invalid value " + std::to_string(v));
+        if (!known)
+          throw Error(context(technique, b.spec.name) + ": invalid value " + std::to_string(v));
         break;
       }
       case ParamKind::SplitList: validateSplits(technique, *b.splits(p)); break;
@@ -434,7 +438,8 @@ std::string describeParams(Technique technique) {
         break;
       case ParamKind::Choice: {
         std::string list;
-        for (const ParamChoice& c : b.spec.choices) list += (list.empty() ? "" : "|") + std::string(c.name);
+        for (const ParamChoice& c : b.spec.choices)
+          list += (list.empty() ? "" : "|") + std::string(c.name);
         out << list;
         break;
       }

@@ -24,8 +24,8 @@ SummedAreaTable::SummedAreaTable(const Image& image)
     const double centre = sum / double(texels);
     double deviation = 0.0;
     for (size_t i = 0; i < texels; ++i) {
-      deviation = std::max(deviation,
-                           std::abs(double(image.data()[i * size_t(channels_) + size_t(c)]) - centre));
+      deviation = std::max(
+          deviation, std::abs(double(image.data()[i * size_t(channels_) + size_t(c)]) - centre));
     }
     centre_[size_t(c)] = centre;
     step_[size_t(c)] = (deviation > 0.0 ? deviation : 1.0) / kStepsPerUnit;
@@ -46,7 +46,8 @@ SummedAreaTable::SummedAreaTable(const Image& image)
   for (int y = 1; y < height_; ++y) {
     const size_t row = size_t(y) * size_t(width_) * size_t(channels_);
     const size_t above = row - size_t(width_) * size_t(channels_);
-    for (size_t i = 0; i < size_t(width_) * size_t(channels_); ++i) sums_[row + i] += sums_[above + i];
+    for (size_t i = 0; i < size_t(width_) * size_t(channels_); ++i)
+      sums_[row + i] += sums_[above + i];
   }
 }
 
@@ -67,6 +68,8 @@ double SummedAreaTable::boxMean(int x0, int y0, int x1, int y1, int channel) con
   return double(int64_t(wrapped)) * step_[size_t(channel)] / area + centre_[size_t(channel)];
 }
 
-double SummedAreaTable::errorBound(int channel) const { return 0.5 * step_[size_t(channel)]; }
+double SummedAreaTable::errorBound(int channel) const {
+  return 0.5 * step_[size_t(channel)];
+}
 
 }  // namespace penumbra

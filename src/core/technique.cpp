@@ -1,4 +1,5 @@
-// Technique ids and the C++ side of the shared dispatcher (src/shaders/shared/technique_dispatch.h).
+// Technique ids and the C++ side of the shared dispatcher
+// (src/shaders/shared/technique_dispatch.h).
 #include "penumbra/technique.h"
 
 #include <algorithm>
@@ -35,10 +36,9 @@ constexpr std::array<TechniqueInfo, 10> kTechniques{{
      "Moment shadow maps, Hamburger 4MSM (Peters & Klein 2015)"},
 }};
 
-constexpr std::array<Technique, 10> kAll{Technique::Hard,  Technique::Pcf,   Technique::Vsm,
-                                         Technique::Lvsm,  Technique::Evsm2, Technique::Evsm4,
-                                         Technique::Esm,   Technique::Csm,   Technique::PowerCdf,
-                                         Technique::Msm};
+constexpr std::array<Technique, 10> kAll{
+    Technique::Hard,  Technique::Pcf, Technique::Vsm, Technique::Lvsm,     Technique::Evsm2,
+    Technique::Evsm4, Technique::Esm, Technique::Csm, Technique::PowerCdf, Technique::Msm};
 
 const TechniqueInfo& info(Technique technique) {
   const TechniqueInfo& i = kTechniques[static_cast<size_t>(technique)];
@@ -46,7 +46,9 @@ const TechniqueInfo& info(Technique technique) {
   return i;
 }
 
-int sharedId(Technique technique) { return info(technique).sharedId; }
+int sharedId(Technique technique) {
+  return info(technique).sharedId;
+}
 
 static_assert(kTechniques.size() == size_t(shaders::kTechniqueCount));
 static_assert(int(ChannelReduction::Mean) == shaders::kReduceMean);
@@ -59,11 +61,17 @@ static_assert(sizeof(TechniqueParams) % 16 == 0);
 
 }  // namespace
 
-std::span<const Technique> allTechniques() { return kAll; }
+std::span<const Technique> allTechniques() {
+  return kAll;
+}
 
-std::string_view techniqueId(Technique technique) { return info(technique).id; }
+std::string_view techniqueId(Technique technique) {
+  return info(technique).id;
+}
 
-std::string_view techniqueTitle(Technique technique) { return info(technique).title; }
+std::string_view techniqueTitle(Technique technique) {
+  return info(technique).title;
+}
 
 std::string techniqueIdList() {
   std::string list;
@@ -78,11 +86,13 @@ Technique parseTechnique(std::string_view id) {
   for (const TechniqueInfo& i : kTechniques) {
     if (i.id == id) return i.technique;
   }
-  throw Error("unknown technique '" + std::string(id) + "'; valid techniques: " +
-              techniqueIdList());
+  throw Error("unknown technique '" + std::string(id) +
+              "'; valid techniques: " + techniqueIdList());
 }
 
-TechniqueParams defaultTechniqueParams() { return shaders::defaultTechniqueParams(); }
+TechniqueParams defaultTechniqueParams() {
+  return shaders::defaultTechniqueParams();
+}
 
 int channelCount(Technique technique, const TechniqueParams& params) {
   return shaders::techniqueChannelCount(sharedId(technique), params);
@@ -97,8 +107,7 @@ void encodeDepth(Technique technique, const TechniqueParams& params, float depth
   }
 }
 
-ChannelReduction channelReduction(Technique technique, const TechniqueParams& params,
-                                  int channel) {
+ChannelReduction channelReduction(Technique technique, const TechniqueParams& params, int channel) {
   return ChannelReduction(shaders::channelReduction(sharedId(technique), channel, params));
 }
 

@@ -57,7 +57,9 @@ ComputeProgram::ComputeProgram(const ShaderLibrary& library, std::string_view pa
   checkErrors("ComputeProgram");
 }
 
-ComputeProgram::~ComputeProgram() { glDeleteProgram(program_); }
+ComputeProgram::~ComputeProgram() {
+  glDeleteProgram(program_);
+}
 
 void ComputeProgram::dispatch(unsigned groupsX, unsigned groupsY, unsigned groupsZ) const {
   glUseProgram(program_);
@@ -75,11 +77,14 @@ StorageBuffer::StorageBuffer(std::span<const std::byte> data, bool readable) : b
 
 StorageBuffer::StorageBuffer(size_t bytes) : bytes_(bytes) {
   glCreateBuffers(1, &buffer_);
-  glNamedBufferStorage(buffer_, GLsizeiptr(bytes_), nullptr, GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
+  glNamedBufferStorage(buffer_, GLsizeiptr(bytes_), nullptr,
+                       GL_DYNAMIC_STORAGE_BIT | GL_MAP_READ_BIT);
   checkErrors("StorageBuffer");
 }
 
-StorageBuffer::~StorageBuffer() { glDeleteBuffers(1, &buffer_); }
+StorageBuffer::~StorageBuffer() {
+  glDeleteBuffers(1, &buffer_);
+}
 
 void StorageBuffer::bind(unsigned binding) const {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, binding, buffer_);

@@ -51,7 +51,8 @@ std::vector<EGLDisplay> candidateDisplays() {
     }
   }
   if (hasExtension(clientExtensions, "EGL_MESA_platform_surfaceless")) {
-    EGLDisplay d = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    EGLDisplay d =
+        eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     if (d != EGL_NO_DISPLAY) displays.push_back(d);
   }
   EGLDisplay d = eglGetDisplay(EGL_DEFAULT_DISPLAY);
@@ -88,11 +89,15 @@ HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
       eglTerminate(display);
       continue;
     }
-    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    const EGLint contextAttributes[] = {EGL_CONTEXT_MAJOR_VERSION,
+                                        4,
+                                        EGL_CONTEXT_MINOR_VERSION,
+                                        5,
                                         EGL_CONTEXT_OPENGL_PROFILE_MASK,
                                         EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
 #ifndef NDEBUG
-                                        EGL_CONTEXT_OPENGL_DEBUG, EGL_TRUE,
+                                        EGL_CONTEXT_OPENGL_DEBUG,
+                                        EGL_TRUE,
 #endif
                                         EGL_NONE};
     EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, contextAttributes);

@@ -45,8 +45,9 @@ class Expander {
     }
     auto found = files_.find(path);
     if (found == files_.end()) {
-      throw Error((includer.empty() ? std::string("shader") : includer + ":" + std::to_string(line)) +
-                  ": cannot find '" + path + "'");
+      throw Error(
+          (includer.empty() ? std::string("shader") : includer + ":" + std::to_string(line)) +
+          ": cannot find '" + path + "'");
     }
     const int fileIndex = indexOf(path);
     out_ << "#line 1 " << fileIndex << "\n";
@@ -106,7 +107,9 @@ void ShaderLibrary::addFile(std::string path, std::string source) {
   files_[normalise(path)] = std::move(source);
 }
 
-bool ShaderLibrary::contains(std::string_view path) const { return files_.find(path) != files_.end(); }
+bool ShaderLibrary::contains(std::string_view path) const {
+  return files_.find(path) != files_.end();
+}
 
 std::vector<std::string> ShaderLibrary::paths() const {
   std::vector<std::string> out;

@@ -38,7 +38,8 @@ float meanStepError(const shaders::CsmParams& p) {
     const float t = float(i) / 1000.0f;
     if (std::abs(t) < 0.02f) continue;
     const float kappa = shaders::csmDepthScale(p);
-    const float z = (0.5f + t / 2.0f) / kappa, d = (0.5f - t / 2.0f) / kappa;  // kappa z - kappa d = t
+    const float z = (0.5f + t / 2.0f) / kappa,
+                d = (0.5f - t / 2.0f) / kappa;  // kappa z - kappa d = t
     error += std::abs(series(z, d, p) - (t > 0.0f ? 1.0f : 0.0f));
     ++count;
   }
@@ -113,7 +114,8 @@ TEST(Csm, ScalingByTwoLightsLitSurfacesAndSharpensTheStep) {
 
 TEST(Csm, BasisFitsUnorm8AndPacksTwoTermsPerTexture) {
   for (int i = 0; i <= 100; ++i) {
-    const glm::vec4 b = shaders::csmEncodeTexture(float(i) / 100.0f, 3, shaders::csmDefaultParams());
+    const glm::vec4 b =
+        shaders::csmEncodeTexture(float(i) / 100.0f, 3, shaders::csmDefaultParams());
     for (int c = 0; c < 4; ++c) {
       EXPECT_GE(b[c], 0.0f);
       EXPECT_LE(b[c], 1.0f);

@@ -26,7 +26,8 @@ float esmError(TechniqueParams params, float c, int filterSpace) {
   for (float receiver : {0.5f, 0.6f, 0.8f}) {
     const auto region = regionWithReceiver(kFrontOccluders, receiver);
     const float pcf = exactVisibility(region, receiver);
-    worst = std::max(worst, std::abs(evaluateOnRegion(Technique::Esm, params, region, receiver) - pcf));
+    worst =
+        std::max(worst, std::abs(evaluateOnRegion(Technique::Esm, params, region, receiver) - pcf));
   }
   return worst;
 }

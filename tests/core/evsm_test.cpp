@@ -18,12 +18,16 @@ TEST(Evsm, FourChannelIsAtMostEachSingleBound) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> depth(0.0f, 1.0f);
   for (int i = 0; i < 500; ++i) {
-    const std::vector<DepthSample> region{{depth(rng), 0.3f}, {depth(rng), 0.3f}, {depth(rng), 0.4f}};
+    const std::vector<DepthSample> region{
+        {depth(rng), 0.3f}, {depth(rng), 0.3f}, {depth(rng), 0.4f}};
     const float receiver = depth(rng);
     const std::vector<float> m = filterRegion(Technique::Evsm4, params, region);
-    const float both = shaders::evsm4Visibility(glm::vec4(m[0], m[1], m[2], m[3]), receiver, params.evsm);
-    const float positive = shaders::evsmPositiveVisibility(glm::vec2(m[0], m[1]), receiver, params.evsm);
-    const float negative = shaders::evsmNegativeVisibility(glm::vec2(m[2], m[3]), receiver, params.evsm);
+    const float both =
+        shaders::evsm4Visibility(glm::vec4(m[0], m[1], m[2], m[3]), receiver, params.evsm);
+    const float positive =
+        shaders::evsmPositiveVisibility(glm::vec2(m[0], m[1]), receiver, params.evsm);
+    const float negative =
+        shaders::evsmNegativeVisibility(glm::vec2(m[2], m[3]), receiver, params.evsm);
     EXPECT_LE(both, positive);
     EXPECT_LE(both, negative);
   }

@@ -28,7 +28,8 @@ Image bruteForce2D(const Image& in, const std::vector<float>& weights) {
         double sum = 0.0;
         for (int j = -r; j <= r; ++j) {
           for (int i = -r; i <= r; ++i) {
-            sum += double(weights[size_t(i + r)]) * weights[size_t(j + r)] * in.clamped(x + i, y + j, c);
+            sum += double(weights[size_t(i + r)]) * weights[size_t(j + r)] *
+                   in.clamped(x + i, y + j, c);
           }
         }
         out.at(x, y, c) = float(sum);

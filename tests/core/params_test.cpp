@@ -29,7 +29,7 @@ TEST(Params, DefaultsComeFromThePapers) {
   const TechniqueParams p = defaultTechniqueParams();
   EXPECT_EQ(p.esm.exponent, 80.0f);  // ESM paper §3.2
   EXPECT_EQ(p.csm.termCount, 16);
-  EXPECT_EQ(p.csm.storage, shaders::kStorageUnorm8);  // CSM paper §4
+  EXPECT_EQ(p.csm.storage, shaders::kStorageUnorm8);    // CSM paper §4
   EXPECT_EQ(p.lvsm.storage, shaders::kStorageUnorm16);  // thesis §4.1.3
   EXPECT_EQ(p.msm.storage, shaders::kStorageUnorm16);
 }
@@ -66,8 +66,9 @@ TEST(Params, MalformedValuesAreRejected) {
   }
   EXPECT_NE(errorOf([&] { setParam(Technique::Csm, p, "M", "4.5"); }).find("whole number"),
             std::string::npos);
-  EXPECT_NE(errorOf([&] { setParam(Technique::Vsm, p, "storage", "float64"); })
-                .find("valid values: float32, unorm16"),
+  EXPECT_NE(errorOf([&] {
+              setParam(Technique::Vsm, p, "storage", "float64");
+            }).find("valid values: float32, unorm16"),
             std::string::npos);
 }
 
@@ -108,7 +109,9 @@ TEST(Params, AssignmentsReachEveryTechniqueThatHasTheName) {
   applyParamAssignment(selected, p, "vsm.minVariance=0.002");
   EXPECT_FLOAT_EQ(p.vsm.minVariance, 0.002f);
   EXPECT_FLOAT_EQ(p.lvsm.minVariance, 0.001f);
-  EXPECT_NE(errorOf([&] { applyParamAssignment(selected, p, "M=4"); }).find("techniques that have it: csm"),
+  EXPECT_NE(errorOf([&] {
+              applyParamAssignment(selected, p, "M=4");
+            }).find("techniques that have it: csm"),
             std::string::npos);
   EXPECT_NE(errorOf([&] { applyParamAssignment(selected, p, "nonsense"); }).find("NAME=VALUE"),
             std::string::npos);

@@ -31,7 +31,8 @@ TEST(PowerCdf, VisibilityFollowsEquation4) {
   for (float receiver : {0.35f, 0.5f, 0.59f}) {
     const double t = (receiver - 0.2) / 0.4;
     const double expected = (1.0 - std::pow(t, beta)) / (1.0 - std::pow(beta / (beta + 1.0), beta));
-    EXPECT_NEAR(shaders::powerCdfVisibilityFromStats(glm::vec3(lo, hi, mean), receiver), expected, 2e-6);
+    EXPECT_NEAR(shaders::powerCdfVisibilityFromStats(glm::vec3(lo, hi, mean), receiver), expected,
+                2e-6);
   }
   EXPECT_EQ(shaders::powerCdfVisibilityFromStats(glm::vec3(lo, hi, mean), 0.6f), 0.0f);
   EXPECT_EQ(shaders::powerCdfVisibilityFromStats(glm::vec3(lo, hi, mean), 0.7f), 0.0f);
@@ -40,7 +41,8 @@ TEST(PowerCdf, VisibilityFollowsEquation4) {
 TEST(PowerCdf, APlanarReceiverAtTheMeanIsLit) {
   const TechniqueParams params = float32Params();
   // A tilted planar receiver: depths spread symmetrically about the pixel's own depth.
-  const std::vector<DepthSample> slope{{0.48f, 0.25f}, {0.49f, 0.25f}, {0.51f, 0.25f}, {0.52f, 0.25f}};
+  const std::vector<DepthSample> slope{
+      {0.48f, 0.25f}, {0.49f, 0.25f}, {0.51f, 0.25f}, {0.52f, 0.25f}};
   EXPECT_EQ(evaluateOnRegion(Technique::PowerCdf, params, slope, 0.5f), 1.0f);
 }
 

@@ -18,9 +18,9 @@ std::string errorOf(const ShaderLibrary& library, std::string_view path) {
 
 TEST(ShaderLibrary, EmbedsEverySharedHeader) {
   const ShaderLibrary library;
-  for (const char* header : {"shared/prelude.h", "shared/vsm.h", "shared/lvsm.h", "shared/evsm.h",
-                             "shared/esm.h", "shared/csm.h", "shared/power_cdf.h", "shared/msm.h",
-                             "shared/technique_dispatch.h"}) {
+  for (const char* header :
+       {"shared/prelude.h", "shared/vsm.h", "shared/lvsm.h", "shared/evsm.h", "shared/esm.h",
+        "shared/csm.h", "shared/power_cdf.h", "shared/msm.h", "shared/technique_dispatch.h"}) {
     EXPECT_TRUE(library.contains(header)) << header;
   }
 }

@@ -44,7 +44,8 @@ void expectBoxesWithinBound(int size) {
     const int extent = i < 20 ? 0 : (i < 40 ? 7 : size / 2);
     const int x1 = std::min(size - 1, x0 + extent), y1 = std::min(size - 1, y0 + extent);
     for (int c = 0; c < 2; ++c) {
-      const double error = std::abs(sat.boxMean(x0, y0, x1, y1, c) - double(bruteMean(image, x0, y0, x1, y1, c)));
+      const double error =
+          std::abs(sat.boxMean(x0, y0, x1, y1, c) - double(bruteMean(image, x0, y0, x1, y1, c)));
       ASSERT_LE(error, sat.errorBound(c)) << size << "^2 box " << x0 << "," << y0 << " " << extent;
       worst = std::max(worst, error);
     }
@@ -53,15 +54,21 @@ void expectBoxesWithinBound(int size) {
   ::testing::Test::RecordProperty("worst_error_" + std::to_string(size), std::to_string(worst));
 }
 
-TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt2048) { expectBoxesWithinBound(2048); }
+TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt2048) {
+  expectBoxesWithinBound(2048);
+}
 
-TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt4096) { expectBoxesWithinBound(4096); }
+TEST(SummedAreaTable, BoxMeansStayWithinTheBoundAt4096) {
+  expectBoxesWithinBound(4096);
+}
 
 TEST(SummedAreaTable, WholeImageAndClampedBoxes) {
   const Image image = shadowLikeImage(64, 9);
   const SummedAreaTable sat(image);
-  EXPECT_NEAR(sat.boxMean(0, 0, 63, 63, 0), double(bruteMean(image, 0, 0, 63, 63, 0)), sat.errorBound(0));
-  EXPECT_NEAR(sat.boxMean(-5, -5, 100, 100, 1), double(bruteMean(image, 0, 0, 63, 63, 1)), sat.errorBound(1));
+  EXPECT_NEAR(sat.boxMean(0, 0, 63, 63, 0), double(bruteMean(image, 0, 0, 63, 63, 0)),
+              sat.errorBound(0));
+  EXPECT_NEAR(sat.boxMean(-5, -5, 100, 100, 1), double(bruteMean(image, 0, 0, 63, 63, 1)),
+              sat.errorBound(1));
   EXPECT_NEAR(sat.boxMean(10, 3, 10, 3, 0), image.at(10, 3, 0), sat.errorBound(0));
 }
 

@@ -47,7 +47,9 @@ TEST_P(TechniqueInvariants, VisibilityStaysInUnitRange) {
 
 // How far visibility may rise with receiver depth: float rounding, except CSM, whose truncated
 // Fourier series rings (CSM §3.2.1; the default attenuation keeps it to this measured bound).
-float allowedRise(Technique t) { return t == Technique::Csm ? 0.02f : 1e-5f; }
+float allowedRise(Technique t) {
+  return t == Technique::Csm ? 0.02f : 1e-5f;
+}
 
 // Receiver depths whose visibilities a technique promises to order. LVSM reads a different
 // layer's moments on each side of a split (thesis §4.1), and a layer's one-tailed bound can be

@@ -44,8 +44,7 @@ TechniqueParams randomParams(Technique t, std::mt19937& rng) {
     if (spec.kind == ParamKind::Real) {
       // Log-uniform for wide ranges so small values get exercised too.
       const double lo = std::max(spec.min, 1e-6), hi = spec.max;
-      const double v = spec.min == 0.0 && unit(rng) < 0.2 ? 0.0
-                                                           : lo * std::pow(hi / lo, unit(rng));
+      const double v = spec.min == 0.0 && unit(rng) < 0.2 ? 0.0 : lo * std::pow(hi / lo, unit(rng));
       setParam(t, p, spec.name, std::to_string(v));
     } else if (spec.kind == ParamKind::Integer) {
       const int v = int(spec.min) + int(rng() % unsigned(spec.max - spec.min + 1));
@@ -55,7 +54,8 @@ TechniqueParams randomParams(Technique t, std::mt19937& rng) {
     }
   }
   p.lvsm.transition = std::min(p.lvsm.transition, p.lvsm.overlap);
-  if (p.esm.filterSpace == shaders::kEsmFilterLinear) p.esm.exponent = std::min(p.esm.exponent, 88.0f);
+  if (p.esm.filterSpace == shaders::kEsmFilterLinear)
+    p.esm.exponent = std::min(p.esm.exponent, 88.0f);
   validateParams(t, p);
   return p;
 }
@@ -131,7 +131,8 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
     float lo = expected[i], hi = expected[i];
     if (t == Technique::Msm && std::abs(gpu[i] - expected[i]) > 1e-5f) {
       ++msmBeyondForwardTolerance;
-      std::tie(lo, hi) = roundingEnvelope(t, params[i], cases[i].channels, cases[i].receiverDepth, 4e-7f);
+      std::tie(lo, hi) =
+          roundingEnvelope(t, params[i], cases[i].channels, cases[i].receiverDepth, 4e-7f);
     }
     if (gpu[i] < lo - 1e-5f || gpu[i] > hi + 1e-5f) {
       if (++mismatches <= 20) {

@@ -1,12 +1,12 @@
 // Offline shader validation: expands each shader like the renderer does and pipes it to
 // glslangValidator. Usage: penumbra-shader-lint [EXTRA_NAME=FILE ...]; exits non-zero on failure.
+#include <sys/wait.h>
+#include <unistd.h>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
 #include <sstream>
 #include <string>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include "penumbra/error.h"
 #include "penumbra/shader_library.h"
@@ -14,7 +14,8 @@
 namespace {
 
 bool endsWith(const std::string& s, const std::string& suffix) {
-  return s.size() >= suffix.size() && s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
+  return s.size() >= suffix.size() &&
+         s.compare(s.size() - suffix.size(), suffix.size(), suffix) == 0;
 }
 
 std::string stageOf(const std::string& path) {
@@ -78,8 +79,8 @@ int main(int argc, char** argv) {
     if (stage.empty() && endsWith(path, ".h")) {
       // A shared header on its own: it must compile with nothing else included first.
       target = "lint/" + path + ".comp";
-      library.addFile(target, "#include \"" + path +
-                                  "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+      library.addFile(target,
+                      "#include \"" + path + "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
       stage = "comp";
     }
     if (stage.empty()) continue;

@@ -2,19 +2,19 @@
 // series of M terms whose sin/cos basis images of the depth z are filtered linearly.
 #ifndef PENUMBRA_SHARED_CSM_H
 #define PENUMBRA_SHARED_CSM_H
-#include "prelude.h"
 #include "constants.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 const int kCsmMaxTerms = 16;
 
 struct CsmParams {
-  int termCount;       // M in [1, 16]; M/2 RGBA textures (CSM paper §4)
-  float attenuation;   // alpha of the ringing attenuation exp(-alpha (k/M)^2) (§3.2.1), [0, 20]
-  float offsetScale;   // receiver offset in units of 1/(2M) (§3.2.2), [0, 4]; 1 puts the first
-                       // ringing maximum on a lit receiver so lit surfaces come out lit
-  float scale;         // the reconstruction is multiplied by this (§3.2.2: 2), [1, 4]
-  int storage;         // kStorageUnorm8 (paper), kStorageFloat16 or kStorageFloat32
+  int termCount;      // M in [1, 16]; M/2 RGBA textures (CSM paper §4)
+  float attenuation;  // alpha of the ringing attenuation exp(-alpha (k/M)^2) (§3.2.1), [0, 20]
+  float offsetScale;  // receiver offset in units of 1/(2M) (§3.2.2), [0, 4]; 1 puts the first
+                      // ringing maximum on a lit receiver so lit surfaces come out lit
+  float scale;        // the reconstruction is multiplied by this (§3.2.2: 2), [1, 4]
+  int storage;        // kStorageUnorm8 (paper), kStorageFloat16 or kStorageFloat32
   int pad0;
   int pad1;
   int pad2;
@@ -34,7 +34,9 @@ PENUMBRA_INLINE CsmParams csmDefaultParams() {
 }
 
 // c_k = pi (2k - 1), k = 1..M (CSM eq. 11).
-PENUMBRA_INLINE float csmFrequency(int k) { return kPi * float(2 * k - 1); }
+PENUMBRA_INLINE float csmFrequency(int k) {
+  return kPi * float(2 * k - 1);
+}
 
 // The expansion is a square wave of period 2 in t = z - d (eq. 10), a step only for |t| < 1, and
 // its ringing spreads each jump over about 1/(2M). Depths in [0,1] are scaled by kappa before
@@ -56,7 +58,9 @@ PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index, CsmParams p) {
   return basis * 0.5f + vec4(0.5f);
 }
 
-PENUMBRA_INLINE int csmTextureCount(CsmParams p) { return (p.termCount + 1) / 2; }
+PENUMBRA_INLINE int csmTextureCount(CsmParams p) {
+  return (p.termCount + 1) / 2;
+}
 
 PENUMBRA_INLINE float csmAttenuationFactor(int k, CsmParams p) {
   float x = float(k) / float(p.termCount);

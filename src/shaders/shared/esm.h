@@ -4,8 +4,8 @@
 // (1/c) ln sum w exp(c z) with the helpers below, finite for any c.
 #ifndef PENUMBRA_SHARED_ESM_H
 #define PENUMBRA_SHARED_ESM_H
-#include "prelude.h"
 #include "constants.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 const int kEsmFilterLinear = 0;
@@ -14,9 +14,9 @@ const int kEsmFilterLog = 1;
 const float kEsmMaxLinearExponent = 88.0f;
 
 struct EsmParams {
-  float exponent;    // c: 80 for fp32 (ESM paper §3.2); (0, 88] linear, (0, 10000] log space
-  int filterSpace;   // kEsmFilterLinear or kEsmFilterLog
-  float threshold;   // epsilon of threshold classification (ESM paper §3.3), [0, 10]
+  float exponent;   // c: 80 for fp32 (ESM paper §3.2); (0, 88] linear, (0, 10000] log space
+  int filterSpace;  // kEsmFilterLinear or kEsmFilterLog
+  float threshold;  // epsilon of threshold classification (ESM paper §3.3), [0, 10]
   float pad0;
 };
 

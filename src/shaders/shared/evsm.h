@@ -2,9 +2,9 @@
 // warps of depth, the minimum of the two bounds. Exponents are clamped to what storage holds.
 #ifndef PENUMBRA_SHARED_EVSM_H
 #define PENUMBRA_SHARED_EVSM_H
-#include "prelude.h"
 #include "chebyshev.h"
 #include "constants.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 // Depth is mapped to [-1,1] before warping, so the second moment exp(2c) must fit the format:

@@ -20,7 +20,8 @@ PENUMBRA_INLINE HardParams hardDefaultParams() {
   return p;
 }
 
-// Receiver depth moved toward the light by the bias; depthSlope is |d depth / d texel| (0 when unknown).
+// Receiver depth moved toward the light by the bias; depthSlope is |d depth / d texel| (0 when
+// unknown).
 PENUMBRA_INLINE float biasedReceiverDepth(float receiverDepth, float depthSlope, HardParams p) {
   return receiverDepth - p.constantBias - p.slopeScaledBias * depthSlope;
 }

@@ -2,8 +2,8 @@
 // L-1 increasing interior depths s_1..s_{L-1}; s_0 = 0 and s_L = 1 are implicit.
 #ifndef PENUMBRA_SHARED_LAYERS_H
 #define PENUMBRA_SHARED_LAYERS_H
-#include "prelude.h"
 #include "constants.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 // Interior splits packed four to a vec4, so std140/std430 blocks and C++ share one layout.

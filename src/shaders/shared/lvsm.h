@@ -2,10 +2,10 @@
 // sampled per fragment, and a transition blend with the next layer near its upper split.
 #ifndef PENUMBRA_SHARED_LVSM_H
 #define PENUMBRA_SHARED_LVSM_H
-#include "prelude.h"
 #include "chebyshev.h"
 #include "constants.h"
 #include "layers.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 struct LvsmParams {
@@ -17,7 +17,7 @@ struct LvsmParams {
   int pad0;
   int pad1;
   int pad2;
-  LayerSplits splits;    // uniform by default; Lloyd relaxation places them per frame (§4.1.2)
+  LayerSplits splits;  // uniform by default; Lloyd relaxation places them per frame (§4.1.2)
 };
 
 PENUMBRA_INLINE LvsmParams lvsmDefaultParams() {
@@ -67,8 +67,8 @@ PENUMBRA_INLINE float lvsmTransitionWeight(float receiverDepth, int layer, LvsmP
 }
 
 // Visibility from the moments of the receiver's layer and of the layer above it.
-PENUMBRA_INLINE float lvsmVisibility(vec2 layerMoments, vec2 nextLayerMoments,
-                                     float receiverDepth, LvsmParams p) {
+PENUMBRA_INLINE float lvsmVisibility(vec2 layerMoments, vec2 nextLayerMoments, float receiverDepth,
+                                     LvsmParams p) {
   int layer = selectLayer(receiverDepth, p.splits);
   float v = lvsmLayerVisibility(layerMoments, receiverDepth, layer, p);
   float w = lvsmTransitionWeight(receiverDepth, layer, p);

@@ -2,15 +2,15 @@
 // The lookup loop lives with the texture access (GLSL lib / CPU reference); its parts live here.
 #ifndef PENUMBRA_SHARED_PCF_H
 #define PENUMBRA_SHARED_PCF_H
-#include "prelude.h"
 #include "filter_weights.h"
 #include "hard.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 struct PcfParams {
-  int kernel;    // kKernelBox, kKernelGaussian or kKernelBilinear
-  int radius;    // taps each side of the centre: (2r+1)^2 taps, r in [0, 15]
-  float sigma;   // Gaussian standard deviation in texels, [0.25, 16]
+  int kernel;   // kKernelBox, kKernelGaussian or kKernelBilinear
+  int radius;   // taps each side of the centre: (2r+1)^2 taps, r in [0, 15]
+  float sigma;  // Gaussian standard deviation in texels, [0.25, 16]
   float pad0;
   HardParams bias;
 };
@@ -32,7 +32,9 @@ PENUMBRA_INLINE float pcfTapWeight(int tapX, int tapY, vec2 fraction, PcfParams 
 }
 
 // Lowest tap offset of the kernel; the highest is radius, or radius + 1 for the bilinear kernel.
-PENUMBRA_INLINE int pcfFirstTap(PcfParams p) { return -p.radius; }
+PENUMBRA_INLINE int pcfFirstTap(PcfParams p) {
+  return -p.radius;
+}
 PENUMBRA_INLINE int pcfLastTap(PcfParams p) {
   return p.kernel == kKernelBilinear ? p.radius + 1 : p.radius;
 }

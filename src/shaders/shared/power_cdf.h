@@ -3,9 +3,9 @@
 // The layered variant clamps depths into each layer's split interval, like LVSM's warps.
 #ifndef PENUMBRA_SHARED_POWER_CDF_H
 #define PENUMBRA_SHARED_POWER_CDF_H
-#include "prelude.h"
 #include "constants.h"
 #include "layers.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 // beta is kept in [1e-6, 1e6]: both ends are degenerate distributions where eq. 4 is 0/0.

@@ -11,8 +11,8 @@
 #include <glm/glm.hpp>
 #define PENUMBRA_INLINE inline
 #define PENUMBRA_PRECISE
-#define PENUMBRA_BEGIN_SHARED \
-  namespace penumbra::shaders {   \
+#define PENUMBRA_BEGIN_SHARED   \
+  namespace penumbra::shaders { \
   using namespace glm;
 #define PENUMBRA_END_SHARED }
 #else

@@ -3,8 +3,8 @@
 // filtered channels become visibility. The C++ reference and the GPU parity test both run it.
 #ifndef PENUMBRA_SHARED_TECHNIQUE_DISPATCH_H
 #define PENUMBRA_SHARED_TECHNIQUE_DISPATCH_H
-#include "prelude.h"
 #include "constants.h"
+#include "prelude.h"
 #include "technique_params.h"
 PENUMBRA_BEGIN_SHARED
 

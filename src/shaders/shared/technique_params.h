@@ -2,7 +2,6 @@
 // carries the settings of a frame. Defaults come from each technique's header.
 #ifndef PENUMBRA_SHARED_TECHNIQUE_PARAMS_H
 #define PENUMBRA_SHARED_TECHNIQUE_PARAMS_H
-#include "prelude.h"
 #include "csm.h"
 #include "esm.h"
 #include "evsm.h"
@@ -11,6 +10,7 @@
 #include "msm.h"
 #include "pcf.h"
 #include "power_cdf.h"
+#include "prelude.h"
 #include "vsm.h"
 PENUMBRA_BEGIN_SHARED
 

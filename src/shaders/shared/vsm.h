@@ -1,9 +1,9 @@
 // Variance shadow maps (thesis ch. 3): store (z, z^2), filter linearly, bound with Chebyshev.
 #ifndef PENUMBRA_SHARED_VSM_H
 #define PENUMBRA_SHARED_VSM_H
-#include "prelude.h"
 #include "chebyshev.h"
 #include "constants.h"
+#include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
 struct VsmParams {
@@ -23,7 +23,9 @@ PENUMBRA_INLINE VsmParams vsmDefaultParams() {
 }
 
 // The two moments of a linear depth in [0,1] (thesis eq. 3.1); both stay in [0,1].
-PENUMBRA_INLINE vec2 vsmEncode(float depth) { return vec2(depth, depth * depth); }
+PENUMBRA_INLINE vec2 vsmEncode(float depth) {
+  return vec2(depth, depth * depth);
+}
 
 PENUMBRA_INLINE float vsmVisibility(vec2 moments, float receiverDepth, VsmParams p) {
   float pMax = chebyshevUpperBound(moments, receiverDepth, p.minVariance);

@@ -12,9 +12,15 @@ struct ParityCase {
   float channels[kMaxChannels];
 };
 
-layout(std430, binding = 0) readonly buffer Cases { ParityCase cases[]; };
-layout(std430, binding = 1) readonly buffer ParamSets { TechniqueParams paramSets[]; };
-layout(std430, binding = 2) writeonly buffer Results { float visibility[]; };
+layout(std430, binding = 0) readonly buffer Cases {
+  ParityCase cases[];
+};
+layout(std430, binding = 1) readonly buffer ParamSets {
+  TechniqueParams paramSets[];
+};
+layout(std430, binding = 2) writeonly buffer Results {
+  float visibility[];
+};
 
 uniform uint caseCount;
 
