@@ -30,20 +30,22 @@ const float kMsmQuantizationOffset = 0.035955884801f;
 
 // q = E b: each group of four literals is one published row of E, which becomes a column of
 // the GLM/GLSL mat4, so that mat4 * b computes q_j = sum_i b_i E[i][j].
+// clang-format off
 PENUMBRA_INLINE mat4 msmQuantizationMatrix() {
-  return mat4(-2.07224649f, 13.7948857237f, 0.105877704f, 9.7924062118f, 32.23703778f,
-              -59.4683975703f, -1.9077466311f, -33.7652110555f, -68.571074599f, 82.0359750338f,
-              9.3496555107f, 47.9456096605f, 39.3703274134f, -35.364903257f, -6.6543490743f,
-              -23.9728048165f);
+  return mat4(-2.07224649f,    13.7948857237f,  0.105877704f,   9.7924062118f,
+              32.23703778f,   -59.4683975703f, -1.9077466311f, -33.7652110555f,
+              -68.571074599f,  82.0359750338f,  9.3496555107f,  47.9456096605f,
+              39.3703274134f, -35.364903257f,  -6.6543490743f, -23.9728048165f);
 }
 
 // b_j = sum_i (q - offset)_i D[i][j], laid out like msmQuantizationMatrix.
 PENUMBRA_INLINE mat4 msmDequantizationMatrix() {
-  return mat4(0.2227744146f, 0.1549679261f, 0.1451988946f, 0.163127443f, 0.0771972861f,
-              0.1394629426f, 0.2120202157f, 0.2591432266f, 0.7926986636f, 0.7963415838f,
-              0.7258694464f, 0.6539092497f, 0.0319417555f, -0.1722823173f, -0.2758014811f,
-              -0.3376131734f);
+  return mat4(0.2227744146f,  0.1549679261f,  0.1451988946f,  0.163127443f,
+              0.0771972861f,  0.1394629426f,  0.2120202157f,  0.2591432266f,
+              0.7926986636f,  0.7963415838f,  0.7258694464f,  0.6539092497f,
+              0.0319417555f, -0.1722823173f, -0.2758014811f, -0.3376131734f);
 }
+// clang-format on
 
 PENUMBRA_INLINE vec4 msmPowers(float depth) {
   float z2 = depth * depth;
