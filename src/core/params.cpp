@@ -85,6 +85,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                   [](TechniqueParams& p) { return &p.pcf.radius; }),
           real("sigma", "Gaussian kernel standard deviation, texels", 0.25, 16.0,
                [](TechniqueParams& p) { return &p.pcf.sigma; }),
+          choice("receiverPlane", "receiver-plane depth bias: each tap follows the receiver plane",
+                 {{"off", 0}, {"on", 1}}, [](TechniqueParams& p) { return &p.pcf.receiverPlane; }),
           real("constantBias", kConstantBiasDoc, 0.0, 0.1,
                [](TechniqueParams& p) { return &p.pcf.bias.constantBias; }),
           real("slopeBias", kSlopeBiasDoc, 0.0, 10.0,

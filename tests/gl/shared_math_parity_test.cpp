@@ -12,7 +12,7 @@
 
 #include "gl_test_context.h"
 #include "penumbra/depth_distribution.h"
-#include "penumbra/gl/compute_program.h"
+#include "penumbra/gl/program.h"
 #include "penumbra/params.h"
 #include "penumbra/shader_library.h"
 #include "shared/technique_dispatch.h"
@@ -86,7 +86,7 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
   ShaderLibrary library;
   library.addFile("tests/shared_math_parity.comp",
                   readFile(PENUMBRA_TEST_SHADER_DIR "/shared_math_parity.comp"));
-  gl::ComputeProgram program(library, "tests/shared_math_parity.comp");
+  const gl::Program program = gl::Program::compute(library, "tests/shared_math_parity.comp");
 
   std::mt19937 rng(2026);
   std::uniform_real_distribution<float> unit(0.0f, 1.0f);
@@ -111,14 +111,13 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
     }
   }
 
-  gl::StorageBuffer caseBuffer(std::as_bytes(std::span(cases)), false);
-  gl::StorageBuffer paramBuffer(std::as_bytes(std::span(params)), false);
-  gl::StorageBuffer resultBuffer(expected.size() * sizeof(float));
-  caseBuffer.bind(0);
-  paramBuffer.bind(1);
-  resultBuffer.bind(2);
-  glProgramUniform1ui(program.id(), glGetUniformLocation(program.id(), "caseCount"),
-                      GLuint(cases.size()));
+  gl::Buffer caseBuffer(std::as_bytes(std::span(cases)));
+  gl::Buffer paramBuffer(std::as_bytes(std::span(params)));
+  gl::Buffer resultBuffer(expected.size() * sizeof(float));
+  caseBuffer.bindStorage(0);
+  paramBuffer.bindStorage(1);
+  resultBuffer.bindStorage(2);
+  program.set("caseCount", unsigned(cases.size()));
   program.dispatch(GLuint((cases.size() + 63) / 64));
   std::vector<float> gpu(expected.size());
   resultBuffer.read(std::as_writable_bytes(std::span(gpu)));

@@ -5,11 +5,13 @@
 
 #include "curves_command.h"
 #include "penumbra/error.h"
+#include "render_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
   app.require_subcommand(1);
   penumbra::cli::registerCurvesCommand(app);
+  penumbra::cli::registerRenderCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -10,8 +10,8 @@ PENUMBRA_BEGIN_SHARED
 struct PcfParams {
   int kernel;   // kKernelBox, kKernelGaussian or kKernelBilinear
   int radius;   // taps each side of the centre: (2r+1)^2 taps, r in [0, 15]
-  float sigma;  // Gaussian standard deviation in texels, [0.25, 16]
-  float pad0;
+  float sigma;         // Gaussian standard deviation in texels, [0.25, 16]
+  int receiverPlane;   // 1: each tap's receiver depth follows the receiver plane (bias)
   HardParams bias;
 };
 
@@ -20,7 +20,7 @@ PENUMBRA_INLINE PcfParams pcfDefaultParams() {
   p.kernel = kKernelBilinear;
   p.radius = 2;
   p.sigma = 1.0f;
-  p.pad0 = 0.0f;
+  p.receiverPlane = 1;
   p.bias = hardDefaultParams();
   return p;
 }

@@ -1,0 +1,16 @@
+// The JSON record of a render: every parameter, per-pass GPU times, exact memory, the device.
+#pragma once
+
+#include <map>
+#include <string>
+
+#include "penumbra/gl/renderer.h"
+
+namespace penumbra::gl {
+
+// Pretty-printed JSON. `files` maps roles ("color", "visibility_exr", ...) to written file names.
+std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
+                             const RenderResult& result, const std::string& device,
+                             const std::map<std::string, std::string>& files);
+
+}  // namespace penumbra::gl

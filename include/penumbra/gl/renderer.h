@@ -1,0 +1,101 @@
+// The OpenGL 4.5 shadow renderer: light pass -> encode -> prefilter (blur, mips or summed-area
+// table) -> camera pass, for any technique, with per-pass GPU times and exact memory.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "penumbra/filters.h"
+#include "penumbra/image.h"
+#include "penumbra/scene.h"
+#include "penumbra/technique.h"
+
+namespace penumbra::gl {
+
+class HeadlessContext;
+
+enum class FilterMode { Point, Bilinear, Trilinear, Anisotropic, SummedArea };
+
+std::string_view filterModeName(FilterMode mode);  // "point", "bilinear", ..., "sat"
+// Throws Error listing the valid names.
+FilterMode parseFilterMode(std::string_view name);
+std::string filterModeNameList();
+
+struct RenderSettings {
+  Technique technique = Technique::Vsm;
+  TechniqueParams params = defaultTechniqueParams();
+  int shadowMapSize = 1024;  // texels per side, [16, GL_MAX_TEXTURE_SIZE]
+  int msaaSamples = 1;       // 1 (off), 2, 4 or 8, at most GL_MAX_SAMPLES
+  BlurSpec blur{BlurKernel::Gaussian, 2, 1.0f};  // prefilter; radius 0 = none. With the
+                                                 // summed-area filter the radius is the box minimum
+  FilterMode filter = FilterMode::Trilinear;
+  int anisotropy = 16;          // [1, 16], used by the anisotropic filter
+  int width = 960;              // frame size in pixels, [1, GL_MAX_TEXTURE_SIZE]
+  int height = 540;
+  float normalOffsetTexels = 0.0f;  // normal-offset bias in shadow-map texels, [0, 10]
+  float ambient = 0.2f;             // ambient share of the shading, [0, 1]
+};
+
+struct PassTimes {  // milliseconds per pass
+  double light = 0.0;
+  double encode = 0.0;
+  double prefilter = 0.0;   // separable blur
+  double mipsOrSat = 0.0;   // mip chain or summed-area table
+  double camera = 0.0;
+  double total() const { return light + encode + prefilter + mipsOrSat + camera; }
+};
+
+struct MemoryReport {  // exact bytes allocated
+  uint64_t lightPass = 0;   // linear depth target and depth buffer (times MSAA samples)
+  uint64_t technique = 0;   // the technique's channel texture, mips included when allocated
+  uint64_t summedArea = 0;  // summed-area table sums and statistics
+  uint64_t scratch = 0;     // the blur's intermediate texture
+  uint64_t frame = 0;       // camera-pass colour, visibility and depth targets
+  uint64_t total() const { return lightPass + technique + summedArea + scratch + frame; }
+};
+
+struct RenderResult {
+  Image color;       // RGBA in [0,1], row 0 at the top
+  Image visibility;  // one float channel in [0,1], row 0 at the top
+  PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
+  PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
+  MemoryReport memory;
+};
+
+class Renderer {
+ public:
+  // Needs a current GL 4.5 context; compiles shader variants on first use.
+  explicit Renderer(const HeadlessContext& context);
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Checks settings against their ranges and this GL's limits; throws Error saying which and why.
+  void validate(const RenderSettings& settings) const;
+
+  RenderResult render(const Scene& scene, const RenderSettings& settings);
+
+  // The light pass's linear depth (sample 0 under MSAA) of the last render, row 0 at the bottom.
+  Image readDepthMap() const;
+  // The technique's channels at a mip level after the last render (encoded and prefiltered),
+  // one image channel per technique channel, row 0 at the bottom.
+  Image readChannels(int level) const;
+  int channelMipLevels() const;
+
+  // Runs encode and prefilter on a given depth map (row 0 at the bottom) without a scene:
+  // the path the GPU-parity tests compare with the CPU reference filters.
+  void filterDepthMap(const Image& depth, const RenderSettings& settings);
+  // The summed-area box mean the camera pass would compute, for parity tests.
+  double summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const;
+
+  std::string deviceDescription() const;
+
+  struct State;  // GL objects; defined in src/gl/renderer_state.h for the pass files
+
+ private:
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace penumbra::gl

@@ -1,0 +1,25 @@
+// Image files: PNG through libpng (8-bit colour, 16-bit grey) and OpenEXR (float). Every writer
+// refuses images holding NaN or Inf: they never reach an output file.
+#pragma once
+
+#include <filesystem>
+
+#include "penumbra/image.h"
+
+namespace penumbra {
+
+// 3 or 4 channels in [0,1] (clamped), row 0 at the top: an 8-bit RGB PNG.
+void writeColorPng(const Image& image, const std::filesystem::path& path);
+// One channel in [0,1] (clamped): a 16-bit greyscale PNG.
+void writeGrey16Png(const Image& image, const std::filesystem::path& path);
+// One channel: a float OpenEXR image with channel "Y".
+void writeFloatExr(const Image& image, const std::filesystem::path& path);
+
+// Reads back what the writers above wrote (for tests and tools).
+Image readGrey16Png(const std::filesystem::path& path);
+Image readFloatExr(const std::filesystem::path& path);
+
+// Throws Error naming the first non-finite value's position.
+void requireFinite(const Image& image, std::string_view what);
+
+}  // namespace penumbra

@@ -1,0 +1,51 @@
+// Scene upload and drawing.
+#include "gpu_scene.h"
+
+#include <epoxy/gl.h>
+
+#include "penumbra/gl/context.h"
+
+namespace penumbra::gl {
+
+GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
+  std::vector<Vertex> vertices;
+  std::vector<uint32_t> indices;
+  for (const Mesh& m : scene.meshes) {
+    ranges_.push_back({indices.size(), m.indices.size(), int(vertices.size())});
+    vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
+    indices.insert(indices.end(), m.indices.begin(), m.indices.end());
+  }
+  glCreateBuffers(1, &vertexBuffer_);
+  glNamedBufferStorage(vertexBuffer_, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+  glCreateBuffers(1, &indexBuffer_);
+  glNamedBufferStorage(indexBuffer_, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
+  glCreateVertexArrays(1, &vertexArray_);
+  glVertexArrayVertexBuffer(vertexArray_, 0, vertexBuffer_, 0, sizeof(Vertex));
+  glVertexArrayElementBuffer(vertexArray_, indexBuffer_);
+  glEnableVertexArrayAttrib(vertexArray_, 0);
+  glVertexArrayAttribFormat(vertexArray_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
+  glVertexArrayAttribBinding(vertexArray_, 0, 0);
+  glEnableVertexArrayAttrib(vertexArray_, 1);
+  glVertexArrayAttribFormat(vertexArray_, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
+  glVertexArrayAttribBinding(vertexArray_, 1, 0);
+  checkErrors("uploading the scene");
+}
+
+GpuScene::~GpuScene() {
+  glDeleteVertexArrays(1, &vertexArray_);
+  glDeleteBuffers(1, &vertexBuffer_);
+  glDeleteBuffers(1, &indexBuffer_);
+}
+
+void GpuScene::draw(const std::function<void(const Mesh&)>& beforeMesh) const {
+  glBindVertexArray(vertexArray_);
+  for (size_t i = 0; i < ranges_.size(); ++i) {
+    if (beforeMesh) beforeMesh(scene_.meshes[i]);
+    glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(ranges_[i].indexCount), GL_UNSIGNED_INT,
+                             reinterpret_cast<const void*>(ranges_[i].firstIndex * sizeof(uint32_t)),
+                             ranges_[i].baseVertex);
+  }
+  glBindVertexArray(0);
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,74 @@
+// JSON records of renders (nlohmann-json).
+#include "penumbra/gl/render_record.h"
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "penumbra/channel_layout.h"
+#include "penumbra/params.h"
+
+namespace penumbra::gl {
+
+std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
+                             const RenderResult& result, const std::string& device,
+                             const std::map<std::string, std::string>& files) {
+  using nlohmann::ordered_json;
+  ordered_json params = ordered_json::object();
+  for (const ParamSpec& spec : techniqueParamSpecs(settings.technique)) {
+    params[std::string(spec.name)] = formatParam(settings.technique, settings.params, spec.name);
+  }
+  const ChannelLayout layout = channelLayout(settings.technique, settings.params);
+  double sum = 0.0, lo = 1.0, hi = 0.0;
+  for (float v : result.visibility.data()) {
+    sum += v;
+    lo = std::min(lo, double(v));
+    hi = std::max(hi, double(v));
+  }
+  const MemoryReport& m = result.memory;
+  auto times = [](const PassTimes& t) {
+    return ordered_json{{"light", t.light},         {"encode", t.encode},
+                        {"prefilter", t.prefilter}, {"mips_or_sat", t.mipsOrSat},
+                        {"camera", t.camera},       {"total", t.total()}};
+  };
+  ordered_json record = {
+      {"scene", scene.name},
+      {"technique", techniqueId(settings.technique)},
+      {"technique_title", techniqueTitle(settings.technique)},
+      {"params", params},
+      {"settings",
+       {{"shadow_map_size", settings.shadowMapSize},
+        {"msaa_samples", settings.msaaSamples},
+        {"blur",
+         {{"kernel", settings.blur.kernel == BlurKernel::Box ? "box" : "gaussian"},
+          {"radius", settings.blur.radius},
+          {"taps", 2 * settings.blur.radius + 1},
+          {"sigma", settings.blur.sigma}}},
+        {"filter", filterModeName(settings.filter)},
+        {"anisotropy", settings.anisotropy},
+        {"width", settings.width},
+        {"height", settings.height},
+        {"normal_offset_texels", settings.normalOffsetTexels},
+        {"ambient", settings.ambient}}},
+      {"channels",
+       {{"count", layout.channels},
+        {"layers", layout.layers},
+        {"components_per_texel", layout.componentsPerTexel},
+        {"storage", storageFormatName(layout.format)}}},
+      {"gpu_ms", times(result.gpuTimes)},
+      {"wall_ms", times(result.wallTimes)},
+      {"memory_bytes",
+       {{"light_pass", m.lightPass},
+        {"technique", m.technique},
+        {"summed_area", m.summedArea},
+        {"scratch", m.scratch},
+        {"frame", m.frame},
+        {"total", m.total()}}},
+      {"technique_memory_mib", double(m.technique + m.summedArea) / (1024.0 * 1024.0)},
+      {"visibility", {{"mean", sum / double(result.visibility.data().size())}, {"min", lo}, {"max", hi}}},
+      {"device", device},
+      {"files", files},
+  };
+  return record.dump(2) + "\n";
+}
+
+}  // namespace penumbra::gl

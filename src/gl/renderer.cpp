@@ -1,0 +1,404 @@
+// The renderer: settings validation, light pass, camera pass, read-backs and measurements.
+#include "penumbra/gl/renderer.h"
+
+#include <epoxy/gl.h>
+
+#include <array>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "gl_formats.h"
+#include "gpu_scene.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "penumbra/params.h"
+#include "renderer_state.h"
+
+namespace penumbra::gl {
+namespace {
+
+constexpr std::array<std::pair<FilterMode, std::string_view>, 5> kFilterModes{{
+    {FilterMode::Point, "point"},
+    {FilterMode::Bilinear, "bilinear"},
+    {FilterMode::Trilinear, "trilinear"},
+    {FilterMode::Anisotropic, "anisotropic"},
+    {FilterMode::SummedArea, "sat"},
+}};
+
+void checkRange(std::string_view what, double value, double lo, double hi) {
+  if (!(value >= lo && value <= hi)) {
+    throw Error(std::string(what) + " " + std::to_string(value) + " is out of range [" +
+                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+}
+
+void checkRange(std::string_view what, int value, int lo, int hi) {
+  if (value < lo || value > hi) {
+    throw Error(std::string(what) + " " + std::to_string(value) + " is out of range [" +
+                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+}
+
+// Copies a GL image (row 0 at the bottom) into an Image, optionally flipping to row 0 at the top.
+Image readTexture(unsigned texture, int level, int width, int height, int layers, int components,
+                  GLenum format, bool flip) {
+  std::vector<float> data(size_t(width) * size_t(height) * size_t(layers) * size_t(components));
+  glGetTextureImage(texture, level, format, GL_FLOAT, GLsizei(data.size() * sizeof(float)), data.data());
+  checkErrors("reading back a texture");
+  Image image(width, height, layers * components);
+  for (int layer = 0; layer < layers; ++layer) {
+    for (int y = 0; y < height; ++y) {
+      const int row = flip ? height - 1 - y : y;
+      for (int x = 0; x < width; ++x) {
+        for (int c = 0; c < components; ++c) {
+          image.at(x, row, layer * components + c) =
+              data[((size_t(layer) * size_t(height) + size_t(y)) * size_t(width) + size_t(x)) *
+                       size_t(components) + size_t(c)];
+        }
+      }
+    }
+  }
+  return image;
+}
+
+void allocateLightPass(Renderer::State& s) {
+  if (s.lightFramebuffer != 0) glDeleteFramebuffers(1, &s.lightFramebuffer);
+  const bool ms = s.msaaSamples > 1;
+  s.lightDepth = Texture(ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D);
+  s.lightBuffer = Texture(ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D);
+  if (ms) {
+    glTextureStorage2DMultisample(s.lightDepth.id(), s.msaaSamples, GL_R32F, s.shadowMapSize, s.shadowMapSize, GL_TRUE);
+    glTextureStorage2DMultisample(s.lightBuffer.id(), s.msaaSamples, GL_DEPTH_COMPONENT32F, s.shadowMapSize, s.shadowMapSize, GL_TRUE);
+  } else {
+    glTextureStorage2D(s.lightDepth.id(), 1, GL_R32F, s.shadowMapSize, s.shadowMapSize);
+    glTextureStorage2D(s.lightBuffer.id(), 1, GL_DEPTH_COMPONENT32F, s.shadowMapSize, s.shadowMapSize);
+  }
+  glCreateFramebuffers(1, &s.lightFramebuffer);
+  glNamedFramebufferTexture(s.lightFramebuffer, GL_COLOR_ATTACHMENT0, s.lightDepth.id(), 0);
+  glNamedFramebufferTexture(s.lightFramebuffer, GL_DEPTH_ATTACHMENT, s.lightBuffer.id(), 0);
+  if (glCheckNamedFramebufferStatus(s.lightFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error("the light-pass framebuffer is incomplete (R32F + D32F, " +
+                std::to_string(s.msaaSamples) + " samples)");
+  }
+}
+
+void allocateFrame(Renderer::State& s, int width, int height) {
+  if (s.frameFramebuffer != 0) glDeleteFramebuffers(1, &s.frameFramebuffer);
+  s.frameColor = Texture(GL_TEXTURE_2D);
+  s.frameVisibility = Texture(GL_TEXTURE_2D);
+  s.frameDepth = Texture(GL_TEXTURE_2D);
+  glTextureStorage2D(s.frameColor.id(), 1, GL_RGBA8, width, height);
+  glTextureStorage2D(s.frameVisibility.id(), 1, GL_R32F, width, height);
+  glTextureStorage2D(s.frameDepth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
+  glCreateFramebuffers(1, &s.frameFramebuffer);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT0, s.frameColor.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT1, s.frameVisibility.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_DEPTH_ATTACHMENT, s.frameDepth.id(), 0);
+  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 2, buffers);
+  if (glCheckNamedFramebufferStatus(s.frameFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error("the camera-pass framebuffer is incomplete");
+  }
+}
+
+void renderLightPass(Renderer::State& s, const GpuScene& gpuScene, const LightView& light) {
+  const Program& program = s.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
+  program.set("lightViewFromWorld", light.lightFromWorld);
+  program.set("lightClipFromView", light.clipFromLight);
+  program.set("lightPerspective", light.perspective ? 1 : 0);
+  program.set("lightNear", light.nearDistance);
+  program.set("lightFar", light.farDistance);
+  program.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, s.lightFramebuffer);
+  glViewport(0, 0, s.shadowMapSize, s.shadowMapSize);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  if (s.msaaSamples > 1) glEnable(GL_MULTISAMPLE);
+  const float far = 1.0f;  // nothing there: the far plane
+  glClearNamedFramebufferfv(s.lightFramebuffer, GL_COLOR, 0, &far);
+  glClearNamedFramebufferfi(s.lightFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  s.lightTimer.begin();
+  gpuScene.draw(nullptr);
+  s.lightTimer.end();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkErrors("light pass");
+}
+
+void setChannelSampling(Renderer::State& s) {
+  const FilterMode mode = s.settings.filter;
+  const GLuint t = s.channels.id();
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, mode == FilterMode::Point ? GL_NEAREST : GL_LINEAR);
+  GLint minFilter = GL_LINEAR;
+  if (mode == FilterMode::Point) minFilter = GL_NEAREST;
+  if (s.channelLevels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
+  const float anisotropy = mode == FilterMode::Anisotropic ? float(s.settings.anisotropy) : 1.0f;
+  glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+}
+
+void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gpuScene,
+                      const LightView& light) {
+  const RenderSettings& settings = s.settings;
+  const bool summedArea = settings.filter == FilterMode::SummedArea && s.satSums.has_value();
+  const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
+                                      {{"SUMMED_AREA", summedArea ? "1" : "0"}});
+  s.bindTechnique(program);
+  const float aspect = float(settings.width) / float(settings.height);
+  program.set("clipFromWorld", clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera));
+  program.set("lightViewFromWorld", light.lightFromWorld);
+  program.set("lightClipFromView", light.clipFromLight);
+  program.set("lightPerspective", light.perspective ? 1 : 0);
+  program.set("lightNear", light.nearDistance);
+  program.set("lightFar", light.farDistance);
+  program.set("lightDirection", glm::normalize(scene.light.direction));
+  program.set("lightPosition", scene.light.position);
+  program.set("spotAxis", glm::normalize(scene.light.target - scene.light.position));
+  program.set("spotCosine", std::cos(glm::radians(0.5f * scene.light.spotAngleDegrees)));
+  program.set("normalOffset", settings.normalOffsetTexels * light.texelWorldSize(s.shadowMapSize));
+  program.set("ambient", settings.ambient);
+  program.set("filterMode", int(settings.filter));
+  program.set("channelLayers", s.layout.layers);
+  program.set("shadowMapSize", s.shadowMapSize);
+  program.set("satMinRadius", settings.blur.radius);
+  setChannelSampling(s);
+  glBindTextureUnit(0, s.channels.id());
+  if (summedArea) {
+    s.satStats->bindStorage(2);
+    s.satSums->bindStorage(3);
+  }
+  program.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, s.frameFramebuffer);
+  glViewport(0, 0, settings.width, settings.height);
+  glEnable(GL_DEPTH_TEST);
+  glDisable(GL_CULL_FACE);
+  const float sky[4] = {0.62f, 0.72f, 0.86f, 1.0f};
+  const float lit[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 0, sky);
+  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 1, lit);
+  glClearNamedFramebufferfi(s.frameFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  s.cameraTimer.begin();
+  gpuScene.draw([&](const Mesh& mesh) { program.set("albedo", mesh.albedo); });
+  s.cameraTimer.end();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkErrors("camera pass");
+}
+
+MemoryReport memoryReport(const Renderer::State& s) {
+  const RenderSettings& settings = s.settings;
+  const uint64_t texels = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize);
+  MemoryReport m;
+  m.lightPass = texels * (4 + 4) * uint64_t(s.msaaSamples);
+  m.technique = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, s.channelLevels > 1);
+  if (s.satSums) m.summedArea = s.satSums->size() + s.satStats->size() + s.satRows->size();
+  if (s.scratch.id() != 0) m.scratch = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, false);
+  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4);
+  return m;
+}
+
+}  // namespace
+
+std::string_view filterModeName(FilterMode mode) {
+  for (const auto& [m, name] : kFilterModes) {
+    if (m == mode) return name;
+  }
+  return "unknown";
+}
+
+std::string filterModeNameList() {
+  std::string list;
+  for (const auto& [m, name] : kFilterModes) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
+FilterMode parseFilterMode(std::string_view name) {
+  for (const auto& [m, n] : kFilterModes) {
+    if (n == name) return m;
+  }
+  throw Error("unknown filter '" + std::string(name) + "'; valid filters: " + filterModeNameList());
+}
+
+Renderer::State::~State() {
+  if (lightFramebuffer != 0) glDeleteFramebuffers(1, &lightFramebuffer);
+  if (frameFramebuffer != 0) glDeleteFramebuffers(1, &frameFramebuffer);
+}
+
+const Program& Renderer::State::graphics(const std::string& vertex, const std::string& fragment,
+                                         const std::vector<ShaderDefine>& defines) {
+  std::string key = vertex + "|" + fragment;
+  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  auto found = programs.find(key);
+  if (found == programs.end()) {
+    found = programs.emplace(key, Program::graphics(library, vertex, fragment, defines)).first;
+  }
+  return found->second;
+}
+
+const Program& Renderer::State::compute(const std::string& path,
+                                        const std::vector<ShaderDefine>& defines) {
+  std::string key = path;
+  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  auto found = programs.find(key);
+  if (found == programs.end()) {
+    found = programs.emplace(key, Program::compute(library, path, defines)).first;
+  }
+  return found->second;
+}
+
+void Renderer::State::bindTechnique(const Program& program) {
+  program.set("technique", int(settings.technique));
+  paramsBlock->bindUniform(0);
+}
+
+Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<State>()) {
+  state_->device = context.description();
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &state_->maxTextureSize);
+  GLint colorSamples = 0, depthSamples = 0;
+  glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colorSamples);
+  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depthSamples);
+  state_->maxSamples = std::min(colorSamples, depthSamples);
+  glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &state_->maxAnisotropy);
+  state_->paramsBlock.emplace(sizeof(TechniqueParams));
+  checkErrors("creating the renderer");
+}
+
+Renderer::~Renderer() = default;
+
+std::string Renderer::deviceDescription() const { return state_->device; }
+
+void Renderer::validate(const RenderSettings& settings) const {
+  const State& s = *state_;
+  checkRange("shadow-map size", settings.shadowMapSize, 16, s.maxTextureSize);
+  checkRange("frame width", settings.width, 1, s.maxTextureSize);
+  checkRange("frame height", settings.height, 1, s.maxTextureSize);
+  if (settings.msaaSamples != 1 && settings.msaaSamples != 2 && settings.msaaSamples != 4 &&
+      settings.msaaSamples != 8) {
+    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": valid values are 1 (off), 2, 4, 8");
+  }
+  if (settings.msaaSamples > s.maxSamples) {
+    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": this GL (" + s.device +
+                ") supports at most " + std::to_string(s.maxSamples));
+  }
+  checkRange("blur radius", settings.blur.radius, 0, 64);
+  checkRange("blur sigma", double(settings.blur.sigma), 0.01, 64.0);
+  checkRange("anisotropy", settings.anisotropy, 1, std::min(16, int(s.maxAnisotropy)));
+  checkRange("normal offset (texels)", double(settings.normalOffsetTexels), 0.0, 10.0);
+  checkRange("ambient", double(settings.ambient), 0.0, 1.0);
+  validateParams(settings.technique, settings.params);
+  if (settings.filter == FilterMode::SummedArea) {
+    const TechniqueParams& p = settings.params;
+    for (int c = 0; c < channelCount(settings.technique, p); ++c) {
+      if (channelReduction(settings.technique, p, c) != ChannelReduction::Mean) {
+        throw Error("the summed-area filter averages channels, but " +
+                    std::string(techniqueId(settings.technique)) +
+                    " has min/max or log-space channels; use point, bilinear, trilinear or anisotropic");
+      }
+    }
+  }
+}
+
+RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
+  validate(settings);
+  State& s = *state_;
+  s.settings = settings;
+  glNamedBufferSubData(s.paramsBlock->id(), 0, sizeof(TechniqueParams), &settings.params);
+  if (s.shadowMapSize != settings.shadowMapSize || s.msaaSamples != settings.msaaSamples ||
+      s.lightFramebuffer == 0) {
+    s.shadowMapSize = settings.shadowMapSize;
+    s.msaaSamples = settings.msaaSamples;
+    allocateLightPass(s);
+  }
+  allocateChannels(s, settings);
+  allocateFrame(s, settings.width, settings.height);
+  const GpuScene gpuScene(scene);
+  const LightView light = fitLightView(scene);
+
+  renderLightPass(s, gpuScene, light);
+  encodeChannels(s, s.lightDepth.id(), s.msaaSamples > 1);
+  prefilterChannels(s);
+  renderCameraPass(s, scene, gpuScene, light);
+
+  RenderResult result;
+  result.color = readTexture(s.frameColor.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
+  result.visibility = readTexture(s.frameVisibility.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
+  result.gpuTimes = {s.lightTimer.gpuMilliseconds(), s.encodeTimer.gpuMilliseconds(),
+                     s.prefilterTimer.gpuMilliseconds(), s.mipsTimer.gpuMilliseconds(),
+                     s.cameraTimer.gpuMilliseconds()};
+  result.wallTimes = {s.lightTimer.wallMilliseconds(), s.encodeTimer.wallMilliseconds(),
+                      s.prefilterTimer.wallMilliseconds(), s.mipsTimer.wallMilliseconds(),
+                      s.cameraTimer.wallMilliseconds()};
+  result.memory = memoryReport(s);
+  return result;
+}
+
+void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings) {
+  RenderSettings single = settings;
+  single.msaaSamples = 1;
+  single.shadowMapSize = depth.width();
+  if (depth.width() != depth.height() || depth.channels() != 1) {
+    throw Error("filterDepthMap needs a square one-channel depth map");
+  }
+  validate(single);
+  State& s = *state_;
+  s.settings = single;
+  s.shadowMapSize = depth.width();
+  s.msaaSamples = 1;
+  glNamedBufferSubData(s.paramsBlock->id(), 0, sizeof(TechniqueParams), &single.params);
+  s.uploadedDepth.emplace(GL_TEXTURE_2D);
+  glTextureStorage2D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height());
+  glTextureSubImage2D(s.uploadedDepth->id(), 0, 0, 0, depth.width(), depth.height(), GL_RED,
+                      GL_FLOAT, depth.data().data());
+  allocateChannels(s, single);
+  encodeChannels(s, s.uploadedDepth->id(), false);
+  prefilterChannels(s);
+}
+
+Image Renderer::readDepthMap() const {
+  const State& s = *state_;
+  if (s.msaaSamples > 1) throw Error("readDepthMap reads single-sampled light passes only");
+  return readTexture(s.lightDepth.id(), 0, s.shadowMapSize, s.shadowMapSize, 1, 1, GL_RED, false);
+}
+
+int Renderer::channelMipLevels() const { return state_->channelLevels; }
+
+Image Renderer::readChannels(int level) const {
+  const State& s = *state_;
+  checkRange("mip level", level, 0, s.channelLevels - 1);
+  const int size = std::max(1, s.shadowMapSize >> level);
+  const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
+  Image all = readTexture(s.channels.id(), level, size, size, s.layout.layers,
+                          s.layout.componentsPerTexel, formats[s.layout.componentsPerTexel], false);
+  if (all.channels() == s.layout.channels) return all;
+  Image trimmed(size, size, s.layout.channels);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      for (int c = 0; c < s.layout.channels; ++c) trimmed.at(x, y, c) = all.at(x, y, c);
+    }
+  }
+  return trimmed;
+}
+
+double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
+  const State& s = *state_;
+  if (!s.satSums) throw Error("no summed-area table: render with the 'sat' filter first");
+  const int size = s.shadowMapSize;
+  struct Stats {
+    double centre, step;
+  };
+  std::vector<Stats> stats(size_t(s.layout.channels));
+  s.satStats->read(std::as_writable_bytes(std::span(stats)));
+  auto prefix = [&](int x, int y) -> uint64_t {
+    if (x < 0 || y < 0) return 0;
+    uint64_t v = 0;
+    const size_t index = (size_t(channel) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+    glGetNamedBufferSubData(s.satSums->id(), GLintptr(index * 8), 8, &v);
+    return v;
+  };
+  const uint64_t wrapped = prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
+  const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
+  return double(int64_t(wrapped)) * stats[size_t(channel)].step / area + stats[size_t(channel)].centre;
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,70 @@
+// The renderer's GL objects, shared by its pass files (renderer.cpp, shadow_map_filter.cpp).
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "gpu_timer.h"
+#include "penumbra/channel_layout.h"
+#include "penumbra/gl/program.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/shader_library.h"
+
+namespace penumbra::gl {
+
+struct Renderer::State {
+  ShaderLibrary library;
+  std::map<std::string, Program> programs;
+  std::string device;
+  int maxTextureSize = 0;
+  int maxSamples = 0;
+  float maxAnisotropy = 1.0f;
+
+  // Light pass.
+  Texture lightDepth;   // linear depth R32F (2D or 2D multisample)
+  Texture lightBuffer;  // depth buffer D32F
+  unsigned lightFramebuffer = 0;
+  int shadowMapSize = 0;
+  int msaaSamples = 1;
+
+  // Technique channels and prefilter.
+  ChannelLayout layout;
+  Texture channels;  // 2D array, layout.layers layers, channelLevels levels
+  Texture scratch;   // 2D array, one level: the blur's intermediate
+  int channelLevels = 1;
+  std::optional<Buffer> paramsBlock;
+  std::optional<Buffer> satRows;
+  std::optional<Buffer> satStats;
+  std::optional<Buffer> satSums;
+  std::optional<Texture> uploadedDepth;  // filterDepthMap's input
+
+  // Camera pass.
+  Texture frameColor;
+  Texture frameVisibility;
+  Texture frameDepth;
+  unsigned frameFramebuffer = 0;
+
+  GpuTimer lightTimer, encodeTimer, prefilterTimer, mipsTimer, cameraTimer;
+  RenderSettings settings;
+
+  ~State();
+
+  // A compiled program for these sources and defines, built on first use.
+  const Program& graphics(const std::string& vertex, const std::string& fragment,
+                          const std::vector<ShaderDefine>& defines);
+  const Program& compute(const std::string& path, const std::vector<ShaderDefine>& defines);
+
+  // Uploads the settings' technique and parameters to every program that runs shared math.
+  void bindTechnique(const Program& program);
+};
+
+// shadow_map_filter.cpp: encode -> blur -> mips or summed-area table, on lightDepth (or the
+// texture bound as input) into `channels`.
+void allocateChannels(Renderer::State& state, const RenderSettings& settings);
+void encodeChannels(Renderer::State& state, unsigned depthTexture, bool multisampled);
+void prefilterChannels(Renderer::State& state);
+bool usesMips(FilterMode mode);
+
+}  // namespace penumbra::gl

@@ -1,0 +1,208 @@
+// The built-in scenes of DESIGN.md, each a papers' test case (figure numbers in the comments).
+#include <array>
+#include <cmath>
+
+#include "mesh_builder.h"
+#include "penumbra/error.h"
+#include "penumbra/scene.h"
+
+namespace penumbra {
+namespace {
+
+using scene::addBox;
+using scene::addCylinder;
+using scene::addGround;
+using scene::addSphere;
+using scene::makeMesh;
+
+const glm::vec3 kGroundAlbedo(0.75f, 0.72f, 0.65f);
+const glm::vec3 kWoodAlbedo(0.62f, 0.45f, 0.3f);
+const glm::vec3 kLeafAlbedo(0.35f, 0.6f, 0.3f);
+const glm::vec3 kStoneAlbedo(0.7f, 0.7f, 0.75f);
+
+Light directional(glm::vec3 direction) {
+  Light light;
+  light.kind = LightKind::Directional;
+  light.direction = glm::normalize(direction);
+  return light;
+}
+
+void addTree(Scene& s, glm::vec3 base, float height, float crown) {
+  Mesh trunk = makeMesh(kWoodAlbedo);
+  addCylinder(trunk, base, 0.12f, height);
+  Mesh leaves = makeMesh(kLeafAlbedo);
+  addSphere(leaves, base + glm::vec3(0.0f, height, 0.0f), crown);
+  addSphere(leaves, base + glm::vec3(0.6f * crown, height - 0.3f * crown, 0.2f), 0.7f * crown);
+  addSphere(leaves, base + glm::vec3(-0.5f * crown, height - 0.2f * crown, -0.3f), 0.6f * crown);
+  s.meshes.push_back(std::move(trunk));
+  s.meshes.push_back(std::move(leaves));
+}
+
+// ESM Fig. 1/8, CSM Fig. 9: a fence of thin slats with objects and a tree behind it.
+Scene backyard() {
+  Scene s{"backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 12.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh fence = makeMesh(kWoodAlbedo);
+  for (int i = -20; i <= 20; ++i) addBox(fence, glm::vec3(0.25f * float(i), 0.75f, 0.0f), glm::vec3(0.05f, 0.75f, 0.02f));
+  addBox(fence, glm::vec3(0.0f, 1.25f, 0.05f), glm::vec3(5.2f, 0.06f, 0.03f));
+  addBox(fence, glm::vec3(0.0f, 0.35f, 0.05f), glm::vec3(5.2f, 0.06f, 0.03f));
+  s.meshes.push_back(std::move(fence));
+  Mesh objects = makeMesh(kStoneAlbedo);
+  addBox(objects, glm::vec3(-2.0f, 0.4f, 2.0f), glm::vec3(0.4f), 0.4f);
+  addSphere(objects, glm::vec3(1.5f, 0.5f, 2.5f), 0.5f);
+  addBox(objects, glm::vec3(3.0f, 0.25f, 1.2f), glm::vec3(0.6f, 0.25f, 0.3f), -0.3f);
+  s.meshes.push_back(std::move(objects));
+  addTree(s, glm::vec3(-3.5f, 0.0f, -2.5f), 3.0f, 1.2f);
+  addTree(s, glm::vec3(2.5f, 0.0f, -3.0f), 3.5f, 1.4f);
+  s.camera = {glm::vec3(0.5f, 5.0f, 11.0f), glm::vec3(0.0f, 1.0f, 0.5f), 45.0f};
+  s.light = directional(glm::vec3(0.35f, -1.0f, 0.9f));
+  return s;
+}
+
+// Thesis Fig. 3.4/3.5: canopy (A) over a bench (B) over the ground (C), a large A-B to B-C ratio.
+Scene bench() {
+  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 6.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh seat = makeMesh(kWoodAlbedo);
+  addBox(seat, glm::vec3(0.0f, 0.45f, 0.0f), glm::vec3(1.5f, 0.04f, 0.35f));
+  for (float x : {-1.3f, 1.3f}) {
+    for (float z : {-0.28f, 0.28f}) addBox(seat, glm::vec3(x, 0.22f, z), glm::vec3(0.04f, 0.22f, 0.04f));
+  }
+  s.meshes.push_back(std::move(seat));
+  Mesh canopy = makeMesh(kLeafAlbedo);
+  // Slatted canopy high above: its penumbrae fall across the bench and bleed onto the ground.
+  for (int i = -6; i <= 6; ++i) addBox(canopy, glm::vec3(0.35f * float(i), 4.5f, 0.0f), glm::vec3(0.08f, 0.05f, 2.5f));
+  s.meshes.push_back(std::move(canopy));
+  s.camera = {glm::vec3(0.0f, 2.8f, 4.5f), glm::vec3(0.0f, 0.3f, 0.0f), 45.0f};
+  s.light = directional(glm::vec3(0.08f, -1.0f, 0.05f));
+  return s;
+}
+
+// CSM Fig. 6, Gumbau Fig. 3: a slanted plane and boxes touching the ground.
+Scene contact() {
+  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 5.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh objects = makeMesh(kStoneAlbedo);
+  const float tilt = 0.35f;
+  const glm::mat3 axes(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, std::cos(tilt), std::sin(tilt)),
+                       glm::vec3(0.0f, -std::sin(tilt), std::cos(tilt)));
+  scene::addOrientedBox(objects, glm::vec3(-1.0f, 0.02f + 1.2f * std::sin(tilt), 0.0f),
+                        glm::vec3(0.8f, 0.02f, 1.2f), axes);
+  addBox(objects, glm::vec3(1.2f, 0.3f, 0.3f), glm::vec3(0.3f), 0.5f);
+  addBox(objects, glm::vec3(1.6f, 0.15f, -0.8f), glm::vec3(0.5f, 0.15f, 0.2f), -0.2f);
+  s.meshes.push_back(std::move(objects));
+  s.camera = {glm::vec3(0.0f, 2.5f, 4.0f), glm::vec3(0.2f, 0.2f, 0.0f), 45.0f};
+  s.light = directional(glm::vec3(-0.6f, -1.0f, -0.4f));
+  return s;
+}
+
+// Gumbau Fig. 3: stacked and overlapping spheres.
+Scene spheres() {
+  Scene s{"spheres", "stacked and overlapping spheres", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 5.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh balls = makeMesh(glm::vec3(0.8f, 0.5f, 0.45f));
+  addSphere(balls, glm::vec3(0.0f, 0.5f, 0.0f), 0.5f, 32);
+  addSphere(balls, glm::vec3(0.2f, 1.25f, 0.1f), 0.35f, 32);
+  addSphere(balls, glm::vec3(0.35f, 1.8f, 0.2f), 0.22f, 32);
+  addSphere(balls, glm::vec3(-0.9f, 0.35f, 0.6f), 0.35f, 32);
+  addSphere(balls, glm::vec3(-0.6f, 0.3f, 0.9f), 0.3f, 32);
+  addSphere(balls, glm::vec3(1.1f, 0.25f, -0.5f), 0.25f, 32);
+  s.meshes.push_back(std::move(balls));
+  s.camera = {glm::vec3(0.5f, 2.5f, 4.0f), glm::vec3(0.0f, 0.5f, 0.0f), 45.0f};
+  s.light = Light{LightKind::Spot, glm::vec3(0.0f), glm::vec3(2.5f, 5.0f, 1.5f), glm::vec3(0.0f), 70.0f};
+  return s;
+}
+
+// Thesis Fig. 4.3/4.8: many overlapping shadows at very different depths.
+Scene overlap() {
+  Scene s{"overlap", "many overlapping shadows at different depths", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 6.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh blades = makeMesh(kStoneAlbedo);
+  for (int i = 0; i < 8; ++i) {
+    const float height = 0.6f + 0.55f * float(i);
+    addBox(blades, glm::vec3(0.25f * float(i) - 0.9f, height, 0.0f), glm::vec3(1.4f, 0.02f, 0.08f),
+           0.4f * float(i));
+  }
+  addCylinder(blades, glm::vec3(-0.9f, 0.0f, 0.0f), 0.06f, 4.6f);
+  s.meshes.push_back(std::move(blades));
+  s.camera = {glm::vec3(0.0f, 3.0f, 5.0f), glm::vec3(0.0f, 0.3f, 0.0f), 45.0f};
+  s.light = directional(glm::vec3(0.2f, -1.0f, 0.3f));
+  return s;
+}
+
+// CSM Fig. 10, thesis Fig. 2.2: fine receding geometry seen from far away.
+Scene minification() {
+  Scene s{"minification", "fine receding rows of posts seen from far: minification aliasing", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f, 0.0f, -20.0f), 30.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh posts = makeMesh(kWoodAlbedo);
+  for (int row = 0; row < 40; ++row) {
+    for (int i = -12; i <= 12; ++i) {
+      addBox(posts, glm::vec3(0.3f * float(i), 0.4f, -1.2f * float(row)), glm::vec3(0.03f, 0.4f, 0.03f));
+    }
+  }
+  s.meshes.push_back(std::move(posts));
+  s.camera = {glm::vec3(0.0f, 2.0f, 6.0f), glm::vec3(0.0f, 0.0f, -20.0f), 40.0f};
+  s.light = directional(glm::vec3(0.5f, -0.6f, -0.3f));
+  return s;
+}
+
+// Thesis §3.2: one planar occluder parallel to a planar receiver, both facing the light.
+Scene planar() {
+  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)", {}, {}, {}};
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, glm::vec3(0.0f), 4.0f);
+  s.meshes.push_back(std::move(ground));
+  Mesh occluder = makeMesh(kStoneAlbedo);
+  addGround(occluder, glm::vec3(0.0f, 1.5f, 0.0f), 1.0f);
+  s.meshes.push_back(std::move(occluder));
+  s.camera = {glm::vec3(0.0f, 5.0f, 5.0f), glm::vec3(0.0f, 0.0f, 0.0f), 45.0f};
+  s.light = directional(glm::vec3(0.0f, -1.0f, 0.0f));
+  return s;
+}
+
+struct SceneEntry {
+  std::string_view name;
+  Scene (*make)();
+};
+
+constexpr std::array<SceneEntry, 7> kScenes{{{"backyard", backyard},
+                                             {"bench", bench},
+                                             {"contact", contact},
+                                             {"spheres", spheres},
+                                             {"overlap", overlap},
+                                             {"minification", minification},
+                                             {"planar", planar}}};
+
+constexpr std::array<std::string_view, 7> kSceneNames{"backyard", "bench",        "contact", "spheres",
+                                                      "overlap",  "minification", "planar"};
+
+}  // namespace
+
+std::span<const std::string_view> builtinSceneNames() { return kSceneNames; }
+
+std::string builtinSceneNameList() {
+  std::string list;
+  for (std::string_view n : kSceneNames) list += (list.empty() ? "" : ", ") + std::string(n);
+  return list;
+}
+
+Scene makeBuiltinScene(std::string_view name) {
+  for (const SceneEntry& e : kScenes) {
+    if (e.name == name) return e.make();
+  }
+  throw Error("unknown scene '" + std::string(name) + "'; valid scenes: " + builtinSceneNameList());
+}
+
+}  // namespace penumbra

@@ -1,0 +1,78 @@
+// Scene bounds, the light's fitted view and the camera's matrices.
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+
+#include "penumbra/scene.h"
+
+namespace penumbra {
+
+Bounds Scene::bounds() const {
+  Bounds b{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+  for (const Mesh& m : meshes) {
+    for (const Vertex& v : m.vertices) {
+      b.min = glm::min(b.min, v.position);
+      b.max = glm::max(b.max, v.position);
+    }
+  }
+  return b;
+}
+
+size_t Scene::triangleCount() const {
+  size_t count = 0;
+  for (const Mesh& m : meshes) count += m.indices.size() / 3;
+  return count;
+}
+
+namespace {
+
+// An up vector that is not parallel to `forward`.
+glm::vec3 upFor(glm::vec3 forward) {
+  return std::abs(forward.y) > 0.99f ? glm::vec3(0.0f, 0.0f, -1.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+}
+
+}  // namespace
+
+LightView fitLightView(const Scene& scene) {
+  const Bounds bounds = scene.bounds();
+  const glm::vec3 centre = bounds.centre();
+  const float radius = std::max(bounds.radius(), 1e-3f);
+  LightView view;
+  if (scene.light.kind == LightKind::Directional) {
+    const glm::vec3 dir = glm::normalize(scene.light.direction);
+    const glm::vec3 eye = centre - dir * (2.0f * radius);
+    view.lightFromWorld = glm::lookAt(eye, centre, upFor(dir));
+    view.nearDistance = radius;
+    view.farDistance = 3.0f * radius;
+    view.clipFromLight = glm::ortho(-radius, radius, -radius, radius, view.nearDistance, view.farDistance);
+    view.perspective = false;
+  } else {
+    const glm::vec3 eye = scene.light.position;
+    const glm::vec3 forward = glm::normalize(scene.light.target - eye);
+    const float distance = glm::length(centre - eye);
+    view.lightFromWorld = glm::lookAt(eye, scene.light.target, upFor(forward));
+    view.nearDistance = std::max(0.05f, distance - radius);
+    view.farDistance = distance + radius;
+    view.clipFromLight = glm::perspective(glm::radians(scene.light.spotAngleDegrees), 1.0f,
+                                          view.nearDistance, view.farDistance);
+    view.perspective = true;
+  }
+  return view;
+}
+
+float LightView::texelWorldSize(int shadowMapSize) const {
+  // clipFromLight[0][0] is 1/halfWidth (orthographic) or 1/tan(halfAngle) (perspective).
+  return 2.0f / (clipFromLight[0][0] * float(shadowMapSize));
+}
+
+glm::mat4 viewFromWorld(const Camera& camera) {
+  return glm::lookAt(camera.position, camera.target, upFor(glm::normalize(camera.target - camera.position)));
+}
+
+glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
+  const float far = glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
+  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, 0.05f, far);
+}
+
+}  // namespace penumbra

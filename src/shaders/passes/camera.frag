@@ -1,0 +1,70 @@
+// Camera pass: receiver depth in light space (with normal offset), the technique's visibility,
+// and Lambert + ambient shading. Writes colour and the float visibility.
+#if SUMMED_AREA
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
+#include "../lib/shadow_lookup.glsl"
+
+in vec3 worldPosition;
+in vec3 worldNormal;
+
+uniform mat4 lightViewFromWorld;
+uniform mat4 lightClipFromView;
+uniform int lightPerspective;
+uniform float lightNear;
+uniform float lightFar;
+uniform vec3 lightDirection;  // directional: the way light travels
+uniform vec3 lightPosition;   // spot
+uniform vec3 spotAxis;        // spot: unit direction from the light to its target
+uniform float spotCosine;     // spot: cos(half cone angle)
+uniform float normalOffset;   // world units per unit light distance (spot) or absolute
+uniform vec3 albedo;
+uniform float ambient;
+
+layout(location = 0) out vec4 color;
+layout(location = 1) out float visibilityOut;
+
+float linearDepth(vec3 lightView) {
+  float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
+  return (distance - lightNear) / (lightFar - lightNear);
+}
+
+void main() {
+  vec3 n = normalize(worldNormal);
+  vec3 toLight = lightPerspective != 0 ? normalize(lightPosition - worldPosition) : -lightDirection;
+  if (!gl_FrontFacing) n = -n;
+  float cosine = max(dot(n, toLight), 0.0f);
+  float offsetScale = lightPerspective != 0 ? length(lightPosition - worldPosition) : 1.0f;
+  vec3 offsetPosition = worldPosition + n * normalOffset * offsetScale * (1.0f - cosine);
+
+  vec4 lightView = lightViewFromWorld * vec4(offsetPosition, 1.0f);
+  vec4 clip = lightClipFromView * lightView;
+  vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
+  float receiver = linearDepth(lightView.xyz);
+
+  // Derivatives in uniform control flow: the lookup footprint and the receiver plane.
+  vec2 uvDx = dFdx(uv);
+  vec2 uvDy = dFdy(uv);
+  vec2 texelDx = uvDx * float(shadowMapSize);
+  vec2 texelDy = uvDy * float(shadowMapSize);
+  float depthDx = dFdx(receiver);
+  float depthDy = dFdy(receiver);
+  // Solve [texelDx texelDy]^T g = (depthDx, depthDy) for the depth gradient per texel g.
+  float determinant = texelDx.x * texelDy.y - texelDx.y * texelDy.x;
+  vec2 depthPerTexel = vec2(0.0f);
+  if (abs(determinant) > 1e-12f) {
+    depthPerTexel = vec2(texelDy.y * depthDx - texelDx.y * depthDy,
+                         -texelDy.x * depthDx + texelDx.x * depthDy) / determinant;
+  }
+
+  float visibility = 1.0f;
+  bool inside = all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))) &&
+                receiver <= 1.0f && clip.w > 0.0f;
+  if (inside) visibility = shadowVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel);
+
+  float lightAmount = cosine;
+  if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
+  vec3 shaded = albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);
+  color = vec4(shaded, 1.0f);
+  visibilityOut = visibility;
+}

@@ -1,0 +1,44 @@
+// Encode pass: light-space depth -> the technique's channels (shared encodeChannel), written to
+// its storage format. With MSAA every sample is encoded, then the samples are reduced like
+// filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
+#include "../lib/channel_reduce.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channelImage;
+#if MSAA
+layout(binding = 0) uniform sampler2DMS depthMap;
+uniform int sampleCount;
+#else
+layout(binding = 0) uniform sampler2D depthMap;
+#endif
+uniform ivec2 size;
+uniform int layerCount;
+
+float encodeTexel(ivec2 p, int channel) {
+#if MSAA
+  bool depthOnly = technique == kTechniqueHard || technique == kTechniquePcf;
+  int reduction = depthOnly ? kReduceMin : channelReduction(technique, channel, params);
+  float acc = reduceStart(reduction);
+  for (int s = 0; s < sampleCount; ++s) {
+    float v = encodeChannel(technique, texelFetch(depthMap, p, s).x, channel, params);
+    acc = reduceAdd(reduction, acc, s == 0, v, 1.0f / float(sampleCount));
+  }
+  return acc;
+#else
+  return encodeChannel(technique, texelFetch(depthMap, p, 0).x, channel, params);
+#endif
+}
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+  int count = techniqueChannelCount(technique, params);
+  for (int layer = 0; layer < layerCount; ++layer) {
+    vec4 v = vec4(0.0f);
+    for (int c = 0; c < 4; ++c) {
+      int channel = 4 * layer + c;
+      if (channel < count) v[c] = encodeTexel(p, channel);
+    }
+    imageStore(channelImage, ivec3(p, layer), v);
+  }
+}

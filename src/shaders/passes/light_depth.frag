@@ -1,0 +1,14 @@
+// Light pass: the linear depth metric in [0,1] (distance along the light direction for
+// directional lights, Euclidean distance for spot lights, thesis §4.1.3), mapped from [near, far].
+in vec3 lightViewPosition;
+
+uniform int lightPerspective;
+uniform float lightNear;
+uniform float lightFar;
+
+layout(location = 0) out float linearDepth;
+
+void main() {
+  float distance = lightPerspective != 0 ? length(lightViewPosition) : -lightViewPosition.z;
+  linearDepth = clamp((distance - lightNear) / (lightFar - lightNear), 0.0f, 1.0f);
+}
