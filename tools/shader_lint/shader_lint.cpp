@@ -7,6 +7,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "penumbra/error.h"
 #include "penumbra/shader_library.h"
@@ -51,6 +52,40 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
   return shader.translateLog(output);
 }
 
+// Every variant the renderer generates for a shader, from the variant macros its text uses:
+// CHANNEL_FORMAT (each storage format and width), MSAA and SUMMED_AREA (0 and 1).
+using Defines = std::vector<penumbra::ShaderDefine>;
+
+std::vector<Defines> variants(const std::string& source) {
+  std::vector<Defines> result{{}};
+  auto expand = [&](const std::string& name, std::vector<std::string> values) {
+    if (source.find(name) == std::string::npos) return;
+    std::vector<Defines> next;
+    for (const Defines& d : result) {
+      for (const std::string& v : values) {
+        Defines with = d;
+        with.push_back({name, v});
+        next.push_back(with);
+      }
+    }
+    result = next;
+  };
+  std::vector<std::string> formats;
+  for (const char* components : {"r", "rg", "rgba"}) {
+    for (const char* suffix : {"32f", "16f", "16", "8"}) formats.push_back(std::string(components) + suffix);
+  }
+  expand("CHANNEL_FORMAT", formats);
+  expand("MSAA", {"0", "1"});
+  expand("SUMMED_AREA", {"0", "1"});
+  return result;
+}
+
+std::string describe(const Defines& defines) {
+  std::string text;
+  for (const auto& d : defines) text += " " + d.name + "=" + d.value;
+  return text;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -85,13 +120,15 @@ int main(int argc, char** argv) {
     }
     if (stage.empty()) continue;
     try {
-      const std::string problems = validate(library.expand(target), stage);
-      ++checked;
-      if (!problems.empty()) {
-        ++failures;
-        std::cerr << "FAIL " << path << "\n" << problems << "\n";
-      } else {
-        std::cout << "ok   " << path << "\n";
+      for (const auto& defines : variants(library.expand(target).source)) {
+        const std::string problems = validate(library.expand(target, defines), stage);
+        ++checked;
+        if (!problems.empty()) {
+          ++failures;
+          std::cerr << "FAIL " << path << describe(defines) << "\n" << problems << "\n";
+        } else {
+          std::cout << "ok   " << path << describe(defines) << "\n";
+        }
       }
     } catch (const penumbra::Error& e) {
       ++failures;
