@@ -145,7 +145,7 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   const bool summedArea = settings.filter == FilterMode::SummedArea && s.satSums.has_value();
   const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
                                       {{"SUMMED_AREA", summedArea ? "1" : "0"}});
-  s.bindTechnique(program);
+  s.bindParameters();
   const float aspect = float(settings.width) / float(settings.height);
   program.set("clipFromWorld", clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera));
   program.set("lightViewFromWorld", light.lightFromWorld);
@@ -225,32 +225,45 @@ Renderer::State::~State() {
   if (frameFramebuffer != 0) glDeleteFramebuffers(1, &frameFramebuffer);
 }
 
+namespace {
+
+// Every variant is specialised to the current technique (TECHNIQUE_ID).
+std::vector<ShaderDefine> withTechnique(const RenderSettings& settings,
+                                        std::vector<ShaderDefine> defines) {
+  defines.push_back({"TECHNIQUE_ID", std::to_string(int(settings.technique))});
+  return defines;
+}
+
+std::string variantKey(std::string key, const std::vector<ShaderDefine>& defines) {
+  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  return key;
+}
+
+}  // namespace
+
 const Program& Renderer::State::graphics(const std::string& vertex, const std::string& fragment,
                                          const std::vector<ShaderDefine>& defines) {
-  std::string key = vertex + "|" + fragment;
-  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  const std::vector<ShaderDefine> all = withTechnique(settings, defines);
+  const std::string key = variantKey(vertex + "|" + fragment, all);
   auto found = programs.find(key);
   if (found == programs.end()) {
-    found = programs.emplace(key, Program::graphics(library, vertex, fragment, defines)).first;
+    found = programs.emplace(key, Program::graphics(library, vertex, fragment, all)).first;
   }
   return found->second;
 }
 
 const Program& Renderer::State::compute(const std::string& path,
                                         const std::vector<ShaderDefine>& defines) {
-  std::string key = path;
-  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  const std::vector<ShaderDefine> all = withTechnique(settings, defines);
+  const std::string key = variantKey(path, all);
   auto found = programs.find(key);
   if (found == programs.end()) {
-    found = programs.emplace(key, Program::compute(library, path, defines)).first;
+    found = programs.emplace(key, Program::compute(library, path, all)).first;
   }
   return found->second;
 }
 
-void Renderer::State::bindTechnique(const Program& program) {
-  program.set("technique", int(settings.technique));
-  paramsBlock->bindUniform(0);
-}
+void Renderer::State::bindParameters() const { paramsBlock->bindUniform(0); }
 
 Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<State>()) {
   state_->device = context.description();
@@ -362,6 +375,26 @@ Image Renderer::readDepthMap() const {
 }
 
 int Renderer::channelMipLevels() const { return state_->channelLevels; }
+
+uint64_t Renderer::measuredChannelTextureBytes() const {
+  const State& s = *state_;
+  uint64_t bytes = 0;
+  for (int level = 0; level < s.channelLevels; ++level) {
+    GLint width = 0, height = 0, depth = 0, bits = 0;
+    glGetTextureLevelParameteriv(s.channels.id(), level, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(s.channels.id(), level, GL_TEXTURE_HEIGHT, &height);
+    glGetTextureLevelParameteriv(s.channels.id(), level, GL_TEXTURE_DEPTH, &depth);
+    for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE,
+                             GL_TEXTURE_ALPHA_SIZE}) {
+      GLint size = 0;
+      glGetTextureLevelParameteriv(s.channels.id(), level, component, &size);
+      bits += size;
+    }
+    bytes += uint64_t(width) * uint64_t(height) * uint64_t(depth) * uint64_t(bits / 8);
+  }
+  checkErrors("measuring the channel texture");
+  return bytes;
+}
 
 Image Renderer::readChannels(int level) const {
   const State& s = *state_;

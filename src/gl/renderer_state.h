@@ -51,13 +51,14 @@ struct Renderer::State {
 
   ~State();
 
-  // A compiled program for these sources and defines, built on first use.
+  // A compiled program for these sources and defines, specialised to the current technique
+  // (TECHNIQUE_ID), built on first use.
   const Program& graphics(const std::string& vertex, const std::string& fragment,
                           const std::vector<ShaderDefine>& defines);
   const Program& compute(const std::string& path, const std::vector<ShaderDefine>& defines);
 
-  // Uploads the settings' technique and parameters to every program that runs shared math.
-  void bindTechnique(const Program& program);
+  // Binds the technique's parameter block for the passes that run shared math.
+  void bindParameters() const;
 };
 
 // shadow_map_filter.cpp: encode -> blur -> mips or summed-area table, on lightDepth (or the

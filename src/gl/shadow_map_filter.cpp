@@ -32,7 +32,7 @@ void blurAxis(Renderer::State& s, const Program& blur, const Texture& from, cons
 
 void buildMipChain(Renderer::State& s) {
   const Program& reduce = s.compute("passes/mip_reduce.comp", formatDefines(s.layout));
-  s.bindTechnique(reduce);
+  s.bindParameters();
   reduce.set("layerCount", s.layout.layers);
   glBindTextureUnit(0, s.channels.id());
   for (int level = 0; level + 1 < s.channelLevels; ++level) {
@@ -105,7 +105,7 @@ void encodeChannels(Renderer::State& s, unsigned depthTexture, bool multisampled
   std::vector<ShaderDefine> defines = formatDefines(s.layout);
   defines.push_back({"MSAA", multisampled ? "1" : "0"});
   const Program& encode = s.compute("passes/encode.comp", defines);
-  s.bindTechnique(encode);
+  s.bindParameters();
   glProgramUniform2i(encode.id(), glGetUniformLocation(encode.id(), "size"), s.shadowMapSize,
                      s.shadowMapSize);
   encode.set("layerCount", s.layout.layers);
@@ -124,7 +124,7 @@ void prefilterChannels(Renderer::State& s) {
   s.prefilterTimer.begin();
   if (!filtersAfterTest && s.scratch.id() != 0) {
     const Program& blur = s.compute("passes/blur.comp", formatDefines(s.layout));
-    s.bindTechnique(blur);
+    s.bindParameters();
     const std::vector<float> weights = blurWeights(settings.blur);
     glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"), GLsizei(weights.size()),
                         weights.data());

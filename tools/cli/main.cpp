@@ -14,8 +14,13 @@ int main(int argc, char** argv) {
   penumbra::cli::registerRenderCommand(app);
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "penumbra: error: " << e.what() << " (see --help)\n";
+    return 2;
   } catch (const penumbra::Error& e) {
     std::cerr << "penumbra: error: " << e.what() << "\n";
     return 1;

@@ -30,6 +30,7 @@ struct RenderOptions {
   int height = 540;
   float normalOffset = 0.0f;
   std::string outDir = "out/render";
+  int repeat = 1;
 };
 
 gl::RenderSettings toSettings(const RenderOptions& o) {
@@ -81,7 +82,9 @@ void runRender(const RenderOptions& options) {
   }
   for (Technique technique : techniques) {
     settings.technique = technique;
-    const gl::RenderResult result = renderer.render(scene, settings);
+    // Later repetitions time warm passes: shader JIT compilation lands in the first.
+    gl::RenderResult result = renderer.render(scene, settings);
+    for (int i = 1; i < options.repeat; ++i) result = renderer.render(scene, settings);
     const std::string stem = scene.name + "_" + std::string(techniqueId(technique));
     const std::map<std::string, std::string> files{{"color", stem + ".png"},
                                                    {"visibility_exr", stem + "_visibility.exr"},
@@ -121,6 +124,9 @@ void registerRenderCommand(CLI::App& app) {
   cmd->add_option("--width", o->width, "frame width in pixels")->capture_default_str();
   cmd->add_option("--height", o->height, "frame height in pixels")->capture_default_str();
   cmd->add_option("--normal-offset", o->normalOffset, "normal-offset bias in shadow-map texels")
+      ->capture_default_str();
+  cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
+      ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
   cmd->callback([o] { runRender(*o); });

@@ -83,6 +83,9 @@ class Renderer {
   // one image channel per technique channel, row 0 at the bottom.
   Image readChannels(int level) const;
   int channelMipLevels() const;
+  // Bytes of the technique's channel texture measured from the GL object itself (each level's
+  // size and component bit depths), to check MemoryReport::technique against.
+  uint64_t measuredChannelTextureBytes() const;
 
   // Runs encode and prefilter on a given depth map (row 0 at the bottom) without a scene:
   // the path the GPU-parity tests compare with the CPU reference filters.

@@ -85,7 +85,7 @@ float pcfLookup(vec2 uv, float receiverDepth, vec2 depthPerTexel, PcfParams pcf)
       lit += w * hardVisibility(z, biasedReceiverDepth(d, slope, pcf.bias));
     }
   }
-  return lit;
+  return clamp(lit, 0.0f, 1.0f);  // the weights sum to 1 up to fp32 rounding
 }
 
 float shadowVisibility(vec2 uv, float receiverDepth, vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {

@@ -4,6 +4,11 @@
 #include "../shared/technique_dispatch.h"
 
 layout(std140, binding = 0) uniform TechniqueBlock { TechniqueParams params; };
+// The renderer compiles one variant per technique, so the dispatcher folds to one branch.
+#ifdef TECHNIQUE_ID
+const int technique = TECHNIQUE_ID;
+#else
 uniform int technique;
+#endif
 
 #endif
