@@ -230,6 +230,30 @@ TEST_F(RendererTest, MemoryEqualsTheFormulaAndTheGlObjects) {
   EXPECT_EQ(channelTextureBytes(channelLayout(Technique::Vsm, p), 2048, 2048, true), 44739240u);
 }
 
+TEST_F(RendererTest, MsaaSamplesAreEncodedBeforeTheyAreAveraged) {
+  // Averaging depths first would leave one depth per texel, and zero variance; encoding each
+  // sample first gives silhouette texels the variance of their partial coverage.
+  const Scene scene = makeBuiltinScene("planar");
+  auto silhouetteTexels = [&](int samples) {
+    gl::RenderSettings s = small(Technique::Vsm);
+    s.blur.radius = 0;
+    s.filter = gl::FilterMode::Point;
+    s.msaaSamples = samples;
+    renderer->render(scene, s);
+    const Image moments = renderer->readChannels(0);
+    int count = 0;
+    for (int y = 0; y < moments.height(); ++y) {
+      for (int x = 0; x < moments.width(); ++x) {
+        const float mean = moments.at(x, y, 0);
+        count += moments.at(x, y, 1) - mean * mean > 1e-4f;
+      }
+    }
+    return count;
+  };
+  EXPECT_EQ(silhouetteTexels(1), 0);
+  EXPECT_GT(silhouetteTexels(4), 100);
+}
+
 TEST_F(RendererTest, BadSettingsAreRejectedWithTheRange) {
   gl::RenderSettings s = small(Technique::Vsm);
   s.shadowMapSize = 0;
