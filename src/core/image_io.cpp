@@ -92,6 +92,40 @@ void writeGrey16Png(const Image& image, const std::filesystem::path& path) {
   writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_GRAY, 16, rows);
 }
 
+void writeFailureMaskPng(const Image& diagnostic, const Image& color,
+                         const std::filesystem::path& path) {
+  Image out(diagnostic.width(), diagnostic.height(), 3);
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      const float d = diagnostic.at(x, y);
+      const float grey = 0.5f * (color.at(x, y, 0) + color.at(x, y, 1) + color.at(x, y, 2)) / 3.0f;
+      const bool failed = d > 0.5f;
+      out.at(x, y, 0) = d < 0.0f ? 0.0f : (failed ? 1.0f : grey);
+      out.at(x, y, 1) = d < 0.0f ? 0.0f : (failed ? 0.1f : grey);
+      out.at(x, y, 2) = d < 0.0f ? 0.0f : (failed ? 0.1f : grey);
+    }
+  }
+  writeColorPng(out, path);
+}
+
+void writeLayerIndexPng(const Image& diagnostic, const Image& color,
+                        const std::filesystem::path& path) {
+  static const float palette[8][3] = {{0.9f, 0.3f, 0.3f}, {0.3f, 0.8f, 0.3f}, {0.3f, 0.4f, 0.9f},
+                                      {0.9f, 0.8f, 0.2f}, {0.8f, 0.3f, 0.8f}, {0.2f, 0.8f, 0.8f},
+                                      {0.9f, 0.6f, 0.3f}, {0.6f, 0.6f, 0.6f}};
+  Image out(diagnostic.width(), diagnostic.height(), 3);
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      const float d = diagnostic.at(x, y);
+      const float shade = 0.4f + 0.6f * color.at(x, y, 1);
+      for (int c = 0; c < 3; ++c) {
+        out.at(x, y, c) = d < 0.0f ? 0.0f : shade * palette[int(d) % 8][c];
+      }
+    }
+  }
+  writeColorPng(out, path);
+}
+
 Image readGrey16Png(const std::filesystem::path& path) {
   FilePtr file = open(path, "rb");
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);

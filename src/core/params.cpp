@@ -116,6 +116,15 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                [](TechniqueParams& p) { return &p.lvsm.bleedReduction; }),
           choice("storage", "per-layer moment storage (thesis: unorm16)", {kUnorm16, kFloat32},
                  [](TechniqueParams& p) { return &p.lvsm.storage; }),
+          choice("placement",
+                 "split placement (thesis §4.1.2): lloyd relaxation per frame, uniform, or fixed "
+                 "(the given splits; setting splits selects it)",
+                 {{"lloyd", shaders::kLayerPlacementLloyd},
+                  {"uniform", shaders::kLayerPlacementUniform},
+                  {"fixed", shaders::kLayerPlacementFixed}},
+                 [](TechniqueParams& p) { return &p.lvsm.placement; }),
+          integer("lloydIterations", "Lloyd relaxation steps for a still image", 1, 64,
+                  [](TechniqueParams& p) { return &p.lvsm.lloydIterations; }),
       };
     case Technique::Evsm2:
     case Technique::Evsm4: {
@@ -145,6 +154,15 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                  [](TechniqueParams& p) { return &p.esm.filterSpace; }),
           real("threshold", "epsilon of threshold failure classification (ESM paper §3.3)", 0.0,
                10.0, [](TechniqueParams& p) { return &p.esm.threshold; }),
+          choice("classifier",
+                 "failure classification with 2x2 PCF fallback (ESM paper §3.3): threshold "
+                 "(the paper's choice), zmax (max-depth pyramid), or none",
+                 {{"threshold", shaders::kEsmClassifyThreshold},
+                  {"zmax", shaders::kEsmClassifyZmax},
+                  {"none", shaders::kEsmClassifyNone}},
+                 [](TechniqueParams& p) { return &p.esm.classifier; }),
+          real("zmaxOffset", "offset added to the receiver depth for Z-max classification", 0.0,
+               0.1, [](TechniqueParams& p) { return &p.esm.zmaxOffset; }),
       };
     case Technique::Csm:
       return {
@@ -333,6 +351,8 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
       LayerSplits splits = parseSplits(technique, value);
       validateSplits(technique, splits);
       *b.splits(params) = splits;
+      // Given splits are used as given.
+      if (technique == Technique::Lvsm) params.lvsm.placement = shaders::kLayerPlacementFixed;
       break;
     }
   }

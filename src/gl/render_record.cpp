@@ -15,7 +15,7 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
   using nlohmann::ordered_json;
   ordered_json params = ordered_json::object();
   for (const ParamSpec& spec : techniqueParamSpecs(settings.technique)) {
-    params[std::string(spec.name)] = formatParam(settings.technique, settings.params, spec.name);
+    params[std::string(spec.name)] = formatParam(settings.technique, result.params, spec.name);
   }
   const ChannelLayout layout = channelLayout(settings.technique, settings.params);
   double sum = 0.0, lo = 1.0, hi = 0.0;
@@ -28,7 +28,8 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
   auto times = [](const PassTimes& t) {
     return ordered_json{{"light", t.light},         {"encode", t.encode},
                         {"prefilter", t.prefilter}, {"mips_or_sat", t.mipsOrSat},
-                        {"camera", t.camera},       {"total", t.total()}};
+                        {"auxiliary", t.auxiliary}, {"camera", t.camera},
+                        {"total", t.total()}};
   };
   ordered_json record = {
       {"scene", scene.name},
@@ -61,10 +62,12 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
         {"technique", m.technique},
         {"summed_area", m.summedArea},
         {"scratch", m.scratch},
+        {"auxiliary", m.auxiliary},
         {"frame", m.frame},
         {"total", m.total()}}},
       {"technique_memory_mib", double(m.technique + m.summedArea) / (1024.0 * 1024.0)},
       {"visibility", {{"mean", sum / double(result.visibility.data().size())}, {"min", lo}, {"max", hi}}},
+      {"esm_failure_rate_percent", result.failureRatePercent},
       {"device", device},
       {"files", files},
   };

@@ -86,16 +86,19 @@ void allocateFrame(Renderer::State& s, int width, int height) {
   if (s.frameFramebuffer != 0) glDeleteFramebuffers(1, &s.frameFramebuffer);
   s.frameColor = Texture(GL_TEXTURE_2D);
   s.frameVisibility = Texture(GL_TEXTURE_2D);
+  s.frameDiagnostic = Texture(GL_TEXTURE_2D);
   s.frameDepth = Texture(GL_TEXTURE_2D);
   glTextureStorage2D(s.frameColor.id(), 1, GL_RGBA8, width, height);
   glTextureStorage2D(s.frameVisibility.id(), 1, GL_R32F, width, height);
+  glTextureStorage2D(s.frameDiagnostic.id(), 1, GL_R32F, width, height);
   glTextureStorage2D(s.frameDepth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &s.frameFramebuffer);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT0, s.frameColor.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT1, s.frameVisibility.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT2, s.frameDiagnostic.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_DEPTH_ATTACHMENT, s.frameDepth.id(), 0);
-  const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
-  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 2, buffers);
+  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
+  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 3, buffers);
   if (glCheckNamedFramebufferStatus(s.frameFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw Error("the camera-pass framebuffer is incomplete");
   }
@@ -143,8 +146,10 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
                       const LightView& light) {
   const RenderSettings& settings = s.settings;
   const bool summedArea = settings.filter == FilterMode::SummedArea && s.satSums.has_value();
-  const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
-                                      {{"SUMMED_AREA", summedArea ? "1" : "0"}});
+  const bool zmax = s.zmax.id() != 0;
+  const Program& program = s.graphics(
+      "passes/camera.vert", "passes/camera.frag",
+      {{"SUMMED_AREA", summedArea ? "1" : "0"}, {"ZMAX", zmax ? "1" : "0"}});
   s.bindParameters();
   const float aspect = float(settings.width) / float(settings.height);
   program.set("clipFromWorld", clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera));
@@ -163,8 +168,11 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   program.set("channelLayers", s.layout.layers);
   program.set("shadowMapSize", s.shadowMapSize);
   program.set("satMinRadius", settings.blur.radius);
+  program.set("blurRadius", settings.blur.radius);
+  program.set("zmaxLevels", s.zmaxLevels);
   setChannelSampling(s);
   glBindTextureUnit(0, s.channels.id());
+  if (zmax) glBindTextureUnit(1, s.zmax.id());
   if (summedArea) {
     s.satStats->bindStorage(2);
     s.satSums->bindStorage(3);
@@ -176,8 +184,10 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   glDisable(GL_CULL_FACE);
   const float sky[4] = {0.62f, 0.72f, 0.86f, 1.0f};
   const float lit[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+  const float nothing[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
   glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 0, sky);
   glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 1, lit);
+  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 2, nothing);
   glClearNamedFramebufferfi(s.frameFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   s.cameraTimer.begin();
   gpuScene.draw([&](const Mesh& mesh) { program.set("albedo", mesh.albedo); });
@@ -194,7 +204,12 @@ MemoryReport memoryReport(const Renderer::State& s) {
   m.technique = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, s.channelLevels > 1);
   if (s.satSums) m.summedArea = s.satSums->size() + s.satStats->size() + s.satRows->size();
   if (s.scratch.id() != 0) m.scratch = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, false);
-  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4);
+  if (s.zmax.id() != 0) {
+    const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
+    m.auxiliary += channelTextureBytes(r32f, s.shadowMapSize, s.shadowMapSize, true);
+  }
+  if (s.splitSamples) m.auxiliary += s.splitSamples->size();
+  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 4);
   return m;
 }
 
@@ -265,6 +280,10 @@ const Program& Renderer::State::compute(const std::string& path,
 
 void Renderer::State::bindParameters() const { paramsBlock->bindUniform(0); }
 
+void Renderer::State::uploadParameters() {
+  glNamedBufferSubData(paramsBlock->id(), 0, sizeof(TechniqueParams), &params);
+}
+
 Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<State>()) {
   state_->device = context.description();
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &state_->maxTextureSize);
@@ -316,7 +335,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   validate(settings);
   State& s = *state_;
   s.settings = settings;
-  glNamedBufferSubData(s.paramsBlock->id(), 0, sizeof(TechniqueParams), &settings.params);
+  s.params = settings.params;
+  if (settings.technique == Technique::Lvsm &&
+      s.params.lvsm.placement == shaders::kLayerPlacementUniform) {
+    s.params.lvsm.splits = shaders::uniformLayerSplits(s.params.lvsm.splits.layerCount);
+  }
+  s.uploadParameters();
+  s.zmax = Texture();
+  s.zmaxLevels = 0;
+  s.splitSamples.reset();
   if (s.shadowMapSize != settings.shadowMapSize || s.msaaSamples != settings.msaaSamples ||
       s.lightFramebuffer == 0) {
     s.shadowMapSize = settings.shadowMapSize;
@@ -329,6 +356,15 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   const LightView light = fitLightView(scene);
 
   renderLightPass(s, gpuScene, light);
+  s.auxiliaryTimer.begin();
+  if (settings.technique == Technique::Esm && s.params.esm.classifier == shaders::kEsmClassifyZmax) {
+    buildZmaxPyramid(s, s.lightDepth.id(), s.msaaSamples > 1);
+  }
+  if (settings.technique == Technique::Lvsm && s.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
+    placeLayersByLloyd(s, s.lightDepth.id(), s.msaaSamples > 1);
+    s.uploadParameters();
+  }
+  s.auxiliaryTimer.end();
   encodeChannels(s, s.lightDepth.id(), s.msaaSamples > 1);
   prefilterChannels(s);
   renderCameraPass(s, scene, gpuScene, light);
@@ -336,12 +372,22 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   RenderResult result;
   result.color = readTexture(s.frameColor.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
   result.visibility = readTexture(s.frameVisibility.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
-  result.gpuTimes = {s.lightTimer.gpuMilliseconds(), s.encodeTimer.gpuMilliseconds(),
+  result.diagnostic = readTexture(s.frameDiagnostic.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
+  result.params = s.params;
+  if (settings.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone) {
+    size_t drawn = 0, failed = 0;
+    for (float v : result.diagnostic.data()) {
+      drawn += v >= 0.0f;
+      failed += v > 0.5f;
+    }
+    result.failureRatePercent = drawn == 0 ? 0.0 : 100.0 * double(failed) / double(drawn);
+  }
+  result.gpuTimes = {s.lightTimer.gpuMilliseconds(),     s.encodeTimer.gpuMilliseconds(),
                      s.prefilterTimer.gpuMilliseconds(), s.mipsTimer.gpuMilliseconds(),
-                     s.cameraTimer.gpuMilliseconds()};
-  result.wallTimes = {s.lightTimer.wallMilliseconds(), s.encodeTimer.wallMilliseconds(),
+                     s.auxiliaryTimer.gpuMilliseconds(), s.cameraTimer.gpuMilliseconds()};
+  result.wallTimes = {s.lightTimer.wallMilliseconds(),     s.encodeTimer.wallMilliseconds(),
                       s.prefilterTimer.wallMilliseconds(), s.mipsTimer.wallMilliseconds(),
-                      s.cameraTimer.wallMilliseconds()};
+                      s.auxiliaryTimer.wallMilliseconds(), s.cameraTimer.wallMilliseconds()};
   result.memory = memoryReport(s);
   return result;
 }
@@ -356,9 +402,10 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   validate(single);
   State& s = *state_;
   s.settings = single;
+  s.params = single.params;
   s.shadowMapSize = depth.width();
   s.msaaSamples = 1;
-  glNamedBufferSubData(s.paramsBlock->id(), 0, sizeof(TechniqueParams), &single.params);
+  s.uploadParameters();
   s.uploadedDepth.emplace(GL_TEXTURE_2D);
   glTextureStorage2D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height());
   glTextureSubImage2D(s.uploadedDepth->id(), 0, 0, 0, depth.width(), depth.height(), GL_RED,
@@ -411,6 +458,19 @@ Image Renderer::readChannels(int level) const {
     }
   }
   return trimmed;
+}
+
+Image Renderer::readZmaxLevel(int level) const {
+  const State& s = *state_;
+  if (s.zmax.id() == 0) throw Error("no Z-max pyramid: render ESM with classifier=zmax first");
+  checkRange("Z-max level", level, 0, s.zmaxLevels - 1);
+  const int size = std::max(1, s.shadowMapSize >> level);
+  return readTexture(s.zmax.id(), level, size, size, 1, 1, GL_RED, false);
+}
+
+std::vector<SplitSample> Renderer::readSplitSamples() const {
+  if (!state_->splitSamples) throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
+  return readSplitSamplesBuffer(*state_);
 }
 
 double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {

@@ -39,14 +39,21 @@ struct Renderer::State {
   std::optional<Buffer> satStats;
   std::optional<Buffer> satSums;
   std::optional<Texture> uploadedDepth;  // filterDepthMap's input
+  TechniqueParams params;                // the parameters in use (LVSM splits placed)
+
+  // Auxiliary passes: ESM's Z-max pyramid, LVSM's Lloyd samples.
+  Texture zmax;  // 2D array, one R32F layer, full mip chain
+  int zmaxLevels = 0;
+  std::optional<Buffer> splitSamples;
 
   // Camera pass.
   Texture frameColor;
   Texture frameVisibility;
+  Texture frameDiagnostic;
   Texture frameDepth;
   unsigned frameFramebuffer = 0;
 
-  GpuTimer lightTimer, encodeTimer, prefilterTimer, mipsTimer, cameraTimer;
+  GpuTimer lightTimer, encodeTimer, prefilterTimer, mipsTimer, auxiliaryTimer, cameraTimer;
   RenderSettings settings;
 
   ~State();
@@ -59,6 +66,8 @@ struct Renderer::State {
 
   // Binds the technique's parameter block for the passes that run shared math.
   void bindParameters() const;
+  // Uploads `params` to the parameter block.
+  void uploadParameters();
 };
 
 // shadow_map_filter.cpp: encode -> blur -> mips or summed-area table, on lightDepth (or the
@@ -67,5 +76,10 @@ void allocateChannels(Renderer::State& state, const RenderSettings& settings);
 void encodeChannels(Renderer::State& state, unsigned depthTexture, bool multisampled);
 void prefilterChannels(Renderer::State& state);
 bool usesMips(FilterMode mode);
+
+// auxiliary_passes.cpp.
+void buildZmaxPyramid(Renderer::State& state, unsigned depthTexture, bool multisampled);
+void placeLayersByLloyd(Renderer::State& state, unsigned depthTexture, bool multisampled);
+std::vector<SplitSample> readSplitSamplesBuffer(const Renderer::State& state);
 
 }  // namespace penumbra::gl

@@ -86,10 +86,20 @@ void runRender(const RenderOptions& options) {
     gl::RenderResult result = renderer.render(scene, settings);
     for (int i = 1; i < options.repeat; ++i) result = renderer.render(scene, settings);
     const std::string stem = scene.name + "_" + std::string(techniqueId(technique));
-    const std::map<std::string, std::string> files{{"color", stem + ".png"},
-                                                   {"visibility_exr", stem + "_visibility.exr"},
-                                                   {"visibility_png", stem + "_visibility.png"},
-                                                   {"record", stem + ".json"}};
+    std::map<std::string, std::string> files{{"color", stem + ".png"},
+                                             {"visibility_exr", stem + "_visibility.exr"},
+                                             {"visibility_png", stem + "_visibility.png"},
+                                             {"record", stem + ".json"}};
+    const bool classified = technique == Technique::Esm &&
+                            result.params.esm.classifier != shaders::kEsmClassifyNone;
+    if (classified) {
+      files["failure_mask"] = stem + "_failures.png";
+      writeFailureMaskPng(result.diagnostic, result.color, dir / files.at("failure_mask"));
+    }
+    if (technique == Technique::Lvsm) {
+      files["layers"] = stem + "_layers.png";
+      writeLayerIndexPng(result.diagnostic, result.color, dir / files.at("layers"));
+    }
     writeColorPng(result.color, dir / files.at("color"));
     writeFloatExr(result.visibility, dir / files.at("visibility_exr"));
     writeGrey16Png(result.visibility, dir / files.at("visibility_png"));

@@ -53,7 +53,7 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 }
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
-// CHANNEL_FORMAT (each storage format and width), MSAA and SUMMED_AREA (0 and 1).
+// CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA and ZMAX (0 and 1).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -77,6 +77,7 @@ std::vector<Defines> variants(const std::string& source) {
   expand("CHANNEL_FORMAT", formats);
   expand("MSAA", {"0", "1"});
   expand("SUMMED_AREA", {"0", "1"});
+  expand("ZMAX", {"0", "1"});
   return result;
 }
 

@@ -9,6 +9,7 @@
 
 #include "penumbra/filters.h"
 #include "penumbra/image.h"
+#include "penumbra/layer_placement.h"
 #include "penumbra/scene.h"
 #include "penumbra/technique.h"
 
@@ -43,8 +44,9 @@ struct PassTimes {  // milliseconds per pass
   double encode = 0.0;
   double prefilter = 0.0;   // separable blur
   double mipsOrSat = 0.0;   // mip chain or summed-area table
+  double auxiliary = 0.0;   // ESM's Z-max pyramid or LVSM's Lloyd split placement
   double camera = 0.0;
-  double total() const { return light + encode + prefilter + mipsOrSat + camera; }
+  double total() const { return light + encode + prefilter + mipsOrSat + auxiliary + camera; }
 };
 
 struct MemoryReport {  // exact bytes allocated
@@ -52,13 +54,21 @@ struct MemoryReport {  // exact bytes allocated
   uint64_t technique = 0;   // the technique's channel texture, mips included when allocated
   uint64_t summedArea = 0;  // summed-area table sums and statistics
   uint64_t scratch = 0;     // the blur's intermediate texture
-  uint64_t frame = 0;       // camera-pass colour, visibility and depth targets
-  uint64_t total() const { return lightPass + technique + summedArea + scratch + frame; }
+  uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
+  uint64_t frame = 0;       // camera-pass colour, visibility, diagnostic and depth targets
+  uint64_t total() const { return lightPass + technique + summedArea + scratch + auxiliary + frame; }
 };
 
 struct RenderResult {
   Image color;       // RGBA in [0,1], row 0 at the top
   Image visibility;  // one float channel in [0,1], row 0 at the top
+  // Per pixel, row 0 at the top: -1 where nothing is drawn; ESM: 1 where classification failed
+  // (and the 2x2 PCF fallback shaded it), else 0; LVSM: the receiver's layer index; else 0.
+  Image diagnostic;
+  // ESM with a classifier: failing pixels as a share of drawn pixels, in percent; else 0.
+  double failureRatePercent = 0.0;
+  // The parameters used, with LVSM's splits as placed for this frame.
+  TechniqueParams params;
   PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
@@ -86,6 +96,10 @@ class Renderer {
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
   uint64_t measuredChannelTextureBytes() const;
+  // The Z-max pyramid level of the last ESM render with the zmax classifier, row 0 at the bottom.
+  Image readZmaxLevel(int level) const;
+  // The Lloyd samples (second-occluder depth, weight) of the last LVSM render with Lloyd placement.
+  std::vector<SplitSample> readSplitSamples() const;
 
   // Runs encode and prefilter on a given depth map (row 0 at the bottom) without a scene:
   // the path the GPU-parity tests compare with the CPU reference filters.

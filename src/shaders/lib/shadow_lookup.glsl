@@ -18,6 +18,33 @@ uniform int channelLayers;
 uniform int shadowMapSize;
 uniform int satMinRadius;  // the blur radius: the smallest summed-area box
 
+#if ZMAX
+layout(binding = 1) uniform sampler2DArray zmaxMap;
+uniform int zmaxLevels;
+uniform int blurRadius;
+
+// The largest depth under the lookup's footprint — the Z-max pyramid level whose texels cover the
+// footprint (blur included), max of the 2x2 texels around the lookup — less the most the
+// receiver's own plane rises across that region. Beyond the paper's constant offset: without
+// this, every sloped receiver's own far side counts as an occluder behind it.
+float zmaxUnderFootprint(vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {
+  vec2 footprint = max(abs(uvDx), abs(uvDy)) * float(shadowMapSize);
+  float extent = max(max(footprint.x, footprint.y), float(2 * blurRadius + 1));
+  int level = clamp(int(ceil(log2(max(extent, 1.0f)))), 0, zmaxLevels - 1);
+  int size = max(shadowMapSize >> level, 1);
+  ivec2 base = ivec2(floor(uv * float(size) - 0.5f));
+  float zmax = 0.0f;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      ivec2 texel = clamp(base + ivec2(i, j), ivec2(0), ivec2(size - 1));
+      zmax = max(zmax, texelFetch(zmaxMap, ivec3(texel, 0), level).x);
+    }
+  }
+  float regionTexels = 2.0f * float(1 << level);
+  return zmax - (abs(depthPerTexel.x) + abs(depthPerTexel.y)) * regionTexels;
+}
+#endif
+
 #if SUMMED_AREA
 #include "summed_area.glsl"
 layout(std430, binding = 2) readonly buffer SatStats { SatChannelStats satStats[]; };
@@ -88,7 +115,38 @@ float pcfLookup(vec2 uv, float receiverDepth, vec2 depthPerTexel, PcfParams pcf)
   return clamp(lit, 0.0f, 1.0f);  // the weights sum to 1 up to fp32 rounding
 }
 
-float shadowVisibility(vec2 uv, float receiverDepth, vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {
+// ESM failure classification (ESM paper §3.3): true where the planar-receiver assumption fails.
+bool esmFails(float filtered, float receiverDepth, vec2 uv, vec2 uvDx, vec2 uvDy,
+              vec2 depthPerTexel) {
+  if (params.esm.classifier == kEsmClassifyThreshold) {
+    return esmFailsThreshold(filtered, receiverDepth, params.esm);
+  }
+#if ZMAX
+  if (params.esm.classifier == kEsmClassifyZmax) {
+    return esmFailsZmax(zmaxUnderFootprint(uv, uvDx, uvDy, depthPerTexel), receiverDepth,
+                        params.esm);
+  }
+#endif
+  return false;
+}
+
+// The ESM's 2x2 nearest level-0 texels and the lookup's bilinear fraction among them.
+float esmFallback(vec2 uv, float receiverDepth) {
+  vec2 position = uv * float(shadowMapSize) - 0.5f;
+  ivec2 base = ivec2(floor(position));
+  ivec2 last = ivec2(shadowMapSize - 1);
+  vec4 stored = vec4(texelFetch(channelMap, ivec3(clamp(base, ivec2(0), last), 0), 0).x,
+                     texelFetch(channelMap, ivec3(clamp(base + ivec2(1, 0), ivec2(0), last), 0), 0).x,
+                     texelFetch(channelMap, ivec3(clamp(base + ivec2(0, 1), ivec2(0), last), 0), 0).x,
+                     texelFetch(channelMap, ivec3(clamp(base + ivec2(1, 1), ivec2(0), last), 0), 0).x);
+  return esmCustomPcf2x2(stored, position - vec2(base), receiverDepth, params.esm);
+}
+
+// Visibility at uv; `diagnostic` reports the technique's per-pixel state: 1 for an ESM pixel
+// that failed classification, the layer index for LVSM, 0 otherwise.
+float shadowVisibility(vec2 uv, float receiverDepth, vec2 uvDx, vec2 uvDy, vec2 depthPerTexel,
+                       out float diagnostic) {
+  diagnostic = 0.0f;
   if (technique == kTechniquePcf) return pcfLookup(uv, receiverDepth, depthPerTexel, params.pcf);
   if (technique == kTechniqueHard) {
     PcfParams single = params.pcf;
@@ -101,6 +159,12 @@ float shadowVisibility(vec2 uv, float receiverDepth, vec2 uvDx, vec2 uvDy, vec2 
   float channels[kMaxChannels];
   for (int i = 0; i < kMaxChannels; ++i) channels[i] = 0.0f;
   fetchChannels(uv, uvDx, uvDy, channels);
+  if (technique == kTechniqueEsm &&
+      esmFails(channels[0], receiverDepth, uv, uvDx, uvDy, depthPerTexel)) {
+    diagnostic = 1.0f;
+    return esmFallback(uv, receiverDepth);
+  }
+  if (technique == kTechniqueLvsm) diagnostic = float(selectLayer(receiverDepth, params.lvsm.splits));
   return reconstructVisibility(technique, channels, receiverDepth, params);
 }
 

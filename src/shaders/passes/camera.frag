@@ -3,6 +3,9 @@
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
+#ifndef ZMAX
+#define ZMAX 0
+#endif
 #include "../lib/shadow_lookup.glsl"
 
 in vec3 worldPosition;
@@ -23,6 +26,7 @@ uniform float ambient;
 
 layout(location = 0) out vec4 color;
 layout(location = 1) out float visibilityOut;
+layout(location = 2) out float diagnosticOut;  // see shadowVisibility; -1 where nothing is drawn
 
 float linearDepth(vec3 lightView) {
   float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
@@ -58,13 +62,17 @@ void main() {
   }
 
   float visibility = 1.0f;
+  float diagnostic = 0.0f;
   bool inside = all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))) &&
                 receiver <= 1.0f && clip.w > 0.0f;
-  if (inside) visibility = shadowVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel);
+  if (inside) {
+    visibility = shadowVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel, diagnostic);
+  }
 
   float lightAmount = cosine;
   if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
   vec3 shaded = albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);
   color = vec4(shaded, 1.0f);
   visibilityOut = visibility;
+  diagnosticOut = diagnostic;
 }

@@ -1,5 +1,6 @@
 // One mip level down: each texel reduces the 2x2 block below it by its channel's reduction; with
 // an odd source size the last texel also takes the leftover row/column (as filters.cpp does).
+// FORCE_REDUCTION overrides the technique's reduction (the Z-max pyramid uses kReduceMax).
 #include "../lib/channel_reduce.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -29,7 +30,11 @@ void main() {
     for (int c = 0; c < 4; ++c) {
       int channel = 4 * layer + c;
       if (channel >= count) continue;
+#ifdef FORCE_REDUCTION
+      int reduction = FORCE_REDUCTION;
+#else
       int reduction = channelReduction(technique, channel, params);
+#endif
       float acc = reduceStart(reduction);
       bool first = true;
       for (int y = ys.x; y <= ys.y; ++y) {

@@ -10,14 +10,24 @@ PENUMBRA_BEGIN_SHARED
 
 const int kEsmFilterLinear = 0;
 const int kEsmFilterLog = 1;
+
+// Failure classification (ESM paper §3.3): where the planar-receiver assumption fails, the
+// renderer falls back to a 2x2 custom PCF on the ESM texels.
+const int kEsmClassifyNone = 0;
+const int kEsmClassifyThreshold = 1;  // the filtered ESM value exceeds 1 + epsilon
+const int kEsmClassifyZmax = 2;       // the max depth under the filter lies behind the receiver
 // exp(88) = 1.65e38 < FLT_MAX: the largest c whose exp(c z) fp32 stores for z in [0,1].
 const float kEsmMaxLinearExponent = 88.0f;
 
 struct EsmParams {
-  float exponent;   // c: 80 for fp32 (ESM paper §3.2); (0, 88] linear, (0, 10000] log space
-  int filterSpace;  // kEsmFilterLinear or kEsmFilterLog
-  float threshold;  // epsilon of threshold classification (ESM paper §3.3), [0, 10]
+  float exponent;    // c: 80 for fp32 (ESM paper §3.2); (0, 88] linear, (0, 10000] log space
+  int filterSpace;   // kEsmFilterLinear or kEsmFilterLog
+  float threshold;   // epsilon of threshold classification (ESM paper §3.3), [0, 10]
+  int classifier;    // kEsmClassifyNone, kEsmClassifyThreshold (the paper's choice) or Zmax
+  float zmaxOffset;  // added to the receiver depth before the Z-max test (§3.3), [0, 0.1]
   float pad0;
+  float pad1;
+  float pad2;
 };
 
 PENUMBRA_INLINE EsmParams esmDefaultParams() {
@@ -25,7 +35,11 @@ PENUMBRA_INLINE EsmParams esmDefaultParams() {
   p.exponent = 80.0f;
   p.filterSpace = kEsmFilterLinear;
   p.threshold = 0.05f;
+  p.classifier = kEsmClassifyThreshold;
+  p.zmaxOffset = 0.005f;
   p.pad0 = 0.0f;
+  p.pad1 = 0.0f;
+  p.pad2 = 0.0f;
   return p;
 }
 
@@ -61,6 +75,31 @@ PENUMBRA_INLINE float esmVisibility(float filtered, float receiverDepth, EsmPara
 // Threshold classification (ESM paper §3.3): the unclamped ESM value exceeds 1 + epsilon.
 PENUMBRA_INLINE bool esmFailsThreshold(float filtered, float receiverDepth, EsmParams p) {
   return esmLogShadowTest(filtered, receiverDepth, p) > log(1.0f + p.threshold);
+}
+
+// Z-max classification (ESM paper §3.3): some occluder under the filter lies behind the receiver
+// (offset so that lit surfaces are not flagged), so exp(-c(d - z)) > 1 somewhere in the sum.
+PENUMBRA_INLINE bool esmFailsZmax(float maxDepth, float receiverDepth, EsmParams p) {
+  return maxDepth > receiverDepth + p.zmaxOffset;
+}
+
+// The depth a stored ESM texel stands for: ln(v)/c in linear space, v itself in log space.
+PENUMBRA_INLINE float esmDecodeDepth(float stored, EsmParams p) {
+  if (p.filterSpace == kEsmFilterLog) return stored;
+  return log(max(stored, 1.0e-30f)) / p.exponent;
+}
+
+// The fallback for failing pixels: PCF over the ESM's 2x2 nearest texels (x: (0,0), y: (1,0),
+// z: (0,1), w: (1,1)) with bilinear weights at `fraction` (ESM paper §3.3, Fig. 5). The depth
+// test tolerates ln(1 + epsilon)/c, the margin the threshold classifier allows.
+PENUMBRA_INLINE float esmCustomPcf2x2(vec4 stored, vec2 fraction, float receiverDepth,
+                                      EsmParams p) {
+  float d = receiverDepth - log(1.0f + p.threshold) / p.exponent;
+  float v00 = esmDecodeDepth(stored.x, p) >= d ? 1.0f : 0.0f;
+  float v10 = esmDecodeDepth(stored.y, p) >= d ? 1.0f : 0.0f;
+  float v01 = esmDecodeDepth(stored.z, p) >= d ? 1.0f : 0.0f;
+  float v11 = esmDecodeDepth(stored.w, p) >= d ? 1.0f : 0.0f;
+  return mix(mix(v00, v10, fraction.x), mix(v01, v11, fraction.x), fraction.y);
 }
 
 PENUMBRA_END_SHARED

@@ -6,6 +6,11 @@
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
+// How split depths are chosen (thesis §4.1.2).
+const int kLayerPlacementUniform = 0;
+const int kLayerPlacementLloyd = 1;  // weighted k-means on second-occluder depths, per frame
+const int kLayerPlacementFixed = 2;  // the splits given
+
 // Interior splits packed four to a vec4, so std140/std430 blocks and C++ share one layout.
 struct LayerSplits {
   vec4 interior[4];  // s_1..s_15, increasing, in (0,1); entries past layerCount-2 are unused

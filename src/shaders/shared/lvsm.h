@@ -14,10 +14,10 @@ struct LvsmParams {
   float minVariance;     // variance floor in warped-depth^2 units, [0, 0.01]
   float bleedReduction;  // thesis §3.4 clamp, [0, 0.99]
   int storage;           // kStorageUnorm16 (thesis) or kStorageFloat32
+  int placement;         // kLayerPlacementLloyd (thesis results), Uniform, or Fixed (`splits`)
+  int lloydIterations;   // Lloyd relaxation steps per still image, [1, 64]
   int pad0;
-  int pad1;
-  int pad2;
-  LayerSplits splits;  // uniform by default; Lloyd relaxation places them per frame (§4.1.2)
+  LayerSplits splits;  // the splits in use; the renderer replaces them when placement is Lloyd
 };
 
 PENUMBRA_INLINE LvsmParams lvsmDefaultParams() {
@@ -27,9 +27,9 @@ PENUMBRA_INLINE LvsmParams lvsmDefaultParams() {
   p.minVariance = 0.00001f;
   p.bleedReduction = 0.0f;
   p.storage = kStorageUnorm16;
+  p.placement = kLayerPlacementLloyd;
+  p.lloydIterations = 16;
   p.pad0 = 0;
-  p.pad1 = 0;
-  p.pad2 = 0;
   p.splits = uniformLayerSplits(4);
   return p;
 }

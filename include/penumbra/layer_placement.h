@@ -1,0 +1,38 @@
+// Layer split placement for layered VSM by Lloyd relaxation (thesis §4.1.2): light bleeding comes
+// from depth discontinuities, so the splits are the centres of a 1D weighted k-means over each
+// filter footprint's "second occluder" depth mu + sigma, weighted by its variance sigma^2.
+#pragma once
+
+#include <span>
+#include <vector>
+
+#include "penumbra/image.h"
+#include "shared/layers.h"
+
+namespace penumbra {
+
+struct SplitSample {
+  float depth;   // mu + sigma of a 2x2 footprint: the farther depth when two depths share it
+  float weight;  // sigma^2, zero for flat footprints
+};
+
+// Variances below this carry no discontinuity (a flat or gently sloped footprint).
+constexpr float kMinSplitWeight = 1e-6f;
+
+// One sample per 2x2 texel block between texel centres of the unwarped moments (z, z^2) of a
+// linear depth map: (w-1) x (h-1) samples, row-major.
+std::vector<SplitSample> secondOccluderSamples(const Image& depth);
+
+// One Lloyd step: each sample joins its nearest split, each split moves to its samples' weighted
+// mean. A split left with no weight is teleported (thesis: "merge the two adjacent layers and
+// split whatever layer has the highest weight"): removed, and a split placed at the weighted
+// mean of the heaviest layer. Splits stay increasing, at least `minGap` apart and from 0 and 1.
+shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
+                               const shaders::LayerSplits& splits, float minGap);
+
+// Uniform splits relaxed for up to `iterations` steps, stopping early once no split moves by
+// more than 1e-6. Deterministic for a given input.
+shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
+                                     int iterations, float minGap);
+
+}  // namespace penumbra

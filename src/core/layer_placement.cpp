@@ -1,0 +1,110 @@
+// Lloyd relaxation of layer splits.
+#include "penumbra/layer_placement.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace penumbra {
+namespace {
+
+std::vector<float> interior(const shaders::LayerSplits& splits) {
+  std::vector<float> s;
+  for (int i = 1; i < splits.layerCount; ++i) s.push_back(shaders::layerSplit(splits, i));
+  return s;
+}
+
+shaders::LayerSplits pack(std::vector<float> s, int layerCount, float minGap) {
+  std::sort(s.begin(), s.end());
+  // Keep the splits strictly inside (0,1) and apart, pushing forward then back.
+  for (size_t i = 0; i < s.size(); ++i) {
+    const float lowest = (i == 0 ? 0.0f : s[i - 1]) + minGap;
+    s[i] = std::max(s[i], lowest);
+  }
+  for (size_t i = s.size(); i-- > 0;) {
+    const float highest = (i + 1 == s.size() ? 1.0f : s[i + 1]) - minGap;
+    s[i] = std::min(s[i], highest);
+  }
+  shaders::LayerSplits out = shaders::uniformLayerSplits(layerCount);
+  for (size_t k = 0; k < s.size(); ++k) out.interior[k / 4][k % 4] = s[k];
+  return out;
+}
+
+}  // namespace
+
+std::vector<SplitSample> secondOccluderSamples(const Image& depth) {
+  std::vector<SplitSample> samples;
+  samples.reserve(size_t(std::max(0, depth.width() - 1)) * size_t(std::max(0, depth.height() - 1)));
+  for (int y = 0; y + 1 < depth.height(); ++y) {
+    for (int x = 0; x + 1 < depth.width(); ++x) {
+      float m1 = 0.0f, m2 = 0.0f;
+      for (int j = 0; j < 2; ++j) {
+        for (int i = 0; i < 2; ++i) {
+          const float z = depth.at(x + i, y + j);
+          m1 += 0.25f * z;
+          m2 += 0.25f * z * z;
+        }
+      }
+      const float variance = std::max(m2 - m1 * m1, 0.0f);
+      const float weight = variance > kMinSplitWeight ? variance : 0.0f;
+      samples.push_back({m1 + std::sqrt(variance), weight});
+    }
+  }
+  return samples;
+}
+
+shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
+                               const shaders::LayerSplits& splits, float minGap) {
+  std::vector<float> s = interior(splits);
+  if (s.empty()) return splits;
+  std::vector<double> clusterWeight(s.size(), 0.0), clusterSum(s.size(), 0.0);
+  std::vector<double> layerWeight(size_t(splits.layerCount), 0.0), layerSum(size_t(splits.layerCount), 0.0);
+  for (const SplitSample& sample : samples) {
+    if (sample.weight <= 0.0f) continue;
+    const auto nearest = std::min_element(s.begin(), s.end(), [&](float a, float b) {
+      return std::abs(a - sample.depth) < std::abs(b - sample.depth);
+    });
+    const size_t k = size_t(nearest - s.begin());
+    clusterWeight[k] += sample.weight;
+    clusterSum[k] += double(sample.weight) * sample.depth;
+    const size_t layer = size_t(shaders::selectLayer(sample.depth, splits));
+    layerWeight[layer] += sample.weight;
+    layerSum[layer] += double(sample.weight) * sample.depth;
+  }
+  std::vector<float> next;
+  int empty = 0;
+  for (size_t k = 0; k < s.size(); ++k) {
+    if (clusterWeight[k] > 0.0) {
+      next.push_back(float(clusterSum[k] / clusterWeight[k]));
+    } else {
+      ++empty;
+    }
+  }
+  // Teleportation: each empty cluster's split reappears inside the heaviest remaining layer.
+  for (int i = 0; i < empty; ++i) {
+    const size_t heaviest = size_t(std::max_element(layerWeight.begin(), layerWeight.end()) - layerWeight.begin());
+    if (layerWeight[heaviest] > 0.0) {
+      next.push_back(float(layerSum[heaviest] / layerWeight[heaviest]));
+      layerWeight[heaviest] = 0.0;  // the next teleport goes elsewhere
+    } else {
+      next.push_back(s[size_t(i) % s.size()]);  // no weight anywhere: keep the split
+    }
+  }
+  return pack(next, splits.layerCount, minGap);
+}
+
+shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
+                                     int iterations, float minGap) {
+  shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
+  for (int i = 0; i < iterations; ++i) {
+    const shaders::LayerSplits next = lloydStep(samples, splits, minGap);
+    float moved = 0.0f;
+    for (int k = 1; k < layerCount; ++k) {
+      moved = std::max(moved, std::abs(shaders::layerSplit(next, k) - shaders::layerSplit(splits, k)));
+    }
+    splits = next;
+    if (moved < 1e-6f) break;
+  }
+  return splits;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,66 @@
+// Technique-specific passes beside the shared pipeline: ESM's Z-max pyramid (ESM paper §3.3)
+// and LVSM's Lloyd split placement (thesis §4.1.2).
+#include <epoxy/gl.h>
+
+#include "penumbra/gl/context.h"
+#include "renderer_state.h"
+#include "shared/constants.h"
+
+namespace penumbra::gl {
+namespace {
+
+unsigned groups(int n) { return (unsigned(n) + 7u) / 8u; }
+
+}  // namespace
+
+void buildZmaxPyramid(Renderer::State& s, unsigned depthTexture, bool multisampled) {
+  s.zmaxLevels = mipLevelCount(s.shadowMapSize, s.shadowMapSize);
+  s.zmax = Texture(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(s.zmax.id(), s.zmaxLevels, GL_R32F, s.shadowMapSize, s.shadowMapSize, 1);
+  const Program& base = s.compute("passes/zmax_base.comp", {{"MSAA", multisampled ? "1" : "0"}});
+  glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), s.shadowMapSize, s.shadowMapSize);
+  base.set("sampleCount", s.msaaSamples);
+  glBindTextureUnit(0, depthTexture);
+  glBindImageTexture(0, s.zmax.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  base.dispatch(groups(s.shadowMapSize), groups(s.shadowMapSize));
+  const Program& reduce = s.compute(
+      "passes/mip_reduce.comp",
+      {{"CHANNEL_FORMAT", "r32f"}, {"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}});
+  s.bindParameters();
+  reduce.set("layerCount", 1);
+  glBindTextureUnit(0, s.zmax.id());
+  for (int level = 0; level + 1 < s.zmaxLevels; ++level) {
+    const int source = std::max(1, s.shadowMapSize >> level);
+    const int target = std::max(1, s.shadowMapSize >> (level + 1));
+    reduce.set("sourceLevel", level);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source, source);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target, target);
+    glBindImageTexture(0, s.zmax.id(), level + 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+    reduce.dispatch(groups(target), groups(target));
+  }
+  checkErrors("building the Z-max pyramid");
+}
+
+std::vector<SplitSample> readSplitSamplesBuffer(const Renderer::State& s) {
+  std::vector<SplitSample> samples(size_t(s.shadowMapSize - 1) * size_t(s.shadowMapSize - 1));
+  s.splitSamples->read(std::as_writable_bytes(std::span(samples)));
+  return samples;
+}
+
+void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisampled) {
+  const int size = s.shadowMapSize;
+  s.splitSamples.emplace(size_t(size - 1) * size_t(size - 1) * sizeof(SplitSample));
+  const Program& samples = s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
+  glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
+  samples.set("minWeight", kMinSplitWeight);
+  glBindTextureUnit(0, depthTexture);
+  s.splitSamples->bindStorage(1);
+  samples.dispatch(groups(size), groups(size));
+  // The k-means itself runs on the read-back samples, as the thesis reads back its reduction.
+  shaders::LvsmParams& lvsm = s.params.lvsm;
+  lvsm.splits = lloydRelaxation(readSplitSamplesBuffer(s), lvsm.splits.layerCount,
+                                lvsm.lloydIterations, std::max(2.0f * lvsm.overlap, 1e-3f));
+  checkErrors("placing the layers");
+}
+
+}  // namespace penumbra::gl

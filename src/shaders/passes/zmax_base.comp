@@ -1,0 +1,24 @@
+// Z-max pyramid, level 0: the light pass's depth (the farthest sample under MSAA) for ESM's Z-max
+// failure classification (ESM paper §3.3); passes/mip_reduce.comp with FORCE_REDUCTION max builds
+// the levels above it.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0, r32f) uniform writeonly image2DArray zmaxImage;
+#if MSAA
+layout(binding = 0) uniform sampler2DMS depthMap;
+uniform int sampleCount;
+#else
+layout(binding = 0) uniform sampler2D depthMap;
+#endif
+uniform ivec2 size;
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+#if MSAA
+  float z = 0.0f;
+  for (int s = 0; s < sampleCount; ++s) z = max(z, texelFetch(depthMap, p, s).x);
+#else
+  float z = texelFetch(depthMap, p, 0).x;
+#endif
+  imageStore(zmaxImage, ivec3(p, 0), vec4(z, 0.0f, 0.0f, 0.0f));
+}
