@@ -20,7 +20,8 @@ struct SplitSample {
 constexpr float kMinSplitWeight = 1e-6f;
 
 // One sample per 2x2 texel block between texel centres of the unwarped moments (z, z^2) of a
-// linear depth map: (w-1) x (h-1) samples, row-major.
+// linear depth map: (w-1) x (h-1) samples, row-major. Blocks touching empty texels (depth 1, the
+// cleared far plane) weigh nothing: an edge against nothing is no occluder.
 std::vector<SplitSample> secondOccluderSamples(const Image& depth);
 
 // One Lloyd step: each sample joins its nearest split, each split moves to its samples' weighted
@@ -31,8 +32,11 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
                                const shaders::LayerSplits& splits, float minGap);
 
 // Uniform splits relaxed for up to `iterations` steps, stopping early once no split moves by
-// more than 1e-6. Deterministic for a given input.
+// more than 1e-6, then moved `frontMargin` toward the light. Deterministic for a given input.
+// The relaxed centres sit at second occluders' mean depths; a boundary exactly there would leave
+// half of those surfaces in the layer in front, still bleeding, so the renderer places each split
+// one overlap in front of its centre.
 shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
-                                     int iterations, float minGap);
+                                     int iterations, float minGap, float frontMargin = 0.0f);
 
 }  // namespace penumbra

@@ -37,15 +37,17 @@ std::vector<SplitSample> secondOccluderSamples(const Image& depth) {
   for (int y = 0; y + 1 < depth.height(); ++y) {
     for (int x = 0; x + 1 < depth.width(); ++x) {
       float m1 = 0.0f, m2 = 0.0f;
+      bool empty = false;
       for (int j = 0; j < 2; ++j) {
         for (int i = 0; i < 2; ++i) {
           const float z = depth.at(x + i, y + j);
           m1 += 0.25f * z;
           m2 += 0.25f * z * z;
+          empty = empty || z >= 1.0f;
         }
       }
       const float variance = std::max(m2 - m1 * m1, 0.0f);
-      const float weight = variance > kMinSplitWeight ? variance : 0.0f;
+      const float weight = variance > kMinSplitWeight && !empty ? variance : 0.0f;
       samples.push_back({m1 + std::sqrt(variance), weight});
     }
   }
@@ -93,7 +95,7 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
 }
 
 shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
-                                     int iterations, float minGap) {
+                                     int iterations, float minGap, float frontMargin) {
   shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
   for (int i = 0; i < iterations; ++i) {
     const shaders::LayerSplits next = lloydStep(samples, splits, minGap);
@@ -104,7 +106,9 @@ shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int l
     splits = next;
     if (moved < 1e-6f) break;
   }
-  return splits;
+  std::vector<float> placed = interior(splits);
+  for (float& s : placed) s -= frontMargin;
+  return pack(placed, layerCount, minGap);
 }
 
 }  // namespace penumbra

@@ -182,6 +182,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
           integer("layers", kLayersDoc, 1, shaders::kMaxLayers,
                   [](TechniqueParams& p) { return &p.powerCdf.splits.layerCount; }),
           splitList(kSplitsDoc, [](TechniqueParams& p) { return &p.powerCdf.splits; }),
+          real("depthBias", "subtracted from the receiver depth against storage rounding", 0.0, 0.1,
+               [](TechniqueParams& p) { return &p.powerCdf.depthBias; }),
           choice("storage", "min/max/mean storage (Gumbau §4: 16 bits suffice)",
                  {kFloat32, kFloat16}, [](TechniqueParams& p) { return &p.powerCdf.storage; }),
       };

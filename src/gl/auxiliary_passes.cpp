@@ -59,7 +59,8 @@ void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisam
   // The k-means itself runs on the read-back samples, as the thesis reads back its reduction.
   shaders::LvsmParams& lvsm = s.params.lvsm;
   lvsm.splits = lloydRelaxation(readSplitSamplesBuffer(s), lvsm.splits.layerCount,
-                                lvsm.lloydIterations, std::max(2.0f * lvsm.overlap, 1e-3f));
+                                lvsm.lloydIterations, std::max(2.0f * lvsm.overlap, 1e-3f),
+                                lvsm.overlap);
   checkErrors("placing the layers");
 }
 

@@ -23,6 +23,7 @@ inline TechniqueParams float32Params() {
   p.csm.storage = shaders::kStorageFloat32;
   p.msm.storage = shaders::kStorageFloat32;
   p.msm.momentBias = 3e-6f;
+  p.powerCdf.depthBias = 0.0f;
   return p;
 }
 

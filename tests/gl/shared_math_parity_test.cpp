@@ -60,11 +60,12 @@ TechniqueParams randomParams(Technique t, std::mt19937& rng) {
   return p;
 }
 
-// The interval the C++ result sweeps when every channel moves by up to `relative`. MSM's Hankel
-// solve amplifies rounding by about 1/momentBias, and GLSL allows division and sqrt to be less
-// than correctly rounded (2.5 ulp), so for MSM the GPU is held to this backward-error envelope
-// instead of a fixed forward tolerance. The perturbation used, 4e-6 relative, is a quarter of
-// one unorm16 step: smaller than the rounding MSM's own default storage applies.
+// The interval the C++ result sweeps when every channel and the receiver depth move by up to
+// `relative`. GLSL allows exp, log, division and sqrt to be less than correctly rounded, so a case
+// beyond the forward tolerance is held to this backward-error envelope instead: it catches
+// exact ties (a receiver exactly at its only occluder's depth, where visibility steps from 1 to
+// 0) and MSM, whose Hankel solve amplifies rounding by about 1/momentBias. The perturbation,
+// 4e-6 relative, is a quarter of one unorm16 step: below the rounding of the storage formats.
 std::pair<float, float> roundingEnvelope(Technique t, const TechniqueParams& p,
                                          const float* channels, float receiver, float relative) {
   std::mt19937 rng(17);
@@ -74,7 +75,8 @@ std::pair<float, float> roundingEnvelope(Technique t, const TechniqueParams& p,
   for (int trial = 0; trial < 128; ++trial) {
     std::vector<float> perturbed(channels, channels + count);
     for (float& v : perturbed) v *= 1.0f + (trial == 0 ? 0.0f : jitter(rng));
-    const float v = reconstructVisibility(t, p, perturbed, receiver);
+    const float r = trial == 0 ? receiver : receiver * (1.0f + jitter(rng)) + 0.1f * jitter(rng);
+    const float v = reconstructVisibility(t, p, perturbed, r);
     lo = std::min(lo, v);
     hi = std::max(hi, v);
   }
@@ -126,11 +128,12 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
   // Visibility lies in [0,1]: 1e-5 relative to that range.
   int mismatches = 0;
   int msmBeyondForwardTolerance = 0;
+  int othersBeyondForwardTolerance = 0;
   for (size_t i = 0; i < gpu.size(); ++i) {
     const Technique t = Technique(cases[i].technique);
     float lo = expected[i], hi = expected[i];
-    if (t == Technique::Msm && std::abs(gpu[i] - expected[i]) > 1e-5f) {
-      ++msmBeyondForwardTolerance;
+    if (std::abs(gpu[i] - expected[i]) > 1e-5f) {
+      ++(t == Technique::Msm ? msmBeyondForwardTolerance : othersBeyondForwardTolerance);
       std::tie(lo, hi) =
           roundingEnvelope(t, params[i], cases[i].channels, cases[i].receiverDepth, 4e-6f);
     }
@@ -144,6 +147,8 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
   EXPECT_EQ(mismatches, 0) << "of " << gpu.size() << " cases";
   // The envelope is the exception, not the rule.
   EXPECT_LT(msmBeyondForwardTolerance, 60) << "of 300 MSM cases";
+  EXPECT_LT(othersBeyondForwardTolerance, 10) << "of 2700 cases of the other techniques";
+  RecordProperty("other_cases_beyond_1e-5", othersBeyondForwardTolerance);
   RecordProperty("msm_cases_beyond_1e-5", msmBeyondForwardTolerance);
 }
 

@@ -16,14 +16,16 @@ void main() {
   if (p.x + 1 >= size.x || p.y + 1 >= size.y) return;
   float m1 = 0.0f;
   float m2 = 0.0f;
+  bool empty = false;
   for (int j = 0; j < 2; ++j) {
     for (int i = 0; i < 2; ++i) {
       float z = texelFetch(depthMap, p + ivec2(i, j), 0).x;
       m1 += 0.25f * z;
       m2 += 0.25f * z * z;
+      empty = empty || z >= 1.0f;  // the cleared far plane: an edge against nothing
     }
   }
   precise float variance = max(m2 - m1 * m1, 0.0f);
-  float weight = variance > minWeight ? variance : 0.0f;
+  float weight = variance > minWeight && !empty ? variance : 0.0f;
   samples[p.y * (size.x - 1) + p.x] = vec2(m1 + sqrt(variance), weight);
 }

@@ -13,8 +13,9 @@ const float kPowerCdfMinBeta = 0.000001f;
 const float kPowerCdfMaxBeta = 1000000.0f;
 
 struct PowerCdfParams {
-  int storage;  // kStorageFloat32 or kStorageFloat16 (Gumbau §4: 16 bits suffice)
-  int pad0;
+  int storage;      // kStorageFloat32 or kStorageFloat16 (Gumbau §4: 16 bits suffice)
+  float depthBias;  // subtracted from the receiver depth, [0, 0.1]: a planar receiver sits at
+                    // the filtered mean, and storage rounding must not push it behind (eq. 1)
   int pad1;
   int pad2;
   LayerSplits splits;  // one layer is the paper's method; more is its layered variant
@@ -23,7 +24,7 @@ struct PowerCdfParams {
 PENUMBRA_INLINE PowerCdfParams powerCdfDefaultParams() {
   PowerCdfParams p;
   p.storage = kStorageFloat32;
-  p.pad0 = 0;
+  p.depthBias = 0.001f;
   p.pad1 = 0;
   p.pad2 = 0;
   p.splits = uniformLayerSplits(1);
@@ -73,8 +74,9 @@ PENUMBRA_INLINE float powerCdfVisibilityFromStats(vec3 minMaxMean, float receive
 // Visibility from the statistics of the receiver's layer.
 PENUMBRA_INLINE float powerCdfVisibility(vec3 layerMinMaxMean, float receiverDepth,
                                          PowerCdfParams p) {
-  int layer = selectLayer(receiverDepth, p.splits);
-  float z = powerCdfLayerDepth(receiverDepth, layer, p);
+  float biased = receiverDepth - p.depthBias;
+  int layer = selectLayer(biased, p.splits);
+  float z = powerCdfLayerDepth(biased, layer, p);
   return powerCdfVisibilityFromStats(layerMinMaxMean, z);
 }
 

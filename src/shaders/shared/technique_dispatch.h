@@ -83,7 +83,7 @@ PENUMBRA_INLINE float reconstructVisibility(int technique, float channels[kMaxCh
     return csmVisibility(basis, receiverDepth, p.csm);
   }
   if (technique == kTechniquePowerCdf) {
-    int layer = selectLayer(receiverDepth, p.powerCdf.splits);
+    int layer = selectLayer(receiverDepth - p.powerCdf.depthBias, p.powerCdf.splits);
     vec3 stats = vec3(channels[3 * layer], channels[3 * layer + 1], channels[3 * layer + 2]);
     return powerCdfVisibility(stats, receiverDepth, p.powerCdf);
   }

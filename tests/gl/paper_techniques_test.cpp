@@ -1,0 +1,239 @@
+// The papers' own machinery on the GPU: ESM failure classification (ESM paper §3.3), LVSM with
+// Lloyd relaxation (thesis §4.1), convolution shadow maps and the power-function CDF, each held
+// to its paper's central claim in numbers and to the CPU reference of its new passes.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gl_test_context.h"
+#include "penumbra/channel_layout.h"
+#include "penumbra/filters.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/layer_placement.h"
+#include "penumbra/params.h"
+
+namespace penumbra {
+namespace {
+
+class PaperTechniques : public testing::GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    if (context) renderer = std::make_unique<gl::Renderer>(*context);
+  }
+
+  gl::RenderSettings settings(Technique t, std::initializer_list<const char*> params = {}) const {
+    gl::RenderSettings s;
+    s.technique = t;
+    s.shadowMapSize = 512;
+    s.width = 480;
+    s.height = 270;
+    const std::vector<Technique> one{t};
+    for (const char* p : params) applyParamAssignment(one, s.params, p);
+    return s;
+  }
+
+  gl::RenderResult render(std::string_view scene, const gl::RenderSettings& s) {
+    return renderer->render(makeBuiltinScene(scene), s);
+  }
+
+  std::unique_ptr<gl::Renderer> renderer;
+};
+
+// Mean visibility over the pixels a PCF reference leaves dark: light that should not be there.
+double bleeding(const Image& reference, const Image& visibility) {
+  double light = 0.0;
+  int dark = 0;
+  for (size_t i = 0; i < reference.data().size(); ++i) {
+    if (reference.data()[i] > 0.02f) continue;
+    ++dark;
+    light += visibility.data()[i];
+  }
+  return dark > 0 ? light / dark : 0.0;
+}
+
+double meanAbsoluteDifference(const Image& a, const Image& b) {
+  double sum = 0.0;
+  for (size_t i = 0; i < a.data().size(); ++i) sum += std::abs(a.data()[i] - b.data()[i]);
+  return sum / double(a.data().size());
+}
+
+// The bench scene with a 7x7 box prefilter and its same-kernel PCF reference.
+gl::RenderSettings benchKernel(gl::RenderSettings s) {
+  s.blur = {BlurKernel::Box, 3, 1.0f};
+  s.filter = gl::FilterMode::Bilinear;
+  s.params.pcf.radius = 3;
+  return s;
+}
+
+TEST_F(PaperTechniques, ZmaxPyramidEqualsTheCpuMaxChain) {
+  gl::RenderSettings s = settings(Technique::Esm, {"classifier=zmax"});
+  s.shadowMapSize = 128;
+  render("backyard", s);
+  const std::vector<ChannelReduction> max{ChannelReduction::Max};
+  const std::vector<Image> cpu = buildMipChain(renderer->readDepthMap(), max);
+  for (size_t level = 0; level < cpu.size(); ++level) {
+    const Image gpu = renderer->readZmaxLevel(int(level));
+    ASSERT_EQ(gpu.width(), cpu[level].width());
+    for (size_t i = 0; i < gpu.data().size(); ++i) {
+      ASSERT_EQ(gpu.data()[i], cpu[level].data()[i]) << "level " << level;
+    }
+  }
+}
+
+TEST_F(PaperTechniques, EsmFailureRateGrowsWithTheBlurAsInTheEsmPapersTable3) {
+  for (const char* classifier : {"classifier=threshold", "classifier=zmax"}) {
+    std::vector<double> rates;
+    for (int radius : {0, 1, 2, 3}) {
+      gl::RenderSettings s = settings(Technique::Esm, {classifier});
+      s.blur = {BlurKernel::Gaussian, radius, std::max(0.5f, 0.5f * float(radius))};
+      rates.push_back(render("backyard", s).failureRatePercent);
+      RecordProperty(std::string(classifier) + "_blur" + std::to_string(2 * radius + 1),
+                     std::to_string(rates.back()));
+    }
+    for (size_t i = 1; i < rates.size(); ++i) EXPECT_GE(rates[i], rates[i - 1]) << classifier;
+    EXPECT_GT(rates.back(), 1.5 * rates.front()) << classifier;
+    EXPECT_GT(rates.front(), 0.1) << classifier;
+    EXPECT_LT(rates.back(), 40.0) << classifier;
+  }
+}
+
+TEST_F(PaperTechniques, EsmFallbackShadesFailingPixelsWithTheTwoByTwoPcf) {
+  const gl::RenderResult none = render("contact", settings(Technique::Esm, {"classifier=none"}));
+  const gl::RenderResult classified = render("contact", settings(Technique::Esm));
+  int failing = 0, changed = 0, passingButChanged = 0;
+  for (size_t i = 0; i < classified.diagnostic.data().size(); ++i) {
+    const bool failed = classified.diagnostic.data()[i] > 0.5f;
+    const bool differs =
+        std::abs(classified.visibility.data()[i] - none.visibility.data()[i]) > 1e-6f;
+    failing += failed;
+    changed += failed && differs;
+    passingButChanged += !failed && differs;
+  }
+  EXPECT_GT(failing, 100);
+  EXPECT_GT(changed, failing / 20) << "the fallback must shade failing pixels differently";
+  EXPECT_EQ(passingButChanged, 0) << "pixels that pass classification keep the ESM result";
+}
+
+TEST_F(PaperTechniques, LloydSamplesAndSplitsMatchTheCpuReference) {
+  gl::RenderSettings s = settings(Technique::Lvsm, {"layers=4"});
+  s.shadowMapSize = 128;
+  const gl::RenderResult r = render("bench", s);
+  const std::vector<SplitSample> cpu = secondOccluderSamples(renderer->readDepthMap());
+  const std::vector<SplitSample> gpu = renderer->readSplitSamples();
+  ASSERT_EQ(cpu.size(), gpu.size());
+  for (size_t i = 0; i < cpu.size(); ++i) {
+    ASSERT_NEAR(gpu[i].depth, cpu[i].depth, 1e-5f) << i;
+    ASSERT_NEAR(gpu[i].weight, cpu[i].weight, 1e-6f) << i;
+  }
+  const shaders::LayerSplits expected =
+      lloydRelaxation(cpu, 4, s.params.lvsm.lloydIterations, 2.0f * s.params.lvsm.overlap,
+                      s.params.lvsm.overlap);
+  for (int i = 1; i < 4; ++i) {
+    EXPECT_NEAR(shaders::layerSplit(r.params.lvsm.splits, i), shaders::layerSplit(expected, i), 1e-4f);
+  }
+}
+
+TEST_F(PaperTechniques, LvsmWithLloydSplitsRemovesBenchBleedingWithFewerLayersThanUniform) {
+  const Image pcf = render("bench", benchKernel(settings(Technique::Pcf))).visibility;
+  const double vsm = bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
+  auto lvsm = [&](const char* placement, const char* layers) {
+    return bleeding(pcf, render("bench", benchKernel(settings(Technique::Lvsm, {layers, placement}))).visibility);
+  };
+  const double lloyd2 = lvsm("placement=lloyd", "layers=2");
+  RecordProperty("vsm", std::to_string(vsm));
+  RecordProperty("lvsm_lloyd_2", std::to_string(lloyd2));
+  EXPECT_LT(lloyd2, 0.2 * vsm);
+  int uniformLayersNeeded = 0;
+  for (int layers : {2, 4, 8, 16}) {
+    const std::string count = "layers=" + std::to_string(layers);
+    const double uniform = lvsm("placement=uniform", count.c_str());
+    RecordProperty("lvsm_uniform_" + std::to_string(layers), std::to_string(uniform));
+    if (uniform <= lloyd2 * 1.05 + 1e-4) {
+      uniformLayersNeeded = layers;
+      break;
+    }
+  }
+  EXPECT_TRUE(uniformLayersNeeded == 0 || uniformLayersNeeded > 2)
+      << "uniform splits matched Lloyd's bleeding with " << uniformLayersNeeded << " layers";
+}
+
+TEST_F(PaperTechniques, LvsmLayerImageShowsEveryLayerUsed) {
+  const gl::RenderResult r = render("overlap", settings(Technique::Lvsm, {"layers=4", "placement=uniform"}));
+  std::vector<int> seen(4, 0);
+  for (float v : r.diagnostic.data()) {
+    if (v >= 0.0f) seen[size_t(std::lround(v))]++;
+  }
+  int used = 0;
+  for (int n : seen) used += n > 0;
+  EXPECT_GE(used, 2);
+}
+
+TEST_F(PaperTechniques, CsmApproachesPcfAsTermsGrowOnContactShadows) {
+  gl::RenderSettings reference = settings(Technique::Pcf);
+  reference.params.pcf.radius = 2;
+  const Image pcf = render("contact", reference).visibility;
+  std::vector<double> errors;
+  for (const char* m : {"M=4", "M=8", "M=16"}) {
+    gl::RenderSettings s = settings(Technique::Csm, {m});
+    s.blur = {BlurKernel::Box, 2, 1.0f};
+    s.filter = gl::FilterMode::Bilinear;
+    errors.push_back(meanAbsoluteDifference(pcf, render("contact", s).visibility));
+    RecordProperty(std::string("csm_error_") + m, std::to_string(errors.back()));
+  }
+  EXPECT_GT(errors[0], errors[1]);
+  EXPECT_GT(errors[1], errors[2]);
+}
+
+TEST_F(PaperTechniques, CsmKeepsLitSurfacesLitWithTheOffset) {
+  const Image pcf = render("contact", settings(Technique::Pcf)).visibility;
+  auto litShare = [&](const char* offset) {
+    const Image csm = render("contact", settings(Technique::Csm, {offset})).visibility;
+    int lit = 0, kept = 0;
+    for (size_t i = 0; i < pcf.data().size(); ++i) {
+      if (pcf.data()[i] < 1.0f) continue;
+      ++lit;
+      kept += csm.data()[i] > 0.95f;
+    }
+    return double(kept) / lit;
+  };
+  const double withOffset = litShare("offset=1");
+  EXPECT_GT(withOffset, 0.97);
+  EXPECT_LT(litShare("offset=0"), 0.5 * withOffset);  // unshifted: lit surfaces read about 1/2
+}
+
+TEST_F(PaperTechniques, CsmMemoryIsHalfMRgba8Textures) {
+  TechniqueParams p = defaultTechniqueParams();
+  for (int m : {4, 8, 16}) {
+    p.csm.termCount = m;
+    const ChannelLayout layout = channelLayout(Technique::Csm, p);
+    EXPECT_EQ(layout.layers, m / 2);
+    EXPECT_EQ(layout.bytesPerTexel(), 4);
+    EXPECT_EQ(channelTextureBytes(layout, 1024, 1024, false), uint64_t(m / 2) * 1024 * 1024 * 4);
+  }
+}
+
+TEST_F(PaperTechniques, PowerCdfDoesNotBleedOnTheBenchWhereVsmDoes) {
+  const Image pcf = render("bench", benchKernel(settings(Technique::Pcf))).visibility;
+  const double vsm = bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
+  const double power = bleeding(pcf, render("bench", benchKernel(settings(Technique::PowerCdf))).visibility);
+  RecordProperty("powercdf", std::to_string(power));
+  EXPECT_LT(power, 0.2 * vsm);
+}
+
+TEST_F(PaperTechniques, PowerCdfSixteenBitStaysCloseToThirtyTwo) {
+  const Image p32 = render("spheres", settings(Technique::PowerCdf)).visibility;
+  const Image p16 = render("spheres", settings(Technique::PowerCdf, {"storage=float16"})).visibility;
+  const double mean = meanAbsoluteDifference(p16, p32);
+  RecordProperty("powercdf_16_vs_32_mean_abs", std::to_string(mean));
+  EXPECT_LT(mean, 0.01);
+}
+
+TEST_F(PaperTechniques, LayeredPowerCdfRenders) {
+  const gl::RenderResult r = render("overlap", settings(Technique::PowerCdf, {"layers=3"}));
+  for (float v : r.visibility.data()) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+  EXPECT_EQ(channelLayout(Technique::PowerCdf, r.params).layers, 3);
+}
+
+}  // namespace
+}  // namespace penumbra
