@@ -170,6 +170,8 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   program.set("satMinRadius", settings.blur.radius);
   program.set("blurRadius", settings.blur.radius);
   program.set("zmaxLevels", s.zmaxLevels);
+  program.set("channelLevels", s.channelLevels);
+  program.set("anisotropy", settings.anisotropy);
   setChannelSampling(s);
   glBindTextureUnit(0, s.channels.id());
   if (zmax) glBindTextureUnit(1, s.zmax.id());

@@ -115,6 +115,26 @@ TEST_F(PaperTechniques, EsmFallbackShadesFailingPixelsWithTheTwoByTwoPcf) {
   EXPECT_EQ(passingButChanged, 0) << "pixels that pass classification keep the ESM result";
 }
 
+TEST_F(PaperTechniques, EsmLogSpaceFilteringAgreesWithLinearSpaceThroughHardwareModes) {
+  // c = 80 fits fp32 in linear space, so both spaces must give the same shadows: the log-space
+  // path filters by hand (blur, mips, bilinear and trilinear fetches) what the hardware filters
+  // linearly for exp(c z).
+  for (gl::FilterMode filter : {gl::FilterMode::Bilinear, gl::FilterMode::Trilinear}) {
+    gl::RenderSettings linear = settings(Technique::Esm, {"classifier=none"});
+    linear.filter = filter;
+    gl::RenderSettings logSpace = linear;
+    logSpace.params.esm.filterSpace = shaders::kEsmFilterLog;
+    const double difference = meanAbsoluteDifference(render("backyard", linear).visibility,
+                                                     render("backyard", logSpace).visibility);
+    RecordProperty(std::string("log_vs_linear_") + std::string(gl::filterModeName(filter)),
+                   std::to_string(difference));
+    EXPECT_LT(difference, 2e-3) << gl::filterModeName(filter);
+  }
+  // Far beyond fp32's exp range, log space still renders finite shadows.
+  const gl::RenderResult huge = render("backyard", settings(Technique::Esm, {"filtering=log", "c=2000"}));
+  for (float v : huge.visibility.data()) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
+}
+
 TEST_F(PaperTechniques, LloydSamplesAndSplitsMatchTheCpuReference) {
   gl::RenderSettings s = settings(Technique::Lvsm, {"layers=4"});
   s.shadowMapSize = 128;

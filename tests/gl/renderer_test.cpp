@@ -90,7 +90,9 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
   for (const Case& k : {Case{Technique::Vsm, nullptr}, Case{Technique::Vsm, "storage=unorm16"},
                         Case{Technique::Evsm4, nullptr}, Case{Technique::Evsm4, "storage=float16"},
                         Case{Technique::Esm, nullptr}, Case{Technique::Esm, "filtering=log"},
-                        Case{Technique::Msm, nullptr}, Case{Technique::PowerCdf, nullptr}}) {
+                        Case{Technique::Msm, nullptr}, Case{Technique::PowerCdf, nullptr},
+                        Case{Technique::PowerCdf, "layers=3"}, Case{Technique::Csm, nullptr},
+                        Case{Technique::Csm, "storage=float32"}, Case{Technique::Lvsm, nullptr}}) {
     gl::RenderSettings s = small(k.technique);
     s.filter = gl::FilterMode::Trilinear;
     s.blur = {BlurKernel::Gaussian, 2, 1.0f};

@@ -17,6 +17,65 @@ uniform int filterMode;
 uniform int channelLayers;
 uniform int shadowMapSize;
 uniform int satMinRadius;  // the blur radius: the smallest summed-area box
+uniform int channelLevels;
+uniform int anisotropy;
+
+// ESM in log space (Salvi) stores depth, and a hardware filter would average it linearly, which
+// is not the log-space mean of exp(c z). These filter by hand in log space instead: bilinear
+// within a level, linear between levels, and up to `anisotropy` probes along the footprint's
+// major axis, as the hardware modes do.
+float esmLogAccumulate(float acc, bool first, float value, float weight) {
+  if (weight <= 0.0f) return acc;
+  float term = esmLogSpaceWeighted(value, weight, params.esm.exponent);
+  return first ? term : esmLogSpaceAdd(acc, term, params.esm.exponent);
+}
+
+float esmLogBilinear(vec2 uv, int level) {
+  int size = max(shadowMapSize >> level, 1);
+  vec2 position = uv * float(size) - 0.5f;
+  ivec2 base = ivec2(floor(position));
+  vec2 f = position - vec2(base);
+  float acc = 0.0f;
+  bool first = true;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      float w = (i == 0 ? 1.0f - f.x : f.x) * (j == 0 ? 1.0f - f.y : f.y);
+      if (w <= 0.0f) continue;
+      ivec2 texel = clamp(base + ivec2(i, j), ivec2(0), ivec2(size - 1));
+      acc = esmLogAccumulate(acc, first, texelFetch(channelMap, ivec3(texel, 0), level).x, w);
+      first = false;
+    }
+  }
+  return acc;
+}
+
+float esmLogTrilinear(vec2 uv, float lod) {
+  lod = clamp(lod, 0.0f, float(channelLevels - 1));
+  int level = int(floor(lod));
+  float t = lod - float(level);
+  float acc = esmLogAccumulate(0.0f, true, esmLogBilinear(uv, level), 1.0f - t);
+  if (t > 0.0f) acc = esmLogAccumulate(acc, t >= 1.0f, esmLogBilinear(uv, min(level + 1, channelLevels - 1)), t);
+  return acc;
+}
+
+float esmLogFiltered(vec2 uv, vec2 uvDx, vec2 uvDy) {
+  if (filterMode == kFilterBilinear || channelLevels == 1) return esmLogBilinear(uv, 0);
+  vec2 dx = uvDx * float(shadowMapSize);
+  vec2 dy = uvDy * float(shadowMapSize);
+  float lengthX = length(dx);
+  float lengthY = length(dy);
+  float major = max(max(lengthX, lengthY), 1e-6f);
+  float minor = max(min(lengthX, lengthY), 1e-6f);
+  int probes = filterMode == kFilterAnisotropic ? clamp(int(ceil(major / minor)), 1, anisotropy) : 1;
+  float lod = log2(major / float(probes));
+  vec2 axis = (lengthX >= lengthY ? uvDx : uvDy);
+  float acc = 0.0f;
+  for (int k = 0; k < probes; ++k) {
+    vec2 offset = axis * ((float(k) + 0.5f) / float(probes) - 0.5f);
+    acc = esmLogAccumulate(acc, k == 0, esmLogTrilinear(uv + offset, lod), 1.0f / float(probes));
+  }
+  return acc;
+}
 
 #if ZMAX
 layout(binding = 1) uniform sampler2DArray zmaxMap;
@@ -66,7 +125,8 @@ float satBoxMean(int channel, ivec2 lo, ivec2 hi, ivec2 size) {
 #endif
 
 // Fills the technique's filtered channels at uv. uvDx, uvDy are the screen derivatives of uv.
-void fetchChannels(vec2 uv, vec2 uvDx, vec2 uvDy, inout float channels[kMaxChannels]) {
+void fetchChannels(vec2 uv, vec2 uvDx, vec2 uvDy, float receiverDepthForLayers,
+                   inout float channels[kMaxChannels]) {
   int count = techniqueChannelCount(technique, params);
 #if SUMMED_AREA
   ivec2 size = ivec2(shadowMapSize);
@@ -77,7 +137,24 @@ void fetchChannels(vec2 uv, vec2 uvDx, vec2 uvDy, inout float channels[kMaxChann
   ivec2 hi = clamp(centre + radius, ivec2(0), size - 1);
   for (int c = 0; c < count; ++c) channels[c] = satBoxMean(c, lo, hi, size);
 #else
-  for (int layer = 0; layer < channelLayers; ++layer) {
+  if (technique == kTechniqueEsm && params.esm.filterSpace == kEsmFilterLog &&
+      filterMode != kFilterPoint) {
+    channels[0] = esmLogFiltered(uv, uvDx, uvDy);
+    return;
+  }
+  // A layered technique reads the receiver's layer (and the next one, for LVSM's transition).
+  int firstLayer = 0;
+  int lastLayer = channelLayers - 1;
+  if (technique == kTechniqueLvsm) {
+    int layer = selectLayer(receiverDepthForLayers, params.lvsm.splits);
+    firstLayer = (2 * layer) / 4;
+    lastLayer = min((2 * layer + 3) / 4, channelLayers - 1);
+  } else if (technique == kTechniquePowerCdf) {
+    int layer = selectLayer(receiverDepthForLayers - params.powerCdf.depthBias, params.powerCdf.splits);
+    firstLayer = (3 * layer) / 4;
+    lastLayer = min((3 * layer + 2) / 4, channelLayers - 1);
+  }
+  for (int layer = firstLayer; layer <= lastLayer; ++layer) {
     vec4 v;
     if (filterMode == kFilterPoint) {
       ivec2 texel = clamp(ivec2(floor(uv * float(shadowMapSize))), ivec2(0), ivec2(shadowMapSize - 1));
@@ -158,7 +235,7 @@ float shadowVisibility(vec2 uv, float receiverDepth, vec2 uvDx, vec2 uvDy, vec2 
   }
   float channels[kMaxChannels];
   for (int i = 0; i < kMaxChannels; ++i) channels[i] = 0.0f;
-  fetchChannels(uv, uvDx, uvDy, channels);
+  fetchChannels(uv, uvDx, uvDy, receiverDepth, channels);
   if (technique == kTechniqueEsm &&
       esmFails(channels[0], receiverDepth, uv, uvDx, uvDy, depthPerTexel)) {
     diagnostic = 1.0f;
