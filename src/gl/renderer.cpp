@@ -87,18 +87,25 @@ void allocateFrame(Renderer::State& s, int width, int height) {
   s.frameColor = Texture(GL_TEXTURE_2D);
   s.frameVisibility = Texture(GL_TEXTURE_2D);
   s.frameDiagnostic = Texture(GL_TEXTURE_2D);
+  s.frameLookup = Texture(GL_TEXTURE_2D);
+  s.frameReceiverPlane = Texture(GL_TEXTURE_2D);
   s.frameDepth = Texture(GL_TEXTURE_2D);
   glTextureStorage2D(s.frameColor.id(), 1, GL_RGBA8, width, height);
   glTextureStorage2D(s.frameVisibility.id(), 1, GL_R32F, width, height);
   glTextureStorage2D(s.frameDiagnostic.id(), 1, GL_R32F, width, height);
+  glTextureStorage2D(s.frameLookup.id(), 1, GL_RGBA32F, width, height);
+  glTextureStorage2D(s.frameReceiverPlane.id(), 1, GL_RG32F, width, height);
   glTextureStorage2D(s.frameDepth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &s.frameFramebuffer);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT0, s.frameColor.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT1, s.frameVisibility.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT2, s.frameDiagnostic.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT3, s.frameLookup.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT4, s.frameReceiverPlane.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_DEPTH_ATTACHMENT, s.frameDepth.id(), 0);
-  const GLenum buffers[3] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2};
-  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 3, buffers);
+  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
+  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 5, buffers);
   if (glCheckNamedFramebufferStatus(s.frameFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw Error("the camera-pass framebuffer is incomplete");
   }
@@ -142,14 +149,27 @@ void setChannelSampling(Renderer::State& s) {
   glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
 }
 
-void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gpuScene,
-                      const LightView& light) {
+void setReferenceKernel(Renderer::State& s, const Program& program) {
   const RenderSettings& settings = s.settings;
-  const bool summedArea = settings.filter == FilterMode::SummedArea && s.satSums.has_value();
-  const bool zmax = s.zmax.id() != 0;
-  const Program& program = s.graphics(
-      "passes/camera.vert", "passes/camera.frag",
-      {{"SUMMED_AREA", summedArea ? "1" : "0"}, {"ZMAX", zmax ? "1" : "0"}});
+  const bool summedArea = settings.filter == FilterMode::SummedArea;
+  const std::vector<float> weights = summedArea ? std::vector<float>{1.0f} : blurWeights(settings.blur);
+  glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "referenceBlurWeights"),
+                      GLsizei(weights.size()), weights.data());
+  program.set("referenceBlurRadius", int(weights.size() / 2));
+  program.set("referenceLevels", usesMips(settings.filter) ? mipLevelCount(s.shadowMapSize, s.shadowMapSize) : 1);
+  glBindTextureUnit(2, s.lightDepth.id());
+}
+
+void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gpuScene,
+                      const LightView& light, bool reference = false) {
+  const RenderSettings& settings = s.settings;
+  const bool summedArea = !reference && settings.filter == FilterMode::SummedArea && s.satSums.has_value();
+  const bool zmax = !reference && s.zmax.id() != 0;
+  const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
+                                      {{"SUMMED_AREA", summedArea ? "1" : "0"},
+                                       {"ZMAX", zmax ? "1" : "0"},
+                                       {"REFERENCE", reference ? "1" : "0"}});
+  if (reference) setReferenceKernel(s, program);
   s.bindParameters();
   const float aspect = float(settings.width) / float(settings.height);
   program.set("clipFromWorld", clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera));
@@ -211,7 +231,7 @@ MemoryReport memoryReport(const Renderer::State& s) {
     m.auxiliary += channelTextureBytes(r32f, s.shadowMapSize, s.shadowMapSize, true);
   }
   if (s.splitSamples) m.auxiliary += s.splitSamples->size();
-  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 4);
+  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 16 + 8 + 4);
   return m;
 }
 
@@ -376,6 +396,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   result.visibility = readTexture(s.frameVisibility.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
   result.diagnostic = readTexture(s.frameDiagnostic.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
   result.params = s.params;
+  result.lookup = readTexture(s.frameLookup.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
+  result.receiverPlane = readTexture(s.frameReceiverPlane.id(), 0, settings.width, settings.height, 1, 2, GL_RG, true);
   if (settings.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone) {
     size_t drawn = 0, failed = 0;
     for (float v : result.diagnostic.data()) {
@@ -390,6 +412,72 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   result.wallTimes = {s.lightTimer.wallMilliseconds(),     s.encodeTimer.wallMilliseconds(),
                       s.prefilterTimer.wallMilliseconds(), s.mipsTimer.wallMilliseconds(),
                       s.auxiliaryTimer.wallMilliseconds(), s.cameraTimer.wallMilliseconds()};
+  result.memory = memoryReport(s);
+  return result;
+}
+
+namespace {
+
+// Box-averages factor x factor blocks.
+Image downsample(const Image& image, int factor) {
+  if (factor == 1) return image;
+  Image out(image.width() / factor, image.height() / factor, image.channels());
+  const float weight = 1.0f / float(factor * factor);
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      for (int c = 0; c < image.channels(); ++c) {
+        float sum = 0.0f;
+        for (int j = 0; j < factor; ++j) {
+          for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j, c);
+        }
+        out.at(x, y, c) = sum * weight;
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings& settings,
+                                       int supersample) {
+  checkRange("reference supersampling", supersample, 1, 8);
+  RenderSettings big = settings;
+  big.msaaSamples = 1;
+  big.width = settings.width * supersample;
+  big.height = settings.height * supersample;
+  validate(big);
+  State& s = *state_;
+  s.settings = big;
+  s.params = big.params;
+  s.uploadParameters();
+  s.zmax = Texture();
+  s.zmaxLevels = 0;
+  s.satSums.reset();
+  if (s.shadowMapSize != big.shadowMapSize || s.msaaSamples != 1 || s.lightFramebuffer == 0) {
+    s.shadowMapSize = big.shadowMapSize;
+    s.msaaSamples = 1;
+    allocateLightPass(s);
+  }
+  allocateChannels(s, big);  // unused by the reference, but the camera program binds them
+  allocateFrame(s, big.width, big.height);
+  const GpuScene gpuScene(scene);
+  const LightView light = fitLightView(scene);
+  renderLightPass(s, gpuScene, light);
+  renderCameraPass(s, scene, gpuScene, light, true);
+  RenderResult result;
+  result.color = downsample(readTexture(s.frameColor.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true), supersample);
+  result.visibility = downsample(readTexture(s.frameVisibility.id(), 0, big.width, big.height, 1, 1, GL_RED, true), supersample);
+  result.diagnostic = downsample(readTexture(s.frameDiagnostic.id(), 0, big.width, big.height, 1, 1, GL_RED, true), supersample);
+  if (supersample == 1) {
+    result.lookup = readTexture(s.frameLookup.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
+    result.receiverPlane = readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
+  }
+  result.params = s.params;
+  result.wallTimes.light = s.lightTimer.wallMilliseconds();
+  result.wallTimes.camera = s.cameraTimer.wallMilliseconds();
+  result.gpuTimes.light = s.lightTimer.gpuMilliseconds();
+  result.gpuTimes.camera = s.cameraTimer.gpuMilliseconds();
   result.memory = memoryReport(s);
   return result;
 }

@@ -50,6 +50,8 @@ struct Renderer::State {
   Texture frameColor;
   Texture frameVisibility;
   Texture frameDiagnostic;
+  Texture frameLookup;
+  Texture frameReceiverPlane;
   Texture frameDepth;
   unsigned frameFramebuffer = 0;
 

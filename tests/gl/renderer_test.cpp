@@ -4,6 +4,7 @@
 // memory equals the formula.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gl_test_context.h"
@@ -269,6 +270,95 @@ TEST_F(RendererTest, BadSettingsAreRejectedWithTheRange) {
   s = small(Technique::Vsm);
   s.width = 1 << 20;
   EXPECT_THROW(renderer->validate(s), Error);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+class ReferenceTest : public testing::GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    if (context) renderer = std::make_unique<gl::Renderer>(*context);
+  }
+  std::unique_ptr<gl::Renderer> renderer;
+};
+
+// Brute force on the CPU, straight from the definition in docs/reference.md: blur (box) at level
+// 0, bilinear taps, every test against the receiver plane extended to the tested texel.
+float bruteForceReference(const Image& depth, float u, float v, float receiver, float gx, float gy,
+                          const std::vector<float>& blur) {
+  const int size = depth.width();
+  const int r = int(blur.size() / 2);
+  const double px = double(u) * size, py = double(v) * size;
+  const double bx = std::floor(px - 0.5), by = std::floor(py - 0.5);
+  const double fx = px - 0.5 - bx, fy = py - 0.5 - by;
+  double lit = 0.0;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      const double w = (i == 0 ? 1 - fx : fx) * (j == 0 ? 1 - fy : fy);
+      const int tx = std::clamp(int(bx) + i, 0, size - 1), ty = std::clamp(int(by) + j, 0, size - 1);
+      for (int b = -r; b <= r; ++b) {
+        for (int a = -r; a <= r; ++a) {
+          const float z = depth.clamped(tx + a, ty + b);
+          const double d = receiver + gx * (tx + a + 0.5 - px) + gy * (ty + b + 0.5 - py);
+          lit += w * blur[size_t(a + r)] * blur[size_t(b + r)] * (z >= d - 2e-5 ? 1.0 : 0.0);
+        }
+      }
+    }
+  }
+  return float(lit);
+}
+
+TEST_F(ReferenceTest, FilteredReferenceEqualsABruteForceCpuEvaluation) {
+  gl::RenderSettings s;
+  s.technique = Technique::Vsm;
+  s.shadowMapSize = 256;
+  s.width = 160;
+  s.height = 90;
+  s.blur = {BlurKernel::Box, 2, 1.0f};
+  s.filter = gl::FilterMode::Bilinear;
+  const gl::RenderResult r = renderer->renderReference(makeBuiltinScene("contact"), s, 1);
+  const Image depth = renderer->readDepthMap();
+  const std::vector<float> blur = blurWeights(s.blur);
+  int checked = 0, bad = 0, partial = 0;
+  for (int y = 0; y < r.lookup.height(); ++y) {
+    for (int x = 0; x < r.lookup.width(); ++x) {
+      if (r.lookup.at(x, y, 3) < 0.5f) continue;
+      const float cpu = bruteForceReference(depth, r.lookup.at(x, y, 0), r.lookup.at(x, y, 1),
+                                            r.lookup.at(x, y, 2), r.receiverPlane.at(x, y, 0),
+                                            r.receiverPlane.at(x, y, 1), blur);
+      ++checked;
+      partial += cpu > 0.01f && cpu < 0.99f;
+      if (std::abs(cpu - r.visibility.at(x, y)) > 1e-4f && ++bad <= 5) {
+        ADD_FAILURE() << "pixel " << x << "," << y << ": gpu " << r.visibility.at(x, y) << " cpu " << cpu;
+      }
+    }
+  }
+  EXPECT_GT(checked, 5000);
+  EXPECT_GT(partial, 100);
+  EXPECT_LE(bad, checked / 1000) << "ties at a tested texel may round either way";
+}
+
+TEST_F(ReferenceTest, SupersampledGroundTruthAveragesSubPixels) {
+  gl::RenderSettings s;
+  s.shadowMapSize = 256;
+  s.width = 80;
+  s.height = 45;
+  s.filter = gl::FilterMode::Trilinear;
+  const Scene scene = makeBuiltinScene("minification");
+  const Image one = renderer->renderReference(scene, s, 1).visibility;
+  const Image four = renderer->renderReference(scene, s, 4).visibility;
+  ASSERT_EQ(four.width(), 80);
+  double difference = 0.0;
+  for (size_t i = 0; i < one.data().size(); ++i) {
+    ASSERT_TRUE(four.data()[i] >= 0.0f && four.data()[i] <= 1.0f);
+    difference += std::abs(one.data()[i] - four.data()[i]);
+  }
+  EXPECT_GT(difference, 0.0) << "sub-pixel positions must see the receding posts differently";
 }
 
 }  // namespace

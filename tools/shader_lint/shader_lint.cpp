@@ -78,6 +78,7 @@ std::vector<Defines> variants(const std::string& source) {
   expand("MSAA", {"0", "1"});
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});
+  expand("REFERENCE", {"0", "1"});
   return result;
 }
 

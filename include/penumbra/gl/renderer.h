@@ -69,6 +69,10 @@ struct RenderResult {
   double failureRatePercent = 0.0;
   // The parameters used, with LVSM's splits as placed for this frame.
   TechniqueParams params;
+  // Per pixel, row 0 at the top: the shadow-map lookup (u, v, receiver depth, 1 where the pixel
+  // lies inside the shadow map) and the receiver plane's depth gradient per shadow-map texel.
+  Image lookup;
+  Image receiverPlane;
   PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
@@ -86,6 +90,12 @@ class Renderer {
   void validate(const RenderSettings& settings) const;
 
   RenderResult render(const Scene& scene, const RenderSettings& settings);
+
+  // The filtered reference (docs/reference.md): per pixel, the exact PCF of the raw depth under
+  // the effective kernel of `settings` (its blur, filter mode and anisotropy), evaluated at
+  // supersample x supersample sub-pixel positions and averaged (1: the filtered reference
+  // itself; 4 or more: the supersampled ground truth). MSAA is off for the reference.
+  RenderResult renderReference(const Scene& scene, const RenderSettings& settings, int supersample);
 
   // The light pass's linear depth (sample 0 under MSAA) of the last render, row 0 at the bottom.
   Image readDepthMap() const;

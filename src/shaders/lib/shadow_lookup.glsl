@@ -19,6 +19,7 @@ uniform int shadowMapSize;
 uniform int satMinRadius;  // the blur radius: the smallest summed-area box
 uniform int channelLevels;
 uniform int anisotropy;
+uniform int blurRadius;
 
 // ESM in log space (Salvi) stores depth, and a hardware filter would average it linearly, which
 // is not the log-space mean of exp(c z). These filter by hand in log space instead: bilinear
@@ -80,7 +81,6 @@ float esmLogFiltered(vec2 uv, vec2 uvDx, vec2 uvDy) {
 #if ZMAX
 layout(binding = 1) uniform sampler2DArray zmaxMap;
 uniform int zmaxLevels;
-uniform int blurRadius;
 
 // The largest depth under the lookup's footprint — the Z-max pyramid level whose texels cover the
 // footprint (blur included), max of the 2x2 texels around the lookup — less the most the

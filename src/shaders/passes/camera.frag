@@ -6,7 +6,13 @@
 #ifndef ZMAX
 #define ZMAX 0
 #endif
+#ifndef REFERENCE
+#define REFERENCE 0
+#endif
 #include "../lib/shadow_lookup.glsl"
+#if REFERENCE
+#include "../lib/filtered_reference.glsl"
+#endif
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -27,6 +33,8 @@ uniform float ambient;
 layout(location = 0) out vec4 color;
 layout(location = 1) out float visibilityOut;
 layout(location = 2) out float diagnosticOut;  // see shadowVisibility; -1 where nothing is drawn
+layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, 1 where inside
+layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
 
 float linearDepth(vec3 lightView) {
   float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
@@ -66,7 +74,12 @@ void main() {
   bool inside = all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))) &&
                 receiver <= 1.0f && clip.w > 0.0f;
   if (inside) {
+#if REFERENCE
+    // Weights sum to 1 up to fp32 rounding.
+    visibility = clamp(referenceVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel), 0.0f, 1.0f);
+#else
     visibility = shadowVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel, diagnostic);
+#endif
   }
 
   float lightAmount = cosine;
@@ -75,4 +88,6 @@ void main() {
   color = vec4(shaded, 1.0f);
   visibilityOut = visibility;
   diagnosticOut = diagnostic;
+  lookupOut = vec4(uv, receiver, inside ? 1.0f : 0.0f);
+  depthPerTexelOut = depthPerTexel;
 }
