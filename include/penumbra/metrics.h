@@ -1,0 +1,39 @@
+// Error metrics of a visibility image against a reference (docs/reference.md says which
+// reference each report column uses). Only covered pixels count: mask > 0.5.
+#pragma once
+
+#include <span>
+
+#include "penumbra/image.h"
+
+namespace penumbra {
+
+struct VisibilityErrors {
+  int pixels = 0;             // covered pixels compared
+  double rmse = 0.0;          // sqrt(mean (v - r)^2)
+  double meanAbsolute = 0.0;  // mean |v - r|
+  double maxAbsolute = 0.0;   // max |v - r|
+  double psnr = 0.0;          // 20 log10(1 / rmse), dB, for the visibility range 1; 100 when exact
+  double leakShare = 0.0;     // share of pixels with v > r + tau: light leaking
+  double leakMeanExcess = 0.0;  // mean (v - r) over those pixels (0 when none)
+  double darkShare = 0.0;       // share with v < r - tau: over-darkening
+  double darkMeanExcess = 0.0;  // mean (r - v) over those pixels (0 when none)
+  int worstX = -1;              // the pixel of the largest |v - r|
+  int worstY = -1;
+};
+
+// Both images one channel, same size as the mask; throws Error otherwise.
+VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& reference,
+                                         const Image& mask, double tau = 0.05);
+
+// Temporal flicker along a camera path: the mean frame-to-frame change of the estimate's
+// visibility beyond the reference's own, over pixels covered in both frames:
+//   max(0, mean_t mean_p |v_t - v_{t-1}| - mean_t mean_p |r_t - r_{t-1}|).
+// Needs at least two frames; all images one channel and of one size.
+double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
+                       std::span<const Image> masks);
+
+// A coverage mask (1 covered, 0 not) from a renderer diagnostic image (-1 where nothing drawn).
+Image coverageFromDiagnostic(const Image& diagnostic);
+
+}  // namespace penumbra

@@ -1,0 +1,89 @@
+// Visibility error metrics.
+#include "penumbra/metrics.h"
+
+#include <cmath>
+#include <string>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+void requireSameShape(const Image& a, const Image& b, const char* what) {
+  if (a.width() != b.width() || a.height() != b.height() || a.channels() != 1 || b.channels() != 1) {
+    throw Error(std::string(what) + ": images must be one-channel and of one size (" +
+                std::to_string(a.width()) + "x" + std::to_string(a.height()) + " vs " +
+                std::to_string(b.width()) + "x" + std::to_string(b.height()) + ")");
+  }
+}
+
+}  // namespace
+
+VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& reference,
+                                         const Image& mask, double tau) {
+  requireSameShape(estimate, reference, "visibility errors");
+  requireSameShape(estimate, mask, "visibility errors");
+  VisibilityErrors e;
+  double squares = 0.0, absolutes = 0.0, leakSum = 0.0, darkSum = 0.0;
+  int leaks = 0, darks = 0;
+  for (int y = 0; y < estimate.height(); ++y) {
+    for (int x = 0; x < estimate.width(); ++x) {
+      if (mask.at(x, y) <= 0.5f) continue;
+      const double difference = double(estimate.at(x, y)) - double(reference.at(x, y));
+      ++e.pixels;
+      squares += difference * difference;
+      absolutes += std::abs(difference);
+      if (std::abs(difference) > e.maxAbsolute) {
+        e.maxAbsolute = std::abs(difference);
+        e.worstX = x;
+        e.worstY = y;
+      }
+      if (difference > tau) {
+        ++leaks;
+        leakSum += difference;
+      } else if (difference < -tau) {
+        ++darks;
+        darkSum -= difference;
+      }
+    }
+  }
+  if (e.pixels == 0) return e;
+  const double n = double(e.pixels);
+  e.rmse = std::sqrt(squares / n);
+  e.meanAbsolute = absolutes / n;
+  e.psnr = e.rmse > 0.0 ? std::min(100.0, 20.0 * std::log10(1.0 / e.rmse)) : 100.0;
+  e.leakShare = leaks / n;
+  e.leakMeanExcess = leaks > 0 ? leakSum / leaks : 0.0;
+  e.darkShare = darks / n;
+  e.darkMeanExcess = darks > 0 ? darkSum / darks : 0.0;
+  return e;
+}
+
+double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
+                       std::span<const Image> masks) {
+  if (estimates.size() < 2 || estimates.size() != references.size() || estimates.size() != masks.size()) {
+    throw Error("temporal flicker needs two or more frames, with a reference and mask for each");
+  }
+  double estimateChange = 0.0, referenceChange = 0.0;
+  size_t pixels = 0;
+  for (size_t t = 1; t < estimates.size(); ++t) {
+    requireSameShape(estimates[t], estimates[t - 1], "temporal flicker");
+    requireSameShape(estimates[t], references[t], "temporal flicker");
+    for (size_t i = 0; i < estimates[t].data().size(); ++i) {
+      if (masks[t].data()[i] <= 0.5f || masks[t - 1].data()[i] <= 0.5f) continue;
+      estimateChange += std::abs(double(estimates[t].data()[i]) - estimates[t - 1].data()[i]);
+      referenceChange += std::abs(double(references[t].data()[i]) - references[t - 1].data()[i]);
+      ++pixels;
+    }
+  }
+  if (pixels == 0) return 0.0;
+  return std::max(0.0, (estimateChange - referenceChange) / double(pixels));
+}
+
+Image coverageFromDiagnostic(const Image& diagnostic) {
+  Image mask(diagnostic.width(), diagnostic.height(), 1);
+  for (size_t i = 0; i < mask.data().size(); ++i) mask.data()[i] = diagnostic.data()[i] >= 0.0f ? 1.0f : 0.0f;
+  return mask;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,79 @@
+// Error metrics on synthetic images with known answers.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "penumbra/error.h"
+#include "penumbra/metrics.h"
+
+namespace penumbra {
+namespace {
+
+Image filled(int w, int h, float v) { return Image(w, h, 1, v); }
+
+TEST(Metrics, KnownErrorsOfAConstantOffset) {
+  const Image reference = filled(10, 10, 0.5f);
+  const Image estimate = filled(10, 10, 0.6f);
+  const Image mask = filled(10, 10, 1.0f);
+  const VisibilityErrors e = measureVisibilityErrors(estimate, reference, mask, 0.05);
+  EXPECT_EQ(e.pixels, 100);
+  EXPECT_NEAR(e.rmse, 0.1, 1e-6);
+  EXPECT_NEAR(e.meanAbsolute, 0.1, 1e-6);
+  EXPECT_NEAR(e.maxAbsolute, 0.1, 1e-6);
+  EXPECT_NEAR(e.psnr, 20.0, 1e-4);
+  EXPECT_NEAR(e.leakShare, 1.0, 1e-12);
+  EXPECT_NEAR(e.leakMeanExcess, 0.1, 1e-6);
+  EXPECT_EQ(e.darkShare, 0.0);
+}
+
+TEST(Metrics, LeaksAndOverDarkeningAreSeparatedAndTheMaskApplies) {
+  Image reference = filled(4, 1, 0.5f), estimate = filled(4, 1, 0.5f), mask = filled(4, 1, 1.0f);
+  estimate.at(0, 0) = 0.9f;   // leak of 0.4
+  estimate.at(1, 0) = 0.2f;   // over-darkening of 0.3
+  estimate.at(2, 0) = 0.52f;  // within tau
+  estimate.at(3, 0) = 0.0f;   // masked out
+  mask.at(3, 0) = 0.0f;
+  const VisibilityErrors e = measureVisibilityErrors(estimate, reference, mask, 0.05);
+  EXPECT_EQ(e.pixels, 3);
+  EXPECT_NEAR(e.leakShare, 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(e.leakMeanExcess, 0.4, 1e-6);
+  EXPECT_NEAR(e.darkShare, 1.0 / 3.0, 1e-12);
+  EXPECT_NEAR(e.darkMeanExcess, 0.3, 1e-6);
+  EXPECT_NEAR(e.maxAbsolute, 0.4, 1e-6);
+  EXPECT_EQ(e.worstX, 0);
+  EXPECT_NEAR(e.rmse, std::sqrt((0.16 + 0.09 + 0.0004) / 3.0), 1e-6);
+}
+
+TEST(Metrics, ExactImagesScoreAPerfectPsnr) {
+  const Image a = filled(3, 3, 0.25f);
+  const VisibilityErrors e = measureVisibilityErrors(a, a, filled(3, 3, 1.0f));
+  EXPECT_EQ(e.rmse, 0.0);
+  EXPECT_EQ(e.psnr, 100.0);
+}
+
+TEST(Metrics, FlickerIsTheChangeBeyondTheReferencesOwn) {
+  const Image mask = filled(2, 2, 1.0f);
+  const std::vector<Image> reference{filled(2, 2, 0.5f), filled(2, 2, 0.6f), filled(2, 2, 0.5f)};
+  const std::vector<Image> steady{filled(2, 2, 0.5f), filled(2, 2, 0.6f), filled(2, 2, 0.5f)};
+  const std::vector<Image> flickering{filled(2, 2, 0.3f), filled(2, 2, 0.7f), filled(2, 2, 0.3f)};
+  const std::vector<Image> masks(3, mask);
+  EXPECT_NEAR(temporalFlicker(steady, reference, masks), 0.0, 1e-9);
+  EXPECT_NEAR(temporalFlicker(flickering, reference, masks), 0.4 - 0.1, 1e-6);
+  EXPECT_THROW(temporalFlicker(std::span(steady).first(1), std::span(reference).first(1),
+                               std::span(masks).first(1)), Error);
+}
+
+TEST(Metrics, MismatchedImagesAreRejected) {
+  EXPECT_THROW(measureVisibilityErrors(filled(2, 2, 0.0f), filled(3, 2, 0.0f), filled(2, 2, 1.0f)), Error);
+}
+
+TEST(Metrics, CoverageComesFromTheDiagnosticImage) {
+  Image diagnostic = filled(2, 1, -1.0f);
+  diagnostic.at(1, 0) = 0.0f;
+  const Image mask = coverageFromDiagnostic(diagnostic);
+  EXPECT_EQ(mask.at(0, 0), 0.0f);
+  EXPECT_EQ(mask.at(1, 0), 1.0f);
+}
+
+}  // namespace
+}  // namespace penumbra
