@@ -4,7 +4,7 @@ include(CMakePackageConfigHelpers)
 
 set(PENUMBRA_INSTALL_TARGETS penumbra_core penumbra_shaders)
 if(TARGET penumbra_gl)
-  list(APPEND PENUMBRA_INSTALL_TARGETS penumbra_gl)
+  list(APPEND PENUMBRA_INSTALL_TARGETS penumbra_gl penumbra_compare)
 endif()
 install(TARGETS ${PENUMBRA_INSTALL_TARGETS} penumbra_warnings EXPORT penumbraTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -46,12 +46,24 @@ struct Light {
   float spotAngleDegrees = 60.0f;          // spot: full cone angle
 };
 
+// A known trouble spot in the default view, in normalised image coordinates (0,0 top left).
+struct TroubleSpot {
+  std::string name;
+  glm::vec4 rect{0.0f, 0.0f, 1.0f, 1.0f};  // x0, y0, x1, y1
+};
+
 struct Scene {
   std::string name;
   std::string description;
   std::vector<Mesh> meshes;
   Camera camera;
   Light light;
+  glm::vec3 pathOffset{0.3f, 0.0f, 0.0f};  // the camera path moves the camera by this in total
+  std::vector<TroubleSpot> troubleSpots;
+
+  // The camera path for temporal measurements: `frames` cameras from the default one to the
+  // default one moved by pathOffset, the target moving alike (frame 0 is the default camera).
+  std::vector<Camera> cameraPath(int frames) const;
 
   Bounds bounds() const;
   size_t triangleCount() const;

@@ -40,7 +40,7 @@ void addTree(Scene& s, glm::vec3 base, float height, float crown) {
 
 // ESM Fig. 1/8, CSM Fig. 9: a fence of thin slats with objects and a tree behind it.
 Scene backyard() {
-  Scene s{"backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed", {}, {}, {}};
+  Scene s{"backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 12.0f);
   s.meshes.push_back(std::move(ground));
@@ -58,12 +58,15 @@ Scene backyard() {
   addTree(s, glm::vec3(2.5f, 0.0f, -3.0f), 3.5f, 1.4f);
   s.camera = {glm::vec3(0.5f, 5.0f, 11.0f), glm::vec3(0.0f, 1.0f, 0.5f), 45.0f};
   s.light = directional(glm::vec3(0.35f, -1.0f, 0.9f));
+  s.troubleSpots = {{"fence shadow", {0.2f, 0.5f, 0.5f, 0.72f}},
+                    {"box contact", {0.3f, 0.52f, 0.5f, 0.75f}},
+                    {"sphere contact", {0.53f, 0.55f, 0.7f, 0.8f}}};
   return s;
 }
 
 // Thesis Fig. 3.4/3.5: canopy (A) over a bench (B) over the ground (C), a large A-B to B-C ratio.
 Scene bench() {
-  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case", {}, {}, {}};
+  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 6.0f);
   s.meshes.push_back(std::move(ground));
@@ -79,12 +82,13 @@ Scene bench() {
   s.meshes.push_back(std::move(canopy));
   s.camera = {glm::vec3(0.0f, 2.8f, 4.5f), glm::vec3(0.0f, 0.3f, 0.0f), 45.0f};
   s.light = directional(glm::vec3(0.08f, -1.0f, 0.05f));
+  s.troubleSpots = {{"ground under the bench", {0.3f, 0.5f, 0.7f, 0.8f}}};
   return s;
 }
 
 // CSM Fig. 6, Gumbau Fig. 3: a slanted plane and boxes touching the ground.
 Scene contact() {
-  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows", {}, {}, {}};
+  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 5.0f);
   s.meshes.push_back(std::move(ground));
@@ -99,12 +103,14 @@ Scene contact() {
   s.meshes.push_back(std::move(objects));
   s.camera = {glm::vec3(0.0f, 2.5f, 4.0f), glm::vec3(0.2f, 0.2f, 0.0f), 45.0f};
   s.light = directional(glm::vec3(-0.6f, -1.0f, -0.4f));
+  s.troubleSpots = {{"box contact", {0.52f, 0.4f, 0.78f, 0.7f}},
+                    {"slanted plane contact", {0.1f, 0.6f, 0.45f, 0.8f}}};
   return s;
 }
 
 // Gumbau Fig. 3: stacked and overlapping spheres.
 Scene spheres() {
-  Scene s{"spheres", "stacked and overlapping spheres", {}, {}, {}};
+  Scene s{"spheres", "stacked and overlapping spheres", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 5.0f);
   s.meshes.push_back(std::move(ground));
@@ -118,12 +124,13 @@ Scene spheres() {
   s.meshes.push_back(std::move(balls));
   s.camera = {glm::vec3(0.5f, 2.5f, 4.0f), glm::vec3(0.0f, 0.5f, 0.0f), 45.0f};
   s.light = Light{LightKind::Spot, glm::vec3(0.0f), glm::vec3(2.5f, 5.0f, 1.5f), glm::vec3(0.0f), 70.0f};
+  s.troubleSpots = {{"sphere contacts", {0.15f, 0.5f, 0.5f, 0.85f}}};
   return s;
 }
 
 // Thesis Fig. 4.3/4.8: many overlapping shadows at very different depths.
 Scene overlap() {
-  Scene s{"overlap", "many overlapping shadows at different depths", {}, {}, {}};
+  Scene s{"overlap", "many overlapping shadows at different depths", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 6.0f);
   s.meshes.push_back(std::move(ground));
@@ -137,12 +144,13 @@ Scene overlap() {
   s.meshes.push_back(std::move(blades));
   s.camera = {glm::vec3(0.0f, 3.0f, 5.0f), glm::vec3(0.0f, 0.3f, 0.0f), 45.0f};
   s.light = directional(glm::vec3(0.2f, -1.0f, 0.3f));
+  s.troubleSpots = {{"overlapping blade shadows", {0.4f, 0.5f, 0.75f, 0.9f}}};
   return s;
 }
 
 // CSM Fig. 10, thesis Fig. 2.2: fine receding geometry seen from far away.
 Scene minification() {
-  Scene s{"minification", "fine receding rows of posts seen from far: minification aliasing", {}, {}, {}};
+  Scene s{"minification", "fine receding rows of posts seen from far: minification aliasing", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f, 0.0f, -20.0f), 30.0f);
   s.meshes.push_back(std::move(ground));
@@ -155,12 +163,14 @@ Scene minification() {
   s.meshes.push_back(std::move(posts));
   s.camera = {glm::vec3(0.0f, 2.0f, 6.0f), glm::vec3(0.0f, 0.0f, -20.0f), 40.0f};
   s.light = directional(glm::vec3(0.5f, -0.6f, -0.3f));
+  s.pathOffset = glm::vec3(0.0f, 0.0f, -1.2f);  // one row of posts: minification flicker
+  s.troubleSpots = {{"minified far posts", {0.35f, 0.38f, 0.65f, 0.52f}}};
   return s;
 }
 
 // Thesis §3.2: one planar occluder parallel to a planar receiver, both facing the light.
 Scene planar() {
-  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)", {}, {}, {}};
+  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)", {}, {}, {}, {0.3f, 0.0f, 0.0f}, {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 4.0f);
   s.meshes.push_back(std::move(ground));
@@ -169,6 +179,7 @@ Scene planar() {
   s.meshes.push_back(std::move(occluder));
   s.camera = {glm::vec3(0.0f, 5.0f, 5.0f), glm::vec3(0.0f, 0.0f, 0.0f), 45.0f};
   s.light = directional(glm::vec3(0.0f, -1.0f, 0.0f));
+  s.troubleSpots = {{"penumbra edge", {0.35f, 0.45f, 0.65f, 0.75f}}};
   return s;
 }
 

@@ -19,6 +19,18 @@ Bounds Scene::bounds() const {
   return b;
 }
 
+std::vector<Camera> Scene::cameraPath(int frames) const {
+  std::vector<Camera> path;
+  for (int i = 0; i < frames; ++i) {
+    const float t = frames > 1 ? float(i) / float(frames - 1) : 0.0f;
+    Camera c = camera;
+    c.position += t * pathOffset;
+    c.target += t * pathOffset;
+    path.push_back(c);
+  }
+  return path;
+}
+
 size_t Scene::triangleCount() const {
   size_t count = 0;
   for (const Mesh& m : meshes) count += m.indices.size() / 3;

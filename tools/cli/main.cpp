@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "compare_command.h"
 #include "curves_command.h"
 #include "penumbra/error.h"
 #include "render_command.h"
@@ -10,6 +11,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
   app.require_subcommand(1);
+  penumbra::cli::registerCompareCommand(app);
   penumbra::cli::registerCurvesCommand(app);
   penumbra::cli::registerRenderCommand(app);
   try {

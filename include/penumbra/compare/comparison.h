@@ -1,0 +1,73 @@
+// Measuring techniques against the exact references (docs/reference.md): every technique is
+// rendered along the scene's camera path, next to the filtered reference of the same effective
+// kernel and, for the first frame, the supersampled ground truth; metrics come from
+// penumbra/metrics.h. The report writer (report.h) turns the result into files.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "penumbra/depth_distribution.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/metrics.h"
+
+namespace penumbra::compare {
+
+struct ComparisonRequest {
+  std::string scene = "backyard";
+  std::vector<Technique> techniques;
+  gl::RenderSettings settings;  // shared by every technique (its `technique` field is ignored)
+  int supersample = 4;          // ground-truth sub-pixels per side, [1, 8]
+  int pathFrames = 4;           // camera-path frames for flicker, [2, 32]
+  double tau = 0.05;            // leak / over-darkening threshold on visibility, (0, 1)
+  // Give PCF the kernel of the prefilter (box blur: box x bilinear; Gaussian blur: Gaussian) so
+  // that it is the filtered reference itself; off when the user set PCF's kernel.
+  bool matchPcfKernel = true;
+};
+
+struct TechniqueResult {
+  Technique technique = Technique::Vsm;
+  TechniqueParams params;           // as used (LVSM splits placed for frame 0)
+  VisibilityErrors filtered;        // frame 0 against the filtered reference
+  VisibilityErrors groundTruth;     // frame 0 against the supersampled ground truth
+  double flicker = 0.0;             // along the camera path, beyond the reference's own
+  double failureRatePercent = 0.0;  // ESM classification; 0 otherwise
+  gl::PassTimes gpuTimes;           // frame 0
+  gl::PassTimes wallTimes;
+  gl::MemoryReport memory;
+  Image color;                      // frame 0, row 0 at the top
+  Image visibility;
+  Image error;                      // visibility - filtered reference, 0 where uncovered
+};
+
+struct ComparisonResult {
+  Scene scene;
+  ComparisonRequest request;
+  std::string device;
+  Image referenceColor;
+  Image referenceVisibility;    // the filtered reference, frame 0
+  Image groundTruthVisibility;  // supersampled, frame 0
+  Image coverage;               // 1 where geometry is drawn
+  std::vector<TechniqueResult> techniques;
+  // The worst pixel over all techniques (against the filtered reference) and the depth
+  // distribution of its reference kernel, shifted along the receiver plane so that the receiver
+  // sits at `worstReceiverDepth`: what `penumbra curves` plots.
+  std::string worstTechnique;
+  int worstX = -1;
+  int worstY = -1;
+  float worstReceiverDepth = 0.0f;
+  std::vector<DepthSample> worstRegion;
+};
+
+// step: what is being done; done/total: steps so far and in all.
+using Progress = std::function<void(int done, int total, const std::string& step)>;
+
+// Checks everything a run will need (names, ranges, GL limits, every technique with the
+// settings) and throws Error before anything is rendered or written.
+void validateRequest(const ComparisonRequest& request, const gl::Renderer& renderer);
+
+ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& renderer,
+                               const Progress& progress = {});
+
+}  // namespace penumbra::compare

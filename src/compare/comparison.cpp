@@ -1,0 +1,174 @@
+// Rendering every technique and the references, and measuring them.
+#include "penumbra/compare/comparison.h"
+
+#include <cmath>
+
+#include "penumbra/error.h"
+#include "penumbra/filters.h"
+#include "penumbra/params.h"
+
+namespace penumbra::compare {
+namespace {
+
+gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique technique) {
+  gl::RenderSettings s = request.settings;
+  s.technique = technique;
+  if (technique == Technique::Pcf && request.matchPcfKernel) {
+    const bool box = s.blur.kernel == BlurKernel::Box;
+    s.params.pcf.kernel = box ? shaders::kKernelBilinear : shaders::kKernelGaussian;
+    s.params.pcf.radius = std::min(s.blur.radius, 15);
+    s.params.pcf.sigma = std::max(0.25f, s.blur.sigma);
+  }
+  return s;
+}
+
+Image errorImage(const Image& visibility, const Image& reference, const Image& coverage) {
+  Image error(visibility.width(), visibility.height(), 1);
+  for (size_t i = 0; i < error.data().size(); ++i) {
+    error.data()[i] = coverage.data()[i] > 0.5f ? visibility.data()[i] - reference.data()[i] : 0.0f;
+  }
+  return error;
+}
+
+// The reference kernel at a pixel as a depth distribution (level-0 taps: bilinear x blur), each
+// tap's depth moved along the receiver plane into the receiver's frame.
+std::vector<DepthSample> referenceRegion(const Image& depth, const Image& lookup,
+                                         const Image& plane, int x, int y, const BlurSpec& blur) {
+  const std::vector<float> weights = blurWeights(blur);
+  const int r = int(weights.size() / 2);
+  const int size = depth.width();
+  const double px = double(lookup.at(x, y, 0)) * size, py = double(lookup.at(x, y, 1)) * size;
+  const double gx = plane.at(x, y, 0), gy = plane.at(x, y, 1);
+  const double bx = std::floor(px - 0.5), by = std::floor(py - 0.5);
+  const double fx = px - 0.5 - bx, fy = py - 0.5 - by;
+  std::vector<DepthSample> region;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      const double w = (i == 0 ? 1 - fx : fx) * (j == 0 ? 1 - fy : fy);
+      if (w <= 0.0) continue;
+      for (int b = -r; b <= r; ++b) {
+        for (int a = -r; a <= r; ++a) {
+          const int tx = int(bx) + i + a, ty = int(by) + j + b;
+          const double offset = gx * (tx + 0.5 - px) + gy * (ty + 0.5 - py);
+          const double z = double(depth.clamped(tx, ty)) - offset;
+          const double weight = w * weights[size_t(a + r)] * weights[size_t(b + r)];
+          if (weight > 0.0) region.push_back({float(std::clamp(z, 0.0, 1.0)), float(weight)});
+        }
+      }
+    }
+  }
+  return region;
+}
+
+}  // namespace
+
+void validateRequest(const ComparisonRequest& request, const gl::Renderer& renderer) {
+  makeBuiltinScene(request.scene);  // throws for an unknown scene
+  if (request.techniques.empty()) throw Error("no technique selected for the comparison");
+  if (request.supersample < 1 || request.supersample > 8) {
+    throw Error("ground-truth supersampling " + std::to_string(request.supersample) + " is out of range [1, 8]");
+  }
+  if (request.pathFrames < 2 || request.pathFrames > 32) {
+    throw Error("camera-path frames " + std::to_string(request.pathFrames) + " is out of range [2, 32]");
+  }
+  if (!(request.tau > 0.0 && request.tau < 1.0)) {
+    throw Error("leak threshold tau " + std::to_string(request.tau) + " is out of range (0, 1)");
+  }
+  for (Technique t : request.techniques) {
+    try {
+      renderer.validate(settingsFor(request, t));
+    } catch (const Error& e) {
+      throw Error("scene '" + request.scene + "' cannot run with technique '" +
+                  std::string(techniqueId(t)) + "': " + e.what());
+    }
+  }
+  gl::RenderSettings reference = request.settings;
+  reference.width *= request.supersample;
+  reference.height *= request.supersample;
+  reference.msaaSamples = 1;
+  renderer.validate(reference);
+}
+
+ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& renderer,
+                               const Progress& progress) {
+  validateRequest(request, renderer);
+  ComparisonResult result;
+  result.scene = makeBuiltinScene(request.scene);
+  result.request = request;
+  result.device = renderer.deviceDescription();
+  const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
+  const int total = request.pathFrames * (1 + int(request.techniques.size())) + 1;
+  int done = 0;
+  auto step = [&](const std::string& what) {
+    if (progress) progress(done, total, what);
+    ++done;
+  };
+
+  std::vector<std::vector<Image>> visibilities(request.techniques.size());
+  std::vector<std::vector<Image>> masks(request.techniques.size());
+  std::vector<Image> references;
+  for (size_t frame = 0; frame < path.size(); ++frame) {
+    Scene scene = result.scene;
+    scene.camera = path[frame];
+    step("reference, frame " + std::to_string(frame + 1));
+    const gl::RenderResult reference = renderer.renderReference(scene, request.settings, 1);
+    references.push_back(reference.visibility);
+    if (frame == 0) {
+      result.referenceColor = reference.color;
+      result.referenceVisibility = reference.visibility;
+      result.coverage = coverageFromDiagnostic(reference.diagnostic);
+      const Image depth = renderer.readDepthMap();
+      // Kept for the worst pixel's curves, found once every technique is measured.
+      result.worstRegion.clear();
+      step("supersampled ground truth");
+      result.groundTruthVisibility = renderer.renderReference(scene, request.settings, request.supersample).visibility;
+      result.techniques.resize(request.techniques.size());
+      double worst = -1.0;
+      for (size_t k = 0; k < request.techniques.size(); ++k) {
+        const Technique t = request.techniques[k];
+        step(std::string(techniqueId(t)) + ", frame 1");
+        const gl::RenderResult r = renderer.render(scene, settingsFor(request, t));
+        TechniqueResult& out = result.techniques[k];
+        out.technique = t;
+        out.params = r.params;
+        out.filtered = measureVisibilityErrors(r.visibility, reference.visibility, result.coverage, request.tau);
+        out.groundTruth = measureVisibilityErrors(r.visibility, result.groundTruthVisibility, result.coverage, request.tau);
+        out.failureRatePercent = r.failureRatePercent;
+        out.gpuTimes = r.gpuTimes;
+        out.wallTimes = r.wallTimes;
+        out.memory = r.memory;
+        out.color = r.color;
+        out.visibility = r.visibility;
+        out.error = errorImage(r.visibility, reference.visibility, result.coverage);
+        visibilities[k].push_back(r.visibility);
+        masks[k].push_back(coverageFromDiagnostic(r.diagnostic));
+        if (t != Technique::Pcf && out.filtered.maxAbsolute > worst && out.filtered.worstX >= 0) {
+          worst = out.filtered.maxAbsolute;
+          result.worstTechnique = std::string(techniqueId(t));
+          result.worstX = out.filtered.worstX;
+          result.worstY = out.filtered.worstY;
+        }
+      }
+      if (result.worstX >= 0) {
+        result.worstReceiverDepth = reference.lookup.at(result.worstX, result.worstY, 2);
+        result.worstRegion = referenceRegion(depth, reference.lookup, reference.receiverPlane,
+                                             result.worstX, result.worstY, request.settings.blur);
+      }
+      continue;
+    }
+    for (size_t k = 0; k < request.techniques.size(); ++k) {
+      const Technique t = request.techniques[k];
+      step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
+      const gl::RenderResult r = renderer.render(scene, settingsFor(request, t));
+      visibilities[k].push_back(r.visibility);
+      masks[k].push_back(coverageFromDiagnostic(r.diagnostic));
+    }
+  }
+  for (size_t k = 0; k < request.techniques.size(); ++k) {
+    result.techniques[k].flicker = temporalFlicker(visibilities[k], references, masks[k]);
+  }
+  if (progress) progress(total, total, "measured");
+  return result;
+}
+
+}  // namespace penumbra::compare

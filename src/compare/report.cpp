@@ -1,0 +1,363 @@
+// The comparison report's files and index.html.
+#include "penumbra/compare/report.h"
+
+#include <unistd.h>
+
+#include <cmath>
+#include <fstream>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "penumbra/curves.h"
+#include "penumbra/error.h"
+#include "penumbra/image_io.h"
+#include "penumbra/params.h"
+#include "report_plots.h"
+
+namespace penumbra::compare {
+namespace fs = std::filesystem;
+using nlohmann::ordered_json;
+
+namespace {
+
+double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+
+uint64_t techniqueBytes(const TechniqueResult& t) {
+  return t.memory.technique + t.memory.summedArea + t.memory.auxiliary;
+}
+
+std::string html(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else if (c == '"') out += "&quot;";
+    else out += c;
+  }
+  return out;
+}
+
+std::string slug(const std::string& text) {
+  std::string out;
+  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(c)) : '_';
+  return out;
+}
+
+// A crop of an image, scaled up by `zoom` with nearest neighbours.
+Image crop(const Image& image, glm::vec4 rect, int zoom) {
+  const int x0 = std::clamp(int(rect.x * float(image.width())), 0, image.width() - 1);
+  const int y0 = std::clamp(int(rect.y * float(image.height())), 0, image.height() - 1);
+  const int x1 = std::clamp(int(rect.z * float(image.width())), x0 + 1, image.width());
+  const int y1 = std::clamp(int(rect.w * float(image.height())), y0 + 1, image.height());
+  Image out((x1 - x0) * zoom, (y1 - y0) * zoom, image.channels());
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      for (int c = 0; c < image.channels(); ++c) out.at(x, y, c) = image.at(x0 + x / zoom, y0 + y / zoom, c);
+    }
+  }
+  return out;
+}
+
+Image greyToColor(const Image& grey) {
+  Image out(grey.width(), grey.height(), 3);
+  for (int y = 0; y < grey.height(); ++y) {
+    for (int x = 0; x < grey.width(); ++x) {
+      for (int c = 0; c < 3; ++c) out.at(x, y, c) = grey.at(x, y);
+    }
+  }
+  return out;
+}
+
+ordered_json errorsJson(const VisibilityErrors& e) {
+  return {{"pixels", e.pixels},
+          {"rmse", e.rmse},
+          {"mean_absolute", e.meanAbsolute},
+          {"max_absolute", e.maxAbsolute},
+          {"psnr_db", e.psnr},
+          {"leak_share", e.leakShare},
+          {"leak_mean_excess", e.leakMeanExcess},
+          {"dark_share", e.darkShare},
+          {"dark_mean_excess", e.darkMeanExcess}};
+}
+
+ordered_json timesJson(const gl::PassTimes& t) {
+  return {{"light", t.light},         {"encode", t.encode},       {"prefilter", t.prefilter},
+          {"mips_or_sat", t.mipsOrSat}, {"auxiliary", t.auxiliary}, {"camera", t.camera},
+          {"total", t.total()}};
+}
+
+ordered_json settingsJson(const ComparisonRequest& r) {
+  const gl::RenderSettings& s = r.settings;
+  return {{"shadow_map_size", s.shadowMapSize},
+          {"msaa_samples", s.msaaSamples},
+          {"blur", {{"kernel", s.blur.kernel == BlurKernel::Box ? "box" : "gaussian"},
+                    {"taps", 2 * s.blur.radius + 1},
+                    {"sigma", s.blur.sigma}}},
+          {"filter", gl::filterModeName(s.filter)},
+          {"anisotropy", s.anisotropy},
+          {"width", s.width},
+          {"height", s.height},
+          {"normal_offset_texels", s.normalOffsetTexels},
+          {"ground_truth_supersampling", r.supersample},
+          {"camera_path_frames", r.pathFrames},
+          {"tau", r.tau},
+          {"pcf_kernel_matched_to_prefilter", r.matchPcfKernel}};
+}
+
+ordered_json paramsJson(Technique t, const TechniqueParams& p) {
+  ordered_json out = ordered_json::object();
+  for (const ParamSpec& spec : techniqueParamSpecs(t)) out[std::string(spec.name)] = formatParam(t, p, spec.name);
+  return out;
+}
+
+void writeText(const fs::path& path, const std::string& text) {
+  std::ofstream out(path);
+  out << text;
+  if (!out) throw Error("cannot write " + path.string());
+}
+
+void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
+  ordered_json techniques = ordered_json::array();
+  for (const TechniqueResult& t : r.techniques) {
+    techniques.push_back({{"technique", techniqueId(t.technique)},
+                          {"title", techniqueTitle(t.technique)},
+                          {"params", paramsJson(t.technique, t.params)},
+                          {"vs_filtered_reference", errorsJson(t.filtered)},
+                          {"vs_ground_truth", errorsJson(t.groundTruth)},
+                          {"temporal_flicker", t.flicker},
+                          {"esm_failure_rate_percent", t.failureRatePercent},
+                          {"gpu_ms", timesJson(t.gpuTimes)},
+                          {"wall_ms", timesJson(t.wallTimes)},
+                          {"technique_memory_bytes", techniqueBytes(t)},
+                          {"total_memory_bytes", t.memory.total()}});
+  }
+  const ordered_json metrics = {
+      {"scene", r.scene.name},
+      {"scene_description", r.scene.description},
+      {"device", r.device},
+      {"settings", settingsJson(r.request)},
+      {"references",
+       {{"filtered", "exact PCF of the raw depth under each technique's effective kernel (blur x lookup), "
+                     "receiver-plane depth per tap; frame 0 (docs/reference.md)"},
+        {"ground_truth", "the filtered reference averaged over supersample^2 sub-pixel positions"},
+        {"columns", "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
+                    "including minification aliasing; temporal_flicker: along the camera path against the "
+                    "filtered reference's own change"}}},
+      {"worst_pixel", {{"technique", r.worstTechnique}, {"x", r.worstX}, {"y", r.worstY},
+                       {"receiver_depth", r.worstReceiverDepth}}},
+      {"techniques", techniques}};
+  writeText(dir / "metrics.json", metrics.dump(2) + "\n");
+
+  std::ostringstream csv;
+  csv << std::setprecision(8)
+      << "technique,rmse,mean_absolute,max_absolute,psnr_db,leak_share,leak_mean_excess,dark_share,"
+         "dark_mean_excess,rmse_ground_truth,temporal_flicker,esm_failure_rate_percent,wall_ms,gpu_ms,"
+         "technique_memory_bytes\n";
+  for (const TechniqueResult& t : r.techniques) {
+    const VisibilityErrors& e = t.filtered;
+    csv << techniqueId(t.technique) << "," << e.rmse << "," << e.meanAbsolute << "," << e.maxAbsolute
+        << "," << e.psnr << "," << e.leakShare << "," << e.leakMeanExcess << "," << e.darkShare << ","
+        << e.darkMeanExcess << "," << t.groundTruth.rmse << "," << t.flicker << ","
+        << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total() << ","
+        << techniqueBytes(t) << "\n";
+  }
+  writeText(dir / "metrics.csv", csv.str());
+}
+
+void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
+  const auto& spots = r.scene.troubleSpots;
+  std::ostringstream h;
+  h << std::setprecision(4);
+  h << R"(<!DOCTYPE html>
+<html lang="en"><head><meta charset="utf-8">
+<title>penumbra comparison: )" << html(r.scene.name) << R"(</title>
+<style>
+body{font-family:sans-serif;margin:24px;max-width:1400px;color:#222}
+table{border-collapse:collapse;font-size:13px}th,td{border:1px solid #ccc;padding:4px 8px;text-align:right}
+th{background:#eee;cursor:pointer;user-select:none}td:first-child,th:first-child{text-align:left}
+img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
+.row figure{margin:0}figcaption{font-size:12px;color:#555}code{background:#f4f4f4;padding:1px 4px}
+</style></head><body>
+<h1>penumbra comparison — )" << html(r.scene.name) << "</h1>\n<p>" << html(r.scene.description)
+    << "</p>\n<p>Device: " << html(r.device) << ". Shadow map " << r.request.settings.shadowMapSize << "², "
+    << (2 * r.request.settings.blur.radius + 1) << "-tap "
+    << (r.request.settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " prefilter, "
+    << gl::filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width << "×"
+    << r.request.settings.height << ", ground truth " << r.request.supersample << "×" << r.request.supersample
+    << " sub-pixels, flicker over " << r.request.pathFrames << " camera-path frames, τ = " << r.request.tau
+    << ".</p>\n"
+    << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's effective kernel "
+       "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the filtered "
+       "reference averaged over sub-pixels, so minification aliasing counts as error. Error columns are "
+       "against the filtered reference unless marked <i>GT</i>; see <code>metrics.json</code>.</p>\n"
+    << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
+    << "<h2>Metrics</h2>\n<p>Click a column to sort.</p>\n<table id=\"metrics\"><thead><tr>"
+    << "<th>technique</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR dB</th><th>leak share</th>"
+       "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
+       "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory MiB</th></tr></thead><tbody>\n";
+  for (const TechniqueResult& t : r.techniques) {
+    const VisibilityErrors& e = t.filtered;
+    h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique) << "</a></td><td>"
+      << e.rmse << "</td><td>" << e.meanAbsolute << "</td><td>" << e.maxAbsolute << "</td><td>" << e.psnr
+      << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess << "</td><td>" << e.darkShare
+      << "</td><td>" << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse << "</td><td>" << t.flicker
+      << "</td><td>" << t.failureRatePercent << "</td><td>" << t.wallTimes.total() << "</td><td>"
+      << t.gpuTimes.total() << "</td><td>" << mib(techniqueBytes(t)) << "</td></tr>\n";
+  }
+  h << "</tbody></table>\n<h2>Error against cost</h2>\n<div class=\"row\">"
+    << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
+    << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";
+  if (hasCurves) {
+    h << "<h2>The worst pixel</h2>\n<p>Pixel (" << r.worstX << ", " << r.worstY << "), worst for <b>"
+      << html(r.worstTechnique) << "</b>; its reference kernel's depths (moved along the receiver plane), "
+      << "receiver at depth " << r.worstReceiverDepth << ", every technique's shadow test over receiver depth "
+      << "(<code>penumbra curves</code>; data in <code>plots/worst_pixel_curves.csv</code>):</p>\n"
+      << "<img src=\"plots/worst_pixel_curves.png\" alt=\"curves of the worst pixel\">\n";
+  }
+  h << "<h2>References</h2>\n<div class=\"row\"><figure><img src=\"images/reference_shaded.png\" alt=\"reference\">"
+    << "<figcaption>filtered reference, shaded</figcaption></figure><figure><img src=\"images/reference_visibility.png\" "
+    << "alt=\"reference visibility\"><figcaption>filtered reference visibility</figcaption></figure><figure>"
+    << "<img src=\"images/ground_truth_visibility.png\" alt=\"ground truth visibility\"><figcaption>supersampled "
+    << "ground truth visibility</figcaption></figure></div>\n";
+  for (const TechniqueResult& t : r.techniques) {
+    const std::string id(techniqueId(t.technique));
+    h << "<h2 id=\"" << id << "\">" << id << " — " << html(std::string(techniqueTitle(t.technique))) << "</h2>\n"
+      << "<p>RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare << ", over-darkening share "
+      << t.filtered.darkShare << ", flicker " << t.flicker << "; parameters: <code>"
+      << html(paramsJson(t.technique, t.params).dump()) << "</code></p>\n<div class=\"row\">"
+      << "<figure><img src=\"images/" << id << "_shaded.png\" alt=\"" << id << " shaded\"><figcaption>shaded</figcaption></figure>"
+      << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id << " visibility\"><figcaption>visibility</figcaption></figure>"
+      << "<figure><img src=\"images/" << id << "_error.png\" alt=\"" << id << " error\"><figcaption>error heat map</figcaption></figure></div>\n";
+    if (!spots.empty()) {
+      h << "<div class=\"row\">";
+      for (const TroubleSpot& spot : spots) {
+        h << "<figure><img src=\"crops/" << id << "_" << slug(spot.name) << ".png\" alt=\"" << html(spot.name)
+          << "\"><figcaption>" << html(spot.name) << " (" << id << ")</figcaption></figure>"
+          << "<figure><img src=\"crops/reference_" << slug(spot.name) << ".png\" alt=\"reference " << html(spot.name)
+          << "\"><figcaption>" << html(spot.name) << " (reference)</figcaption></figure>";
+      }
+      h << "</div>\n";
+    }
+  }
+  h << R"(<script>
+// Sortable metrics table.
+document.querySelectorAll('#metrics th').forEach(function (th, column) {
+  th.addEventListener('click', function () {
+    var body = document.querySelector('#metrics tbody');
+    var rows = Array.prototype.slice.call(body.rows);
+    var ascending = th.dataset.order !== 'ascending';
+    th.dataset.order = ascending ? 'ascending' : 'descending';
+    rows.sort(function (a, b) {
+      var x = a.cells[column].textContent, y = b.cells[column].textContent;
+      var nx = parseFloat(x), ny = parseFloat(y);
+      var order = isNaN(nx) || isNaN(ny) ? x.localeCompare(y) : nx - ny;
+      return ascending ? order : -order;
+    });
+    rows.forEach(function (row) { body.appendChild(row); });
+  });
+});
+// Self-check for tests: every image must have loaded.
+window.addEventListener('load', function () {
+  var images = Array.prototype.slice.call(document.images);
+  var broken = images.filter(function (img) { return !img.complete || img.naturalWidth === 0; });
+  document.body.dataset.imagesLoaded = String(images.length - broken.length);
+  document.body.dataset.imagesBroken = String(broken.length);
+});
+</script>
+</body></html>
+)";
+  writeText(dir / "index.html", h.str());
+}
+
+void writeContents(const ComparisonResult& r, const fs::path& dir) {
+  fs::create_directories(dir / "images");
+  fs::create_directories(dir / "crops");
+  fs::create_directories(dir / "plots");
+  const double range = 0.5;
+  std::vector<GridTile> tiles;
+  writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
+  writeColorPng(greyToColor(r.referenceVisibility), dir / "images" / "reference_visibility.png");
+  writeColorPng(greyToColor(r.groundTruthVisibility), dir / "images" / "ground_truth_visibility.png");
+  tiles.push_back({dir / "images" / "reference_shaded.png", "filtered reference"});
+  for (const TroubleSpot& spot : r.scene.troubleSpots) {
+    writeColorPng(crop(r.referenceColor, spot.rect, 3), dir / "crops" / ("reference_" + slug(spot.name) + ".png"));
+  }
+  std::vector<ScatterPoint> byMemory, byTime;
+  for (const TechniqueResult& t : r.techniques) {
+    const std::string id(techniqueId(t.technique));
+    writeColorPng(t.color, dir / "images" / (id + "_shaded.png"));
+    writeColorPng(greyToColor(t.visibility), dir / "images" / (id + "_visibility.png"));
+    plotErrorHeatMap(t.error, range, id + ": visibility error against the filtered reference",
+                     dir / "images" / (id + "_error.png"));
+    for (const TroubleSpot& spot : r.scene.troubleSpots) {
+      writeColorPng(crop(t.color, spot.rect, 3), dir / "crops" / (id + "_" + slug(spot.name) + ".png"));
+    }
+    tiles.push_back({dir / "images" / (id + "_shaded.png"), id});
+    byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), t.filtered.rmse});
+    byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), t.filtered.rmse});
+  }
+  const int tileWidth = std::min(480, r.referenceColor.width());
+  const int tileHeight = tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
+  plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
+  plotParetoScatter(byMemory, "technique memory (MiB, log scale)", "RMSE against the filtered reference",
+                    r.scene.name + ": error against memory", true, dir / "plots" / "error_vs_memory.png");
+  plotParetoScatter(byTime, "frame time (wall ms, log scale)", "RMSE against the filtered reference",
+                    r.scene.name + ": error against time", true, dir / "plots" / "error_vs_time.png");
+  const bool hasCurves = !r.worstRegion.empty();
+  if (hasCurves) {
+    CurvesRequest curves;
+    curves.occluders = r.worstRegion;
+    for (const TechniqueResult& t : r.techniques) curves.techniques.push_back(t.technique);
+    curves.params = r.techniques.front().params;
+    for (const TechniqueResult& t : r.techniques) {
+      // Each technique's own parameters as used (they live in separate blocks of the struct).
+      if (t.technique == Technique::Lvsm) curves.params.lvsm = t.params.lvsm;
+      if (t.technique == Technique::Pcf) curves.params.pcf = t.params.pcf;
+    }
+    curves.samples = 501;
+    const CurvesTable table = computeCurves(curves);
+    writeCurvesCsv(table, dir / "plots" / "worst_pixel_curves.csv");
+    std::ostringstream title;
+    title << "worst pixel (" << r.worstX << ", " << r.worstY << ") of " << r.worstTechnique
+          << ", receiver at " << std::setprecision(4) << r.worstReceiverDepth;
+    plotCurves(dir / "plots" / "worst_pixel_curves.csv", table, title.str(),
+               dir / "plots" / "worst_pixel_curves.png");
+  }
+  writeMetrics(r, dir);
+  writeHtml(r, dir, hasCurves);
+}
+
+}  // namespace
+
+fs::path prepareReportFolder(const fs::path& outDir) {
+  const fs::path staging = outDir.string() + ".partial";
+  std::error_code ec;
+  fs::remove_all(staging, ec);
+  fs::create_directories(staging, ec);
+  const fs::path probe = staging / ".writable";
+  std::ofstream test(probe);
+  if (ec || !test) {
+    throw Error("cannot write the report next to " + outDir.string() +
+                (ec ? ": " + ec.message() : std::string(": not writable")));
+  }
+  test.close();
+  fs::remove(probe);
+  return staging;
+}
+
+void writeReport(const ComparisonResult& result, const fs::path& staging, const fs::path& outDir) {
+  try {
+    writeContents(result, staging);
+    std::error_code ec;
+    fs::remove_all(outDir, ec);
+    fs::rename(staging, outDir);
+  } catch (...) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    throw;
+  }
+}
+
+}  // namespace penumbra::compare

@@ -1,0 +1,92 @@
+// gnuplot figures.
+#include "report_plots.h"
+
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "penumbra/error.h"
+#include "penumbra/gnuplot.h"
+
+namespace penumbra::compare {
+
+void plotErrorHeatMap(const Image& error, double range, const std::string& title,
+                      const std::filesystem::path& png) {
+  const std::filesystem::path data = png.string() + ".bin";
+  {
+    std::ofstream out(data, std::ios::binary);
+    out.write(reinterpret_cast<const char*>(error.data().data()),
+              std::streamsize(error.data().size() * sizeof(float)));
+    if (!out) throw Error("cannot write " + data.string());
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size " << error.width() + 220 << "," << error.height() + 80
+     << " font 'DejaVu Sans,10'\n"
+     << "set output " << gnuplotQuote(png.string()) << "\n"
+     << "set title " << gnuplotQuote(title) << " noenhanced\n"
+     << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', 1 '#b2182b')\n"
+     << "set cbrange [" << -range << ":" << range << "]\n"
+     << "set cblabel 'visibility - reference: over-darkening (blue) < 0 < light leaking (red)'\n"
+     << "unset xtics\nunset ytics\nset size ratio -1\n"
+     << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5 << "]\n"
+     << "plot " << gnuplotQuote(data.string()) << " binary array=(" << error.width() << ","
+     << error.height() << ") format='%float' flipy with image notitle\n";
+  runGnuplot(gp.str());
+  std::filesystem::remove(data);
+}
+
+void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidth, int tileHeight,
+                   const std::filesystem::path& png) {
+  const int rows = (int(tiles.size()) + columns - 1) / columns;
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 24)
+     << " font 'DejaVu Sans,11'\n"
+     << "set output " << gnuplotQuote(png.string()) << "\n"
+     << "set multiplot layout " << rows << "," << columns << " margins 0.01,0.99,0.01,0.97 spacing 0.01,0.04\n"
+     << "unset key\nunset tics\nunset border\nset size ratio -1\n";
+  for (const GridTile& t : tiles) {
+    gp << "set title " << gnuplotQuote(t.title) << " noenhanced\n"
+       << "plot " << gnuplotQuote(t.png.string()) << " binary filetype=png with rgbimage\n";
+  }
+  gp << "unset multiplot\n";
+  runGnuplot(gp.str());
+}
+
+void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::string& xLabel,
+                       const std::string& yLabel, const std::string& title, bool logX,
+                       const std::filesystem::path& png) {
+  const std::filesystem::path data = png.string() + ".dat";
+  const std::filesystem::path front = png.string() + ".front.dat";
+  std::vector<ScatterPoint> sorted = points;
+  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
+    return a.x < b.x || (a.x == b.x && a.y < b.y);
+  });
+  {
+    std::ofstream out(data), pareto(front);
+    double best = INFINITY;
+    for (const ScatterPoint& p : sorted) {
+      out << p.x << " " << p.y << " \"" << p.label << "\"\n";
+      if (p.y < best) {
+        pareto << p.x << " " << p.y << "\n";
+        best = p.y;
+      }
+    }
+    if (!out || !pareto) throw Error("cannot write the data of " + png.string());
+  }
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 720,480 font 'DejaVu Sans,10'\n"
+     << "set output " << gnuplotQuote(png.string()) << "\n"
+     << "set title " << gnuplotQuote(title) << " noenhanced\n"
+     << "set xlabel " << gnuplotQuote(xLabel) << " noenhanced\nset ylabel " << gnuplotQuote(yLabel)
+     << " noenhanced\nset grid\nset key top right\nset offsets graph 0.05, graph 0.15, graph 0.1, graph 0.05\n"
+     << (logX ? "set logscale x\n" : "")
+     << "plot " << gnuplotQuote(front.string()) << " using 1:2 with linespoints lw 2 lc rgb '#b2182b' title 'Pareto front', "
+     << gnuplotQuote(data.string()) << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
+     << "'' using 1:2:3 with labels offset 0,1 font ',9' notitle noenhanced\n";
+  runGnuplot(gp.str());
+  std::filesystem::remove(data);
+  std::filesystem::remove(front);
+}
+
+}  // namespace penumbra::compare

@@ -1,0 +1,34 @@
+// gnuplot figures of the report: error heat maps, the image grid, error-vs-cost scatter plots.
+#pragma once
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "penumbra/image.h"
+
+namespace penumbra::compare {
+
+// A diverging heat map of signed error (blue: over-darkening, red: light leaking) with its
+// colour bar, over [-range, range].
+void plotErrorHeatMap(const Image& error, double range, const std::string& title,
+                      const std::filesystem::path& png);
+
+struct GridTile {
+  std::filesystem::path png;  // an existing PNG
+  std::string title;
+};
+void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidth, int tileHeight,
+                   const std::filesystem::path& png);
+
+struct ScatterPoint {
+  std::string label;
+  double x;
+  double y;
+};
+// Labelled points with the Pareto front (lower x and lower y are better) drawn as a line.
+void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::string& xLabel,
+                       const std::string& yLabel, const std::string& title, bool logX,
+                       const std::filesystem::path& png);
+
+}  // namespace penumbra::compare

@@ -1,0 +1,117 @@
+// `penumbra compare`: parses options, runs penumbra::compare, writes the report.
+#include "compare_command.h"
+
+#include <iostream>
+#include <memory>
+
+#include "penumbra/compare/comparison.h"
+#include "penumbra/compare/report.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "progress_bar.h"
+#include "technique_options.h"
+
+namespace penumbra::cli {
+namespace {
+
+struct CompareOptions {
+  std::string scene = "backyard";
+  TechniqueOptions technique{"all", {}};
+  int shadowSize = 1024;
+  int msaa = 1;
+  int blurTaps = 5;
+  std::string blurKernel = "box";
+  std::string filter = "bilinear";
+  int aniso = 16;
+  int width = 480;
+  int height = 270;
+  int supersample = 4;
+  int frames = 4;
+  double tau = 0.05;
+  std::string outDir = "out/compare";
+  bool quiet = false;
+};
+
+void runCompare(const CompareOptions& o) {
+  if (printTechniqueListIfAsked(o.technique)) return;
+  compare::ComparisonRequest request;
+  request.scene = o.scene;
+  makeBuiltinScene(o.scene);  // unknown scenes fail before anything else
+  request.techniques = selectedTechniques(o.technique);
+  request.settings.params = selectedParams(o.technique, request.techniques);
+  for (const std::string& p : o.technique.params) {
+    if (p.rfind("pcf.", 0) == 0 || p.rfind("kernel=", 0) == 0 || p.rfind("radius=", 0) == 0) {
+      request.matchPcfKernel = false;
+    }
+  }
+  if (o.blurTaps < 1 || o.blurTaps % 2 == 0) {
+    throw Error("blur taps " + std::to_string(o.blurTaps) + ": give an odd kernel width (1 = no blur)");
+  }
+  if (o.blurKernel != "box" && o.blurKernel != "gaussian") {
+    throw Error("unknown blur kernel '" + o.blurKernel + "'; valid kernels: box, gaussian");
+  }
+  gl::RenderSettings& s = request.settings;
+  s.shadowMapSize = o.shadowSize;
+  s.msaaSamples = o.msaa;
+  s.blur.kernel = o.blurKernel == "box" ? BlurKernel::Box : BlurKernel::Gaussian;
+  s.blur.radius = (o.blurTaps - 1) / 2;
+  s.blur.sigma = std::max(0.5f, 0.5f * float(s.blur.radius));
+  s.filter = gl::parseFilterMode(o.filter);
+  s.anisotropy = o.aniso;
+  s.width = o.width;
+  s.height = o.height;
+  request.supersample = o.supersample;
+  request.pathFrames = o.frames;
+  request.tau = o.tau;
+
+  gl::HeadlessContext context;
+  gl::Renderer renderer(context);
+  compare::validateRequest(request, renderer);
+  const std::filesystem::path staging = compare::prepareReportFolder(o.outDir);
+  compare::ComparisonResult result;
+  {
+    ProgressBar bar(o.quiet);
+    try {
+      result = compare::runComparison(request, renderer, [&](int done, int total, const std::string& step) {
+        bar.update(done, total, step);
+      });
+    } catch (...) {
+      std::error_code ec;
+      std::filesystem::remove_all(staging, ec);
+      throw;
+    }
+  }
+  compare::writeReport(result, staging, o.outDir);
+  if (!o.quiet) {
+    std::cout << "wrote " << (std::filesystem::path(o.outDir) / "index.html").string() << "\n";
+  }
+}
+
+}  // namespace
+
+void registerCompareCommand(CLI::App& app) {
+  auto o = std::make_shared<CompareOptions>();
+  CLI::App* cmd = app.add_subcommand(
+      "compare",
+      "Measure techniques against the exact filtered reference and a supersampled ground truth; "
+      "writes an HTML report with images, error maps, metrics and plots.");
+  cmd->add_option("-s,--scene", o->scene, "built-in scene")->capture_default_str();
+  addTechniqueOptions(*cmd, o->technique);
+  cmd->add_option("--shadow-size", o->shadowSize, "shadow-map texels per side")->capture_default_str();
+  cmd->add_option("--msaa", o->msaa, "light-pass samples for the techniques: 1, 2, 4, 8")->capture_default_str();
+  cmd->add_option("--blur", o->blurTaps, "prefilter width in taps (odd; 1 = none)")->capture_default_str();
+  cmd->add_option("--blur-kernel", o->blurKernel, "box or gaussian")->capture_default_str();
+  cmd->add_option("--filter", o->filter, "point, bilinear, trilinear, anisotropic or sat")->capture_default_str();
+  cmd->add_option("--aniso", o->aniso, "anisotropy for the anisotropic filter, 1..16")->capture_default_str();
+  cmd->add_option("--width", o->width, "frame width in pixels")->capture_default_str();
+  cmd->add_option("--height", o->height, "frame height in pixels")->capture_default_str();
+  cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")->capture_default_str();
+  cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")->capture_default_str();
+  cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")->capture_default_str();
+  cmd->add_option("-o,--out", o->outDir, "report folder (replaced when the new report is complete)")
+      ->capture_default_str();
+  cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
+  cmd->callback([o] { runCompare(*o); });
+}
+
+}  // namespace penumbra::cli
