@@ -27,13 +27,17 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
                                          const Image& mask, double tau = 0.05);
 
 // Temporal flicker along a camera path: the mean frame-to-frame change of the estimate's
-// visibility beyond the reference's own, over pixels covered in both frames:
-//   max(0, mean_t mean_p |v_t - v_{t-1}| - mean_t mean_p |r_t - r_{t-1}|).
+// visibility beyond the reference's own change, over pixels covered in both frames:
+//   mean_t mean_p |(v_t - v_{t-1}) - (r_t - r_{t-1})|.
 // Needs at least two frames; all images one channel and of one size.
 double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
                        std::span<const Image> masks);
 
 // A coverage mask (1 covered, 0 not) from a renderer diagnostic image (-1 where nothing drawn).
 Image coverageFromDiagnostic(const Image& diagnostic);
+
+// The pixels whose shading the shadow test decides — inside the shadow map, on surfaces facing
+// the light beyond grazing — from a renderer lookup image (channel 3 == 1).
+Image litSurfaceMask(const Image& lookup);
 
 }  // namespace penumbra

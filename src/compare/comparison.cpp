@@ -18,6 +18,10 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
     s.params.pcf.kernel = box ? shaders::kKernelBilinear : shaders::kKernelGaussian;
     s.params.pcf.radius = std::min(s.blur.radius, 15);
     s.params.pcf.sigma = std::max(0.25f, s.blur.sigma);
+    // The reference's own depth test: the receiver plane, ties within its tolerance, no bias.
+    s.params.pcf.receiverPlane = 1;
+    s.params.pcf.bias.constantBias = 2e-5f;
+    s.params.pcf.bias.slopeScaledBias = 0.0f;
   }
   return s;
 }
@@ -116,7 +120,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     if (frame == 0) {
       result.referenceColor = reference.color;
       result.referenceVisibility = reference.visibility;
-      result.coverage = coverageFromDiagnostic(reference.diagnostic);
+      result.coverage = litSurfaceMask(reference.lookup);
       const Image depth = renderer.readDepthMap();
       // Kept for the worst pixel's curves, found once every technique is measured.
       result.worstRegion.clear();
@@ -141,7 +145,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         out.visibility = r.visibility;
         out.error = errorImage(r.visibility, reference.visibility, result.coverage);
         visibilities[k].push_back(r.visibility);
-        masks[k].push_back(coverageFromDiagnostic(r.diagnostic));
+        masks[k].push_back(litSurfaceMask(r.lookup));
         if (t != Technique::Pcf && out.filtered.maxAbsolute > worst && out.filtered.worstX >= 0) {
           worst = out.filtered.maxAbsolute;
           result.worstTechnique = std::string(techniqueId(t));
@@ -161,7 +165,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
       const gl::RenderResult r = renderer.render(scene, settingsFor(request, t));
       visibilities[k].push_back(r.visibility);
-      masks[k].push_back(coverageFromDiagnostic(r.diagnostic));
+      masks[k].push_back(litSurfaceMask(r.lookup));
     }
   }
   for (size_t k = 0; k < request.techniques.size(); ++k) {

@@ -64,25 +64,33 @@ double temporalFlicker(std::span<const Image> estimates, std::span<const Image> 
   if (estimates.size() < 2 || estimates.size() != references.size() || estimates.size() != masks.size()) {
     throw Error("temporal flicker needs two or more frames, with a reference and mask for each");
   }
-  double estimateChange = 0.0, referenceChange = 0.0;
+  double change = 0.0;
   size_t pixels = 0;
   for (size_t t = 1; t < estimates.size(); ++t) {
     requireSameShape(estimates[t], estimates[t - 1], "temporal flicker");
     requireSameShape(estimates[t], references[t], "temporal flicker");
     for (size_t i = 0; i < estimates[t].data().size(); ++i) {
       if (masks[t].data()[i] <= 0.5f || masks[t - 1].data()[i] <= 0.5f) continue;
-      estimateChange += std::abs(double(estimates[t].data()[i]) - estimates[t - 1].data()[i]);
-      referenceChange += std::abs(double(references[t].data()[i]) - references[t - 1].data()[i]);
+      const double estimateStep = double(estimates[t].data()[i]) - estimates[t - 1].data()[i];
+      const double referenceStep = double(references[t].data()[i]) - references[t - 1].data()[i];
+      change += std::abs(estimateStep - referenceStep);
       ++pixels;
     }
   }
-  if (pixels == 0) return 0.0;
-  return std::max(0.0, (estimateChange - referenceChange) / double(pixels));
+  return pixels == 0 ? 0.0 : change / double(pixels);
 }
 
 Image coverageFromDiagnostic(const Image& diagnostic) {
   Image mask(diagnostic.width(), diagnostic.height(), 1);
   for (size_t i = 0; i < mask.data().size(); ++i) mask.data()[i] = diagnostic.data()[i] >= 0.0f ? 1.0f : 0.0f;
+  return mask;
+}
+
+Image litSurfaceMask(const Image& lookup) {
+  Image mask(lookup.width(), lookup.height(), 1);
+  for (int y = 0; y < lookup.height(); ++y) {
+    for (int x = 0; x < lookup.width(); ++x) mask.at(x, y) = lookup.at(x, y, 3) > 0.75f ? 1.0f : 0.0f;
+  }
   return mask;
 }
 

@@ -58,7 +58,10 @@ TEST(Metrics, FlickerIsTheChangeBeyondTheReferencesOwn) {
   const std::vector<Image> flickering{filled(2, 2, 0.3f), filled(2, 2, 0.7f), filled(2, 2, 0.3f)};
   const std::vector<Image> masks(3, mask);
   EXPECT_NEAR(temporalFlicker(steady, reference, masks), 0.0, 1e-9);
-  EXPECT_NEAR(temporalFlicker(flickering, reference, masks), 0.4 - 0.1, 1e-6);
+  // Steps of 0.4 where the reference steps by 0.1: 0.3 of flicker per pixel and frame.
+  EXPECT_NEAR(temporalFlicker(flickering, reference, masks), 0.3, 1e-6);
+  const std::vector<Image> opposite{filled(2, 2, 0.5f), filled(2, 2, 0.4f), filled(2, 2, 0.5f)};
+  EXPECT_NEAR(temporalFlicker(opposite, reference, masks), 0.2, 1e-6);
   EXPECT_THROW(temporalFlicker(std::span(steady).first(1), std::span(reference).first(1),
                                std::span(masks).first(1)), Error);
 }

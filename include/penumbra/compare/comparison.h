@@ -48,7 +48,7 @@ struct ComparisonResult {
   Image referenceColor;
   Image referenceVisibility;    // the filtered reference, frame 0
   Image groundTruthVisibility;  // supersampled, frame 0
-  Image coverage;               // 1 where geometry is drawn
+  Image coverage;               // 1 where the shadow test decides the shading (litSurfaceMask)
   std::vector<TechniqueResult> techniques;
   // The worst pixel over all techniques (against the filtered reference) and the depth
   // distribution of its reference kernel, shifted along the receiver plane so that the receiver

@@ -69,8 +69,10 @@ struct RenderResult {
   double failureRatePercent = 0.0;
   // The parameters used, with LVSM's splits as placed for this frame.
   TechniqueParams params;
-  // Per pixel, row 0 at the top: the shadow-map lookup (u, v, receiver depth, 1 where the pixel
-  // lies inside the shadow map) and the receiver plane's depth gradient per shadow-map texel.
+  // Per pixel, row 0 at the top: the shadow-map lookup (u, v, receiver depth, w) with w = 1 inside
+  // the shadow map on a surface facing the light (N.L > 0.05: where the shadow test decides the
+  // shading), 0.5 inside but facing away or grazing, 0 outside; and the receiver plane's depth
+  // gradient per shadow-map texel.
   Image lookup;
   Image receiverPlane;
   PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers

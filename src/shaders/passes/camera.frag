@@ -33,8 +33,10 @@ uniform float ambient;
 layout(location = 0) out vec4 color;
 layout(location = 1) out float visibilityOut;
 layout(location = 2) out float diagnosticOut;  // see shadowVisibility; -1 where nothing is drawn
-layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, 1 where inside
+layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, where (see main)
 layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
+
+const float kGrazingCosine = 0.05f;
 
 float linearDepth(vec3 lightView) {
   float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
@@ -88,6 +90,8 @@ void main() {
   color = vec4(shaded, 1.0f);
   visibilityOut = visibility;
   diagnosticOut = diagnostic;
-  lookupOut = vec4(uv, receiver, inside ? 1.0f : 0.0f);
+  // w: 1 inside the shadow map on a surface facing the light beyond grazing (where the shadow
+  // test decides the shading), 0.5 inside but facing away or grazing, 0 outside.
+  lookupOut = vec4(uv, receiver, inside ? (cosine > kGrazingCosine ? 1.0f : 0.5f) : 0.0f);
   depthPerTexelOut = depthPerTexel;
 }

@@ -1,0 +1,85 @@
+// penumbra compare's measurements against the papers' claims: VSM exact on the planar scene,
+// light-leak ordering on the bench scene.
+#include <gtest/gtest.h>
+
+#include "gl_test_context.h"
+#include "penumbra/compare/comparison.h"
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+class ComparisonTest : public testing::GlTest {
+ protected:
+  void SetUp() override {
+    GlTest::SetUp();
+    if (context) renderer = std::make_unique<gl::Renderer>(*context);
+  }
+
+  compare::ComparisonRequest request(const char* scene, std::vector<Technique> techniques) const {
+    compare::ComparisonRequest r;
+    r.scene = scene;
+    r.techniques = std::move(techniques);
+    r.settings.shadowMapSize = 512;
+    r.settings.width = 480;
+    r.settings.height = 270;
+    r.settings.blur = {BlurKernel::Box, 3, 1.0f};
+    r.settings.filter = gl::FilterMode::Bilinear;
+    r.supersample = 2;
+    r.pathFrames = 2;
+    return r;
+  }
+
+  const compare::TechniqueResult& find(const compare::ComparisonResult& r, Technique t) {
+    for (const auto& k : r.techniques) {
+      if (k.technique == t) return k;
+    }
+    throw Error("missing technique");
+  }
+
+  std::unique_ptr<gl::Renderer> renderer;
+};
+
+TEST_F(ComparisonTest, VsmMatchesTheFilteredReferenceOnThePlanarScene) {
+  const compare::ComparisonResult r =
+      compare::runComparison(request("planar", {Technique::Vsm, Technique::Pcf}), *renderer);
+  EXPECT_LT(find(r, Technique::Vsm).filtered.rmse, 1e-3);
+  EXPECT_LT(find(r, Technique::Pcf).filtered.rmse, 1e-5) << "PCF of the same kernel is the reference";
+  EXPECT_GT(find(r, Technique::Vsm).filtered.pixels, 10000);
+}
+
+TEST_F(ComparisonTest, BenchLeakOrderingFollowsThePapers) {
+  const compare::ComparisonResult r = compare::runComparison(
+      request("bench", {Technique::Vsm, Technique::Evsm4, Technique::Lvsm, Technique::PowerCdf}),
+      *renderer);
+  const double vsm = find(r, Technique::Vsm).filtered.leakShare;
+  RecordProperty("vsm_leak_share", std::to_string(vsm));
+  EXPECT_GT(vsm, find(r, Technique::Evsm4).filtered.leakShare);
+  EXPECT_GT(vsm, find(r, Technique::Lvsm).filtered.leakShare);
+  EXPECT_GT(vsm, find(r, Technique::PowerCdf).filtered.leakShare);
+  auto csm = [&](int terms) {
+    compare::ComparisonRequest q = request("bench", {Technique::Csm});
+    q.settings.params.csm.termCount = terms;
+    return find(compare::runComparison(q, *renderer), Technique::Csm).filtered.leakShare;
+  };
+  const double csm4 = csm(4), csm16 = csm(16);
+  RecordProperty("csm4_leak_share", std::to_string(csm4));
+  RecordProperty("csm16_leak_share", std::to_string(csm16));
+  EXPECT_GT(csm4, csm16);
+}
+
+TEST_F(ComparisonTest, ImpossiblePairsFailBeforeAnythingRenders) {
+  compare::ComparisonRequest q = request("backyard", {Technique::PowerCdf});
+  q.settings.filter = gl::FilterMode::SummedArea;
+  try {
+    compare::validateRequest(q, *renderer);
+    FAIL() << "power-CDF with a summed-area table must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("cannot run with technique 'powercdf'"), std::string::npos) << e.what();
+  }
+  q = request("garden", {Technique::Vsm});
+  EXPECT_THROW(compare::validateRequest(q, *renderer), Error);
+}
+
+}  // namespace
+}  // namespace penumbra
