@@ -298,7 +298,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), t.filtered.rmse});
     byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), t.filtered.rmse});
   }
-  const int tileWidth = std::min(480, r.referenceColor.width());
+  const int tileWidth = 420;  // gnuplot scales each image into its tile
   const int tileHeight = tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
   plotParetoScatter(byMemory, "technique memory (MiB, log scale)", "RMSE against the filtered reference",

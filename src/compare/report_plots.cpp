@@ -40,11 +40,12 @@ void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidt
                    const std::filesystem::path& png) {
   const int rows = (int(tiles.size()) + columns - 1) / columns;
   std::ostringstream gp;
-  gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 24)
+  gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 30)
      << " font 'DejaVu Sans,11'\n"
      << "set output " << gnuplotQuote(png.string()) << "\n"
-     << "set multiplot layout " << rows << "," << columns << " margins 0.01,0.99,0.01,0.97 spacing 0.01,0.04\n"
-     << "unset key\nunset tics\nunset border\nset size ratio -1\n";
+     << "set multiplot layout " << rows << "," << columns << "\n"
+     << "unset key\nunset tics\nunset border\nset size ratio -1\n"
+     << "set lmargin 0.5\nset rmargin 0.5\nset bmargin 0.5\nset tmargin 1.8\n";
   for (const GridTile& t : tiles) {
     gp << "set title " << gnuplotQuote(t.title) << " noenhanced\n"
        << "plot " << gnuplotQuote(t.png.string()) << " binary filetype=png with rgbimage\n";
