@@ -11,51 +11,21 @@
 #include "penumbra/gl/render_record.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
+#include "render_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
 namespace {
 
-struct RenderOptions {
+struct RenderCommandOptions {
   std::string scene = "backyard";
   TechniqueOptions technique{"evsm4", {}};
-  int shadowSize = 2048;
-  int msaa = 1;
-  int blurTaps = 5;
-  std::string blurKernel = "gaussian";
-  float blurSigma = 0.0f;  // 0: half the radius, at least 0.5
-  std::string filter = "trilinear";
-  int aniso = 16;
-  int width = 960;
-  int height = 540;
-  float normalOffset = 0.0f;
+  RenderOptions render;
   std::string outDir = "out/render";
   int repeat = 1;
 };
 
-gl::RenderSettings toSettings(const RenderOptions& o) {
-  gl::RenderSettings s;
-  s.shadowMapSize = o.shadowSize;
-  s.msaaSamples = o.msaa;
-  if (o.blurTaps < 1 || o.blurTaps % 2 == 0) {
-    throw Error("blur taps " + std::to_string(o.blurTaps) +
-                ": give an odd kernel width (1 = no blur, 3, 5, 7, ... 129)");
-  }
-  s.blur.radius = (o.blurTaps - 1) / 2;
-  if (o.blurKernel != "gaussian" && o.blurKernel != "box") {
-    throw Error("unknown blur kernel '" + o.blurKernel + "'; valid kernels: gaussian, box");
-  }
-  s.blur.kernel = o.blurKernel == "box" ? BlurKernel::Box : BlurKernel::Gaussian;
-  s.blur.sigma = o.blurSigma > 0.0f ? o.blurSigma : std::max(0.5f, 0.5f * float(s.blur.radius));
-  s.filter = gl::parseFilterMode(o.filter);
-  s.anisotropy = o.aniso;
-  s.width = o.width;
-  s.height = o.height;
-  s.normalOffsetTexels = o.normalOffset;
-  return s;
-}
-
-void runRender(const RenderOptions& options) {
+void runRender(const RenderCommandOptions& options) {
   if (options.scene == "list") {
     for (std::string_view name : builtinSceneNames()) {
       std::cout << name << "  " << makeBuiltinScene(name).description << "\n";
@@ -65,7 +35,7 @@ void runRender(const RenderOptions& options) {
   if (printTechniqueListIfAsked(options.technique)) return;
   const Scene scene = makeBuiltinScene(options.scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
-  gl::RenderSettings settings = toSettings(options);
+  gl::RenderSettings settings = toRenderSettings(options.render);
   settings.params = selectedParams(options.technique, techniques);
 
   namespace fs = std::filesystem;
@@ -117,24 +87,12 @@ void runRender(const RenderOptions& options) {
 }  // namespace
 
 void registerRenderCommand(CLI::App& app) {
-  auto o = std::make_shared<RenderOptions>();
+  auto o = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
       "render", "Render a built-in scene with shadow-map techniques through OpenGL 4.5 (EGL).");
   cmd->add_option("-s,--scene", o->scene, "built-in scene, or 'list'")->capture_default_str();
   addTechniqueOptions(*cmd, o->technique);
-  cmd->add_option("--shadow-size", o->shadowSize, "shadow-map texels per side")->capture_default_str();
-  cmd->add_option("--msaa", o->msaa, "light-pass samples: 1 (off), 2, 4, 8")->capture_default_str();
-  cmd->add_option("--blur", o->blurTaps, "prefilter width in taps (odd; 1 = none); the summed-area "
-                                         "filter's smallest box")->capture_default_str();
-  cmd->add_option("--blur-kernel", o->blurKernel, "gaussian or box")->capture_default_str();
-  cmd->add_option("--blur-sigma", o->blurSigma, "Gaussian sigma in texels (default: radius/2)");
-  cmd->add_option("--filter", o->filter, "point, bilinear, trilinear, anisotropic or sat")
-      ->capture_default_str();
-  cmd->add_option("--aniso", o->aniso, "anisotropy for the anisotropic filter, 1..16")->capture_default_str();
-  cmd->add_option("--width", o->width, "frame width in pixels")->capture_default_str();
-  cmd->add_option("--height", o->height, "frame height in pixels")->capture_default_str();
-  cmd->add_option("--normal-offset", o->normalOffset, "normal-offset bias in shadow-map texels")
-      ->capture_default_str();
+  addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
