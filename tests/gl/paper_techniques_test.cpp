@@ -249,6 +249,34 @@ TEST_F(PaperTechniques, PowerCdfSixteenBitStaysCloseToThirtyTwo) {
   EXPECT_LT(mean, 0.01);
 }
 
+TEST_F(PaperTechniques, EverySceneRendersEveryPaperVariant) {
+  const std::vector<std::pair<Technique, std::vector<const char*>>> variants{
+      {Technique::Esm, {"classifier=threshold"}},
+      {Technique::Esm, {"classifier=zmax"}},
+      {Technique::Esm, {"filtering=log", "c=300", "classifier=zmax"}},
+      {Technique::Lvsm, {"placement=uniform"}},
+      {Technique::Lvsm, {"placement=lloyd", "layers=3"}},
+      {Technique::Csm, {"M=4"}},
+      {Technique::Csm, {"M=8"}},
+      {Technique::PowerCdf, {"storage=float16"}},
+      {Technique::PowerCdf, {"layers=2"}},
+  };
+  for (std::string_view name : builtinSceneNames()) {
+    for (const auto& [technique, params] : variants) {
+      gl::RenderSettings s = settings(technique);
+      const std::vector<Technique> one{technique};
+      for (const char* p : params) applyParamAssignment(one, s.params, p);
+      s.shadowMapSize = 256;
+      s.width = 160;
+      s.height = 90;
+      const gl::RenderResult r = render(name, s);
+      int bad = 0;
+      for (float v : r.visibility.data()) bad += !(v >= 0.0f && v <= 1.0f);
+      EXPECT_EQ(bad, 0) << name << " " << techniqueId(technique) << " " << params.front();
+    }
+  }
+}
+
 TEST_F(PaperTechniques, LayeredPowerCdfRenders) {
   const gl::RenderResult r = render("overlap", settings(Technique::PowerCdf, {"layers=3"}));
   for (float v : r.visibility.data()) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
