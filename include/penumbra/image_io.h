@@ -17,8 +17,10 @@ void writeFloatExr(const Image& image, const std::filesystem::path& path);
 
 // Diagnostic images (RenderResult::diagnostic, -1 where nothing is drawn): a failure mask
 // (failing pixels red over grey shading) and layer indices in distinct colours (thesis Fig. 4.2).
-void writeFailureMaskPng(const Image& diagnostic, const Image& color, const std::filesystem::path& path);
-void writeLayerIndexPng(const Image& diagnostic, const Image& color, const std::filesystem::path& path);
+void writeFailureMaskPng(const Image& diagnostic, const Image& color,
+                         const std::filesystem::path& path);
+void writeLayerIndexPng(const Image& diagnostic, const Image& color,
+                        const std::filesystem::path& path);
 
 // Reads back what the writers above wrote (for tests and tools).
 Image readGrey16Png(const std::filesystem::path& path);

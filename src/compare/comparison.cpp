@@ -70,10 +70,12 @@ void validateRequest(const ComparisonRequest& request, const gl::Renderer& rende
   makeBuiltinScene(request.scene);  // throws for an unknown scene
   if (request.techniques.empty()) throw Error("no technique selected for the comparison");
   if (request.supersample < 1 || request.supersample > 8) {
-    throw Error("ground-truth supersampling " + std::to_string(request.supersample) + " is out of range [1, 8]");
+    throw Error("ground-truth supersampling " + std::to_string(request.supersample) +
+                " is out of range [1, 8]");
   }
   if (request.pathFrames < 2 || request.pathFrames > 32) {
-    throw Error("camera-path frames " + std::to_string(request.pathFrames) + " is out of range [2, 32]");
+    throw Error("camera-path frames " + std::to_string(request.pathFrames) +
+                " is out of range [2, 32]");
   }
   if (!(request.tau > 0.0 && request.tau < 1.0)) {
     throw Error("leak threshold tau " + std::to_string(request.tau) + " is out of range (0, 1)");
@@ -125,7 +127,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       // Kept for the worst pixel's curves, found once every technique is measured.
       result.worstRegion.clear();
       step("supersampled ground truth");
-      result.groundTruthVisibility = renderer.renderReference(scene, request.settings, request.supersample).visibility;
+      result.groundTruthVisibility =
+          renderer.renderReference(scene, request.settings, request.supersample).visibility;
       result.techniques.resize(request.techniques.size());
       double worst = -1.0;
       for (size_t k = 0; k < request.techniques.size(); ++k) {
@@ -135,8 +138,10 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         TechniqueResult& out = result.techniques[k];
         out.technique = t;
         out.params = r.params;
-        out.filtered = measureVisibilityErrors(r.visibility, reference.visibility, result.coverage, request.tau);
-        out.groundTruth = measureVisibilityErrors(r.visibility, result.groundTruthVisibility, result.coverage, request.tau);
+        out.filtered = measureVisibilityErrors(r.visibility, reference.visibility, result.coverage,
+                                               request.tau);
+        out.groundTruth = measureVisibilityErrors(r.visibility, result.groundTruthVisibility,
+                                                  result.coverage, request.tau);
         out.failureRatePercent = r.failureRatePercent;
         out.gpuTimes = r.gpuTimes;
         out.wallTimes = r.wallTimes;

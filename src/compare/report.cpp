@@ -21,7 +21,9 @@ using nlohmann::ordered_json;
 
 namespace {
 
-double mib(uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); }
+double mib(uint64_t bytes) {
+  return double(bytes) / (1024.0 * 1024.0);
+}
 
 uint64_t techniqueBytes(const TechniqueResult& t) {
   return t.memory.technique + t.memory.summedArea + t.memory.auxiliary;
@@ -30,18 +32,24 @@ uint64_t techniqueBytes(const TechniqueResult& t) {
 std::string html(const std::string& text) {
   std::string out;
   for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else if (c == '"') out += "&quot;";
-    else out += c;
+    if (c == '<')
+      out += "&lt;";
+    else if (c == '>')
+      out += "&gt;";
+    else if (c == '&')
+      out += "&amp;";
+    else if (c == '"')
+      out += "&quot;";
+    else
+      out += c;
   }
   return out;
 }
 
 std::string slug(const std::string& text) {
   std::string out;
-  for (char c : text) out += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(c)) : '_';
+  for (char c : text)
+    out += std::isalnum(static_cast<unsigned char>(c)) ? char(std::tolower(c)) : '_';
   return out;
 }
 
@@ -54,7 +62,8 @@ Image crop(const Image& image, glm::vec4 rect, int zoom) {
   Image out((x1 - x0) * zoom, (y1 - y0) * zoom, image.channels());
   for (int y = 0; y < out.height(); ++y) {
     for (int x = 0; x < out.width(); ++x) {
-      for (int c = 0; c < image.channels(); ++c) out.at(x, y, c) = image.at(x0 + x / zoom, y0 + y / zoom, c);
+      for (int c = 0; c < image.channels(); ++c)
+        out.at(x, y, c) = image.at(x0 + x / zoom, y0 + y / zoom, c);
     }
   }
   return out;
@@ -83,7 +92,7 @@ ordered_json errorsJson(const VisibilityErrors& e) {
 }
 
 ordered_json timesJson(const gl::PassTimes& t) {
-  return {{"light", t.light},         {"encode", t.encode},       {"prefilter", t.prefilter},
+  return {{"light", t.light},           {"encode", t.encode},       {"prefilter", t.prefilter},
           {"mips_or_sat", t.mipsOrSat}, {"auxiliary", t.auxiliary}, {"camera", t.camera},
           {"total", t.total()}};
 }
@@ -92,9 +101,10 @@ ordered_json settingsJson(const ComparisonRequest& r) {
   const gl::RenderSettings& s = r.settings;
   return {{"shadow_map_size", s.shadowMapSize},
           {"msaa_samples", s.msaaSamples},
-          {"blur", {{"kernel", s.blur.kernel == BlurKernel::Box ? "box" : "gaussian"},
-                    {"taps", 2 * s.blur.radius + 1},
-                    {"sigma", s.blur.sigma}}},
+          {"blur",
+           {{"kernel", s.blur.kernel == BlurKernel::Box ? "box" : "gaussian"},
+            {"taps", 2 * s.blur.radius + 1},
+            {"sigma", s.blur.sigma}}},
           {"filter", gl::filterModeName(s.filter)},
           {"anisotropy", s.anisotropy},
           {"width", s.width},
@@ -108,7 +118,8 @@ ordered_json settingsJson(const ComparisonRequest& r) {
 
 ordered_json paramsJson(Technique t, const TechniqueParams& p) {
   ordered_json out = ordered_json::object();
-  for (const ParamSpec& spec : techniqueParamSpecs(t)) out[std::string(spec.name)] = formatParam(t, p, spec.name);
+  for (const ParamSpec& spec : techniqueParamSpecs(t))
+    out[std::string(spec.name)] = formatParam(t, p, spec.name);
   return out;
 }
 
@@ -139,29 +150,35 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
       {"device", r.device},
       {"settings", settingsJson(r.request)},
       {"references",
-       {{"filtered", "exact PCF of the raw depth under each technique's effective kernel (blur x lookup), "
-                     "receiver-plane depth per tap; frame 0 (docs/reference.md)"},
+       {{"filtered",
+         "exact PCF of the raw depth under each technique's effective kernel (blur x lookup), "
+         "receiver-plane depth per tap; frame 0 (docs/reference.md)"},
         {"ground_truth", "the filtered reference averaged over supersample^2 sub-pixel positions"},
-        {"columns", "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
-                    "including minification aliasing; temporal_flicker: along the camera path against the "
-                    "filtered reference's own change"}}},
-      {"worst_pixel", {{"technique", r.worstTechnique}, {"x", r.worstX}, {"y", r.worstY},
-                       {"receiver_depth", r.worstReceiverDepth}}},
+        {"columns",
+         "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
+         "including minification aliasing; temporal_flicker: along the camera path against the "
+         "filtered reference's own change"}}},
+      {"worst_pixel",
+       {{"technique", r.worstTechnique},
+        {"x", r.worstX},
+        {"y", r.worstY},
+        {"receiver_depth", r.worstReceiverDepth}}},
       {"techniques", techniques}};
   writeText(dir / "metrics.json", metrics.dump(2) + "\n");
 
   std::ostringstream csv;
   csv << std::setprecision(8)
       << "technique,rmse,mean_absolute,max_absolute,psnr_db,leak_share,leak_mean_excess,dark_share,"
-         "dark_mean_excess,rmse_ground_truth,temporal_flicker,esm_failure_rate_percent,wall_ms,gpu_ms,"
+         "dark_mean_excess,rmse_ground_truth,temporal_flicker,esm_failure_rate_percent,wall_ms,gpu_"
+         "ms,"
          "technique_memory_bytes\n";
   for (const TechniqueResult& t : r.techniques) {
     const VisibilityErrors& e = t.filtered;
-    csv << techniqueId(t.technique) << "," << e.rmse << "," << e.meanAbsolute << "," << e.maxAbsolute
-        << "," << e.psnr << "," << e.leakShare << "," << e.leakMeanExcess << "," << e.darkShare << ","
-        << e.darkMeanExcess << "," << t.groundTruth.rmse << "," << t.flicker << ","
-        << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total() << ","
-        << techniqueBytes(t) << "\n";
+    csv << techniqueId(t.technique) << "," << e.rmse << "," << e.meanAbsolute << ","
+        << e.maxAbsolute << "," << e.psnr << "," << e.leakShare << "," << e.leakMeanExcess << ","
+        << e.darkShare << "," << e.darkMeanExcess << "," << t.groundTruth.rmse << "," << t.flicker
+        << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
+        << "," << techniqueBytes(t) << "\n";
   }
   writeText(dir / "metrics.csv", csv.str());
 }
@@ -172,7 +189,8 @@ void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
   h << std::setprecision(4);
   h << R"(<!DOCTYPE html>
 <html lang="en"><head><meta charset="utf-8">
-<title>penumbra comparison: )" << html(r.scene.name) << R"(</title>
+<title>penumbra comparison: )"
+    << html(r.scene.name) << R"(</title>
 <style>
 body{font-family:sans-serif;margin:24px;max-width:1400px;color:#222}
 table{border-collapse:collapse;font-size:13px}th,td{border:1px solid #ccc;padding:4px 8px;text-align:right}
@@ -180,63 +198,84 @@ th{background:#eee;cursor:pointer;user-select:none}td:first-child,th:first-child
 img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12px;align-items:flex-start}
 .row figure{margin:0}figcaption{font-size:12px;color:#555}code{background:#f4f4f4;padding:1px 4px}
 </style></head><body>
-<h1>penumbra comparison — )" << html(r.scene.name) << "</h1>\n<p>" << html(r.scene.description)
-    << "</p>\n<p>Device: " << html(r.device) << ". Shadow map " << r.request.settings.shadowMapSize << "², "
-    << (2 * r.request.settings.blur.radius + 1) << "-tap "
+<h1>penumbra comparison — )"
+    << html(r.scene.name) << "</h1>\n<p>" << html(r.scene.description)
+    << "</p>\n<p>Device: " << html(r.device) << ". Shadow map " << r.request.settings.shadowMapSize
+    << "², " << (2 * r.request.settings.blur.radius + 1) << "-tap "
     << (r.request.settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " prefilter, "
-    << gl::filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width << "×"
-    << r.request.settings.height << ", ground truth " << r.request.supersample << "×" << r.request.supersample
-    << " sub-pixels, flicker over " << r.request.pathFrames << " camera-path frames, τ = " << r.request.tau
-    << ".</p>\n"
-    << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's effective kernel "
-       "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the filtered "
-       "reference averaged over sub-pixels, so minification aliasing counts as error. Error columns are "
-       "against the filtered reference unless marked <i>GT</i>; see <code>metrics.json</code>.</p>\n"
+    << gl::filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width
+    << "×" << r.request.settings.height << ", ground truth " << r.request.supersample << "×"
+    << r.request.supersample << " sub-pixels, flicker over " << r.request.pathFrames
+    << " camera-path frames, τ = " << r.request.tau << ".</p>\n"
+    << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's "
+       "effective kernel "
+       "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the "
+       "filtered "
+       "reference averaged over sub-pixels, so minification aliasing counts as error. Error "
+       "columns are "
+       "against the filtered reference unless marked <i>GT</i>; see "
+       "<code>metrics.json</code>.</p>\n"
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
     << "<h2>Metrics</h2>\n<p>Click a column to sort.</p>\n<table id=\"metrics\"><thead><tr>"
-    << "<th>technique</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR dB</th><th>leak share</th>"
+    << "<th>technique</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR dB</th><th>leak "
+       "share</th>"
        "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
-       "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory MiB</th></tr></thead><tbody>\n";
+       "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory "
+       "MiB</th></tr></thead><tbody>\n";
   for (const TechniqueResult& t : r.techniques) {
     const VisibilityErrors& e = t.filtered;
-    h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique) << "</a></td><td>"
-      << e.rmse << "</td><td>" << e.meanAbsolute << "</td><td>" << e.maxAbsolute << "</td><td>" << e.psnr
-      << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess << "</td><td>" << e.darkShare
-      << "</td><td>" << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse << "</td><td>" << t.flicker
-      << "</td><td>" << t.failureRatePercent << "</td><td>" << t.wallTimes.total() << "</td><td>"
-      << t.gpuTimes.total() << "</td><td>" << mib(techniqueBytes(t)) << "</td></tr>\n";
+    h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique)
+      << "</a></td><td>" << e.rmse << "</td><td>" << e.meanAbsolute << "</td><td>" << e.maxAbsolute
+      << "</td><td>" << e.psnr << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess
+      << "</td><td>" << e.darkShare << "</td><td>" << e.darkMeanExcess << "</td><td>"
+      << t.groundTruth.rmse << "</td><td>" << t.flicker << "</td><td>" << t.failureRatePercent
+      << "</td><td>" << t.wallTimes.total() << "</td><td>" << t.gpuTimes.total() << "</td><td>"
+      << mib(techniqueBytes(t)) << "</td></tr>\n";
   }
   h << "</tbody></table>\n<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
     << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";
   if (hasCurves) {
-    h << "<h2>The worst pixel</h2>\n<p>Pixel (" << r.worstX << ", " << r.worstY << "), worst for <b>"
-      << html(r.worstTechnique) << "</b>; its reference kernel's depths (moved along the receiver plane), "
-      << "receiver at depth " << r.worstReceiverDepth << ", every technique's shadow test over receiver depth "
+    h << "<h2>The worst pixel</h2>\n<p>Pixel (" << r.worstX << ", " << r.worstY
+      << "), worst for <b>" << html(r.worstTechnique)
+      << "</b>; its reference kernel's depths (moved along the receiver plane), "
+      << "receiver at depth " << r.worstReceiverDepth
+      << ", every technique's shadow test over receiver depth "
       << "(<code>penumbra curves</code>; data in <code>plots/worst_pixel_curves.csv</code>):</p>\n"
       << "<img src=\"plots/worst_pixel_curves.png\" alt=\"curves of the worst pixel\">\n";
   }
-  h << "<h2>References</h2>\n<div class=\"row\"><figure><img src=\"images/reference_shaded.png\" alt=\"reference\">"
-    << "<figcaption>filtered reference, shaded</figcaption></figure><figure><img src=\"images/reference_visibility.png\" "
-    << "alt=\"reference visibility\"><figcaption>filtered reference visibility</figcaption></figure><figure>"
-    << "<img src=\"images/ground_truth_visibility.png\" alt=\"ground truth visibility\"><figcaption>supersampled "
+  h << "<h2>References</h2>\n<div class=\"row\"><figure><img src=\"images/reference_shaded.png\" "
+       "alt=\"reference\">"
+    << "<figcaption>filtered reference, shaded</figcaption></figure><figure><img "
+       "src=\"images/reference_visibility.png\" "
+    << "alt=\"reference visibility\"><figcaption>filtered reference "
+       "visibility</figcaption></figure><figure>"
+    << "<img src=\"images/ground_truth_visibility.png\" alt=\"ground truth "
+       "visibility\"><figcaption>supersampled "
     << "ground truth visibility</figcaption></figure></div>\n";
   for (const TechniqueResult& t : r.techniques) {
     const std::string id(techniqueId(t.technique));
-    h << "<h2 id=\"" << id << "\">" << id << " — " << html(std::string(techniqueTitle(t.technique))) << "</h2>\n"
-      << "<p>RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare << ", over-darkening share "
-      << t.filtered.darkShare << ", flicker " << t.flicker << "; parameters: <code>"
-      << html(paramsJson(t.technique, t.params).dump()) << "</code></p>\n<div class=\"row\">"
-      << "<figure><img src=\"images/" << id << "_shaded.png\" alt=\"" << id << " shaded\"><figcaption>shaded</figcaption></figure>"
-      << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id << " visibility\"><figcaption>visibility</figcaption></figure>"
-      << "<figure><img src=\"images/" << id << "_error.png\" alt=\"" << id << " error\"><figcaption>error heat map</figcaption></figure></div>\n";
+    h << "<h2 id=\"" << id << "\">" << id << " — " << html(std::string(techniqueTitle(t.technique)))
+      << "</h2>\n"
+      << "<p>RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare
+      << ", over-darkening share " << t.filtered.darkShare << ", flicker " << t.flicker
+      << "; parameters: <code>" << html(paramsJson(t.technique, t.params).dump())
+      << "</code></p>\n<div class=\"row\">"
+      << "<figure><img src=\"images/" << id << "_shaded.png\" alt=\"" << id
+      << " shaded\"><figcaption>shaded</figcaption></figure>"
+      << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id
+      << " visibility\"><figcaption>visibility</figcaption></figure>"
+      << "<figure><img src=\"images/" << id << "_error.png\" alt=\"" << id
+      << " error\"><figcaption>error heat map</figcaption></figure></div>\n";
     if (!spots.empty()) {
       h << "<div class=\"row\">";
       for (const TroubleSpot& spot : spots) {
-        h << "<figure><img src=\"crops/" << id << "_" << slug(spot.name) << ".png\" alt=\"" << html(spot.name)
-          << "\"><figcaption>" << html(spot.name) << " (" << id << ")</figcaption></figure>"
-          << "<figure><img src=\"crops/reference_" << slug(spot.name) << ".png\" alt=\"reference " << html(spot.name)
-          << "\"><figcaption>" << html(spot.name) << " (reference)</figcaption></figure>";
+        h << "<figure><img src=\"crops/" << id << "_" << slug(spot.name) << ".png\" alt=\""
+          << html(spot.name) << "\"><figcaption>" << html(spot.name) << " (" << id
+          << ")</figcaption></figure>"
+          << "<figure><img src=\"crops/reference_" << slug(spot.name) << ".png\" alt=\"reference "
+          << html(spot.name) << "\"><figcaption>" << html(spot.name)
+          << " (reference)</figcaption></figure>";
       }
       h << "</div>\n";
     }
@@ -279,10 +318,12 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
   writeColorPng(greyToColor(r.referenceVisibility), dir / "images" / "reference_visibility.png");
-  writeColorPng(greyToColor(r.groundTruthVisibility), dir / "images" / "ground_truth_visibility.png");
+  writeColorPng(greyToColor(r.groundTruthVisibility),
+                dir / "images" / "ground_truth_visibility.png");
   tiles.push_back({dir / "images" / "reference_shaded.png", "filtered reference"});
   for (const TroubleSpot& spot : r.scene.troubleSpots) {
-    writeColorPng(crop(r.referenceColor, spot.rect, 3), dir / "crops" / ("reference_" + slug(spot.name) + ".png"));
+    writeColorPng(crop(r.referenceColor, spot.rect, 3),
+                  dir / "crops" / ("reference_" + slug(spot.name) + ".png"));
   }
   std::vector<ScatterPoint> byMemory, byTime;
   for (const TechniqueResult& t : r.techniques) {
@@ -292,19 +333,23 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     plotErrorHeatMap(t.error, range, id + ": visibility error against the filtered reference",
                      dir / "images" / (id + "_error.png"));
     for (const TroubleSpot& spot : r.scene.troubleSpots) {
-      writeColorPng(crop(t.color, spot.rect, 3), dir / "crops" / (id + "_" + slug(spot.name) + ".png"));
+      writeColorPng(crop(t.color, spot.rect, 3),
+                    dir / "crops" / (id + "_" + slug(spot.name) + ".png"));
     }
     tiles.push_back({dir / "images" / (id + "_shaded.png"), id});
     byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), t.filtered.rmse});
     byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), t.filtered.rmse});
   }
   const int tileWidth = 420;  // gnuplot scales each image into its tile
-  const int tileHeight = tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
+  const int tileHeight =
+      tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
-  plotParetoScatter(byMemory, "technique memory (MiB, log scale)", "RMSE against the filtered reference",
-                    r.scene.name + ": error against memory", true, dir / "plots" / "error_vs_memory.png");
-  plotParetoScatter(byTime, "frame time (wall ms, log scale)", "RMSE against the filtered reference",
-                    r.scene.name + ": error against time", true, dir / "plots" / "error_vs_time.png");
+  plotParetoScatter(byMemory, "technique memory (MiB, log scale)",
+                    "RMSE against the filtered reference", r.scene.name + ": error against memory",
+                    true, dir / "plots" / "error_vs_memory.png");
+  plotParetoScatter(byTime, "frame time (wall ms, log scale)",
+                    "RMSE against the filtered reference", r.scene.name + ": error against time",
+                    true, dir / "plots" / "error_vs_time.png");
   const bool hasCurves = !r.worstRegion.empty();
   if (hasCurves) {
     CurvesRequest curves;

@@ -25,11 +25,13 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
      << " font 'DejaVu Sans,10'\n"
      << "set output " << gnuplotQuote(png.string()) << "\n"
      << "set title " << gnuplotQuote(title) << " noenhanced\n"
-     << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', 1 '#b2182b')\n"
+     << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', 1 "
+        "'#b2182b')\n"
      << "set cbrange [" << -range << ":" << range << "]\n"
      << "set cblabel 'visibility - reference: over-darkening (blue) < 0 < light leaking (red)'\n"
      << "unset xtics\nunset ytics\nset size ratio -1\n"
-     << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5 << "]\n"
+     << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5
+     << "]\n"
      << "plot " << gnuplotQuote(data.string()) << " binary array=(" << error.width() << ","
      << error.height() << ") format='%float' flipy with image notitle\n";
   runGnuplot(gp.str());
@@ -60,9 +62,8 @@ void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::strin
   const std::filesystem::path data = png.string() + ".dat";
   const std::filesystem::path front = png.string() + ".front.dat";
   std::vector<ScatterPoint> sorted = points;
-  std::sort(sorted.begin(), sorted.end(), [](const auto& a, const auto& b) {
-    return a.x < b.x || (a.x == b.x && a.y < b.y);
-  });
+  std::sort(sorted.begin(), sorted.end(),
+            [](const auto& a, const auto& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
   {
     std::ofstream out(data), pareto(front);
     double best = INFINITY;
@@ -80,10 +81,12 @@ void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::strin
      << "set output " << gnuplotQuote(png.string()) << "\n"
      << "set title " << gnuplotQuote(title) << " noenhanced\n"
      << "set xlabel " << gnuplotQuote(xLabel) << " noenhanced\nset ylabel " << gnuplotQuote(yLabel)
-     << " noenhanced\nset grid\nset key top right\nset offsets graph 0.05, graph 0.15, graph 0.1, graph 0.05\n"
-     << (logX ? "set logscale x\n" : "")
-     << "plot " << gnuplotQuote(front.string()) << " using 1:2 with linespoints lw 2 lc rgb '#b2182b' title 'Pareto front', "
-     << gnuplotQuote(data.string()) << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
+     << " noenhanced\nset grid\nset key top right\nset offsets graph 0.05, graph 0.15, graph 0.1, "
+        "graph 0.05\n"
+     << (logX ? "set logscale x\n" : "") << "plot " << gnuplotQuote(front.string())
+     << " using 1:2 with linespoints lw 2 lc rgb '#b2182b' title 'Pareto front', "
+     << gnuplotQuote(data.string())
+     << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
      << "'' using 1:2:3 with labels offset 0,1 font ',9' notitle noenhanced\n";
   runGnuplot(gp.str());
   std::filesystem::remove(data);

@@ -69,12 +69,14 @@ void writeColorPng(const Image& image, const std::filesystem::path& path) {
     for (int x = 0; x < image.width(); ++x) {
       for (int c = 0; c < 3; ++c) {
         const float v = std::clamp(image.at(x, y, c), 0.0f, 1.0f);
-        pixels[(size_t(y) * size_t(image.width()) + size_t(x)) * 3 + size_t(c)] = uint8_t(std::lround(v * 255.0f));
+        pixels[(size_t(y) * size_t(image.width()) + size_t(x)) * 3 + size_t(c)] =
+            uint8_t(std::lround(v * 255.0f));
       }
     }
   }
   std::vector<png_bytep> rows;
-  for (int y = 0; y < image.height(); ++y) rows.push_back(&pixels[size_t(y) * size_t(image.width()) * 3]);
+  for (int y = 0; y < image.height(); ++y)
+    rows.push_back(&pixels[size_t(y) * size_t(image.width()) * 3]);
   writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_RGB, 8, rows);
 }
 
@@ -146,7 +148,8 @@ Image readGrey16Png(const std::filesystem::path& path) {
   png_set_swap(png);
   std::vector<uint16_t> pixels(size_t(width) * size_t(height));
   std::vector<png_bytep> rows;
-  for (int y = 0; y < height; ++y) rows.push_back(reinterpret_cast<png_bytep>(&pixels[size_t(y) * size_t(width)]));
+  for (int y = 0; y < height; ++y)
+    rows.push_back(reinterpret_cast<png_bytep>(&pixels[size_t(y) * size_t(width)]));
   png_read_image(png, rows.data());
   png_destroy_read_struct(&png, &info, nullptr);
   Image image(width, height, 1);
@@ -162,8 +165,10 @@ void writeFloatExr(const Image& image, const std::filesystem::path& path) {
     header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
     Imf::OutputFile file(path.c_str(), header);
     Imf::FrameBuffer frame;
-    frame.insert("Y", Imf::Slice(Imf::FLOAT, const_cast<char*>(reinterpret_cast<const char*>(image.data().data())),
-                                 sizeof(float), sizeof(float) * size_t(image.width())));
+    frame.insert("Y",
+                 Imf::Slice(Imf::FLOAT,
+                            const_cast<char*>(reinterpret_cast<const char*>(image.data().data())),
+                            sizeof(float), sizeof(float) * size_t(image.width())));
     file.setFrameBuffer(frame);
     file.writePixels(image.height());
   } catch (const std::exception& e) {

@@ -59,7 +59,8 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
   std::vector<float> s = interior(splits);
   if (s.empty()) return splits;
   std::vector<double> clusterWeight(s.size(), 0.0), clusterSum(s.size(), 0.0);
-  std::vector<double> layerWeight(size_t(splits.layerCount), 0.0), layerSum(size_t(splits.layerCount), 0.0);
+  std::vector<double> layerWeight(size_t(splits.layerCount), 0.0),
+      layerSum(size_t(splits.layerCount), 0.0);
   for (const SplitSample& sample : samples) {
     if (sample.weight <= 0.0f) continue;
     const auto nearest = std::min_element(s.begin(), s.end(), [&](float a, float b) {
@@ -83,7 +84,8 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
   }
   // Teleportation: each empty cluster's split reappears inside the heaviest remaining layer.
   for (int i = 0; i < empty; ++i) {
-    const size_t heaviest = size_t(std::max_element(layerWeight.begin(), layerWeight.end()) - layerWeight.begin());
+    const size_t heaviest =
+        size_t(std::max_element(layerWeight.begin(), layerWeight.end()) - layerWeight.begin());
     if (layerWeight[heaviest] > 0.0) {
       next.push_back(float(layerSum[heaviest] / layerWeight[heaviest]));
       layerWeight[heaviest] = 0.0;  // the next teleport goes elsewhere
@@ -101,7 +103,8 @@ shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int l
     const shaders::LayerSplits next = lloydStep(samples, splits, minGap);
     float moved = 0.0f;
     for (int k = 1; k < layerCount; ++k) {
-      moved = std::max(moved, std::abs(shaders::layerSplit(next, k) - shaders::layerSplit(splits, k)));
+      moved =
+          std::max(moved, std::abs(shaders::layerSplit(next, k) - shaders::layerSplit(splits, k)));
     }
     splits = next;
     if (moved < 1e-6f) break;

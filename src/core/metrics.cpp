@@ -10,7 +10,8 @@ namespace penumbra {
 namespace {
 
 void requireSameShape(const Image& a, const Image& b, const char* what) {
-  if (a.width() != b.width() || a.height() != b.height() || a.channels() != 1 || b.channels() != 1) {
+  if (a.width() != b.width() || a.height() != b.height() || a.channels() != 1 ||
+      b.channels() != 1) {
     throw Error(std::string(what) + ": images must be one-channel and of one size (" +
                 std::to_string(a.width()) + "x" + std::to_string(a.height()) + " vs " +
                 std::to_string(b.width()) + "x" + std::to_string(b.height()) + ")");
@@ -61,7 +62,8 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
 
 double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
                        std::span<const Image> masks) {
-  if (estimates.size() < 2 || estimates.size() != references.size() || estimates.size() != masks.size()) {
+  if (estimates.size() < 2 || estimates.size() != references.size() ||
+      estimates.size() != masks.size()) {
     throw Error("temporal flicker needs two or more frames, with a reference and mask for each");
   }
   double change = 0.0;
@@ -82,14 +84,16 @@ double temporalFlicker(std::span<const Image> estimates, std::span<const Image> 
 
 Image coverageFromDiagnostic(const Image& diagnostic) {
   Image mask(diagnostic.width(), diagnostic.height(), 1);
-  for (size_t i = 0; i < mask.data().size(); ++i) mask.data()[i] = diagnostic.data()[i] >= 0.0f ? 1.0f : 0.0f;
+  for (size_t i = 0; i < mask.data().size(); ++i)
+    mask.data()[i] = diagnostic.data()[i] >= 0.0f ? 1.0f : 0.0f;
   return mask;
 }
 
 Image litSurfaceMask(const Image& lookup) {
   Image mask(lookup.width(), lookup.height(), 1);
   for (int y = 0; y < lookup.height(); ++y) {
-    for (int x = 0; x < lookup.width(); ++x) mask.at(x, y) = lookup.at(x, y, 3) > 0.75f ? 1.0f : 0.0f;
+    for (int x = 0; x < lookup.width(); ++x)
+      mask.at(x, y) = lookup.at(x, y, 3) > 0.75f ? 1.0f : 0.0f;
   }
   return mask;
 }

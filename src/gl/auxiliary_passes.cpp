@@ -9,7 +9,9 @@
 namespace penumbra::gl {
 namespace {
 
-unsigned groups(int n) { return (unsigned(n) + 7u) / 8u; }
+unsigned groups(int n) {
+  return (unsigned(n) + 7u) / 8u;
+}
 
 }  // namespace
 
@@ -18,7 +20,8 @@ void buildZmaxPyramid(Renderer::State& s, unsigned depthTexture, bool multisampl
   s.zmax = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.zmax.id(), s.zmaxLevels, GL_R32F, s.shadowMapSize, s.shadowMapSize, 1);
   const Program& base = s.compute("passes/zmax_base.comp", {{"MSAA", multisampled ? "1" : "0"}});
-  glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), s.shadowMapSize, s.shadowMapSize);
+  glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), s.shadowMapSize,
+                     s.shadowMapSize);
   base.set("sampleCount", s.msaaSamples);
   glBindTextureUnit(0, depthTexture);
   glBindImageTexture(0, s.zmax.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
@@ -33,8 +36,10 @@ void buildZmaxPyramid(Renderer::State& s, unsigned depthTexture, bool multisampl
     const int source = std::max(1, s.shadowMapSize >> level);
     const int target = std::max(1, s.shadowMapSize >> (level + 1));
     reduce.set("sourceLevel", level);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source, source);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target, target);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source,
+                       source);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
+                       target);
     glBindImageTexture(0, s.zmax.id(), level + 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
     reduce.dispatch(groups(target), groups(target));
   }
@@ -50,7 +55,8 @@ std::vector<SplitSample> readSplitSamplesBuffer(const Renderer::State& s) {
 void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisampled) {
   const int size = s.shadowMapSize;
   s.splitSamples.emplace(size_t(size - 1) * size_t(size - 1) * sizeof(SplitSample));
-  const Program& samples = s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
+  const Program& samples =
+      s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
   samples.set("minWeight", kMinSplitWeight);
   glBindTextureUnit(0, depthTexture);
@@ -58,9 +64,9 @@ void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisam
   samples.dispatch(groups(size), groups(size));
   // The k-means itself runs on the read-back samples, as the thesis reads back its reduction.
   shaders::LvsmParams& lvsm = s.params.lvsm;
-  lvsm.splits = lloydRelaxation(readSplitSamplesBuffer(s), lvsm.splits.layerCount,
-                                lvsm.lloydIterations, std::max(2.0f * lvsm.overlap, 1e-3f),
-                                lvsm.overlap);
+  lvsm.splits =
+      lloydRelaxation(readSplitSamplesBuffer(s), lvsm.splits.layerCount, lvsm.lloydIterations,
+                      std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap);
   checkErrors("placing the layers");
 }
 

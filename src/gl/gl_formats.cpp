@@ -6,7 +6,9 @@
 namespace penumbra::gl {
 namespace {
 
-int componentIndex(int components) { return components == 1 ? 0 : (components == 2 ? 1 : 2); }
+int componentIndex(int components) {
+  return components == 1 ? 0 : (components == 2 ? 1 : 2);
+}
 
 }  // namespace
 

@@ -16,9 +16,11 @@ GpuScene::GpuScene(const Scene& scene) : scene_(scene) {
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
   glCreateBuffers(1, &vertexBuffer_);
-  glNamedBufferStorage(vertexBuffer_, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(), 0);
+  glNamedBufferStorage(vertexBuffer_, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(),
+                       0);
   glCreateBuffers(1, &indexBuffer_);
-  glNamedBufferStorage(indexBuffer_, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), 0);
+  glNamedBufferStorage(indexBuffer_, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
+                       0);
   glCreateVertexArrays(1, &vertexArray_);
   glVertexArrayVertexBuffer(vertexArray_, 0, vertexBuffer_, 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vertexArray_, indexBuffer_);
@@ -41,9 +43,10 @@ void GpuScene::draw(const std::function<void(const Mesh&)>& beforeMesh) const {
   glBindVertexArray(vertexArray_);
   for (size_t i = 0; i < ranges_.size(); ++i) {
     if (beforeMesh) beforeMesh(scene_.meshes[i]);
-    glDrawElementsBaseVertex(GL_TRIANGLES, GLsizei(ranges_[i].indexCount), GL_UNSIGNED_INT,
-                             reinterpret_cast<const void*>(ranges_[i].firstIndex * sizeof(uint32_t)),
-                             ranges_[i].baseVertex);
+    glDrawElementsBaseVertex(
+        GL_TRIANGLES, GLsizei(ranges_[i].indexCount), GL_UNSIGNED_INT,
+        reinterpret_cast<const void*>(ranges_[i].firstIndex * sizeof(uint32_t)),
+        ranges_[i].baseVertex);
   }
   glBindVertexArray(0);
 }

@@ -5,9 +5,13 @@
 
 namespace penumbra::gl {
 
-GpuTimer::GpuTimer() { glCreateQueries(GL_TIME_ELAPSED, 1, &query_); }
+GpuTimer::GpuTimer() {
+  glCreateQueries(GL_TIME_ELAPSED, 1, &query_);
+}
 
-GpuTimer::~GpuTimer() { glDeleteQueries(1, &query_); }
+GpuTimer::~GpuTimer() {
+  glDeleteQueries(1, &query_);
+}
 
 void GpuTimer::begin() {
   glFinish();

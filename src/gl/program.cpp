@@ -94,7 +94,9 @@ Program::~Program() {
   if (program_ != 0) glDeleteProgram(program_);
 }
 
-void Program::use() const { glUseProgram(program_); }
+void Program::use() const {
+  glUseProgram(program_);
+}
 
 void Program::dispatch(unsigned groupsX, unsigned groupsY, unsigned groupsZ) const {
   glUseProgram(program_);
@@ -158,7 +160,9 @@ void Buffer::read(std::span<std::byte> out) const {
   checkErrors("reading a buffer");
 }
 
-Texture::Texture(unsigned target) { glCreateTextures(target, 1, &texture_); }
+Texture::Texture(unsigned target) {
+  glCreateTextures(target, 1, &texture_);
+}
 
 Texture::Texture(Texture&& other) noexcept : texture_(std::exchange(other.texture_, 0)) {}
 

@@ -43,7 +43,8 @@ void checkRange(std::string_view what, int value, int lo, int hi) {
 Image readTexture(unsigned texture, int level, int width, int height, int layers, int components,
                   GLenum format, bool flip) {
   std::vector<float> data(size_t(width) * size_t(height) * size_t(layers) * size_t(components));
-  glGetTextureImage(texture, level, format, GL_FLOAT, GLsizei(data.size() * sizeof(float)), data.data());
+  glGetTextureImage(texture, level, format, GL_FLOAT, GLsizei(data.size() * sizeof(float)),
+                    data.data());
   checkErrors("reading back a texture");
   Image image(width, height, layers * components);
   for (int layer = 0; layer < layers; ++layer) {
@@ -53,7 +54,8 @@ Image readTexture(unsigned texture, int level, int width, int height, int layers
         for (int c = 0; c < components; ++c) {
           image.at(x, row, layer * components + c) =
               data[((size_t(layer) * size_t(height) + size_t(y)) * size_t(width) + size_t(x)) *
-                       size_t(components) + size_t(c)];
+                       size_t(components) +
+                   size_t(c)];
         }
       }
     }
@@ -61,171 +63,16 @@ Image readTexture(unsigned texture, int level, int width, int height, int layers
   return image;
 }
 
-void allocateLightPass(Renderer::State& s) {
-  if (s.lightFramebuffer != 0) glDeleteFramebuffers(1, &s.lightFramebuffer);
-  const bool ms = s.msaaSamples > 1;
-  s.lightDepth = Texture(ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D);
-  s.lightBuffer = Texture(ms ? GL_TEXTURE_2D_MULTISAMPLE : GL_TEXTURE_2D);
-  if (ms) {
-    glTextureStorage2DMultisample(s.lightDepth.id(), s.msaaSamples, GL_R32F, s.shadowMapSize, s.shadowMapSize, GL_TRUE);
-    glTextureStorage2DMultisample(s.lightBuffer.id(), s.msaaSamples, GL_DEPTH_COMPONENT32F, s.shadowMapSize, s.shadowMapSize, GL_TRUE);
-  } else {
-    glTextureStorage2D(s.lightDepth.id(), 1, GL_R32F, s.shadowMapSize, s.shadowMapSize);
-    glTextureStorage2D(s.lightBuffer.id(), 1, GL_DEPTH_COMPONENT32F, s.shadowMapSize, s.shadowMapSize);
-  }
-  glCreateFramebuffers(1, &s.lightFramebuffer);
-  glNamedFramebufferTexture(s.lightFramebuffer, GL_COLOR_ATTACHMENT0, s.lightDepth.id(), 0);
-  glNamedFramebufferTexture(s.lightFramebuffer, GL_DEPTH_ATTACHMENT, s.lightBuffer.id(), 0);
-  if (glCheckNamedFramebufferStatus(s.lightFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    throw Error("the light-pass framebuffer is incomplete (R32F + D32F, " +
-                std::to_string(s.msaaSamples) + " samples)");
-  }
-}
-
-void allocateFrame(Renderer::State& s, int width, int height) {
-  if (s.frameFramebuffer != 0) glDeleteFramebuffers(1, &s.frameFramebuffer);
-  s.frameColor = Texture(GL_TEXTURE_2D);
-  s.frameVisibility = Texture(GL_TEXTURE_2D);
-  s.frameDiagnostic = Texture(GL_TEXTURE_2D);
-  s.frameLookup = Texture(GL_TEXTURE_2D);
-  s.frameReceiverPlane = Texture(GL_TEXTURE_2D);
-  s.frameDepth = Texture(GL_TEXTURE_2D);
-  glTextureStorage2D(s.frameColor.id(), 1, GL_RGBA8, width, height);
-  glTextureStorage2D(s.frameVisibility.id(), 1, GL_R32F, width, height);
-  glTextureStorage2D(s.frameDiagnostic.id(), 1, GL_R32F, width, height);
-  glTextureStorage2D(s.frameLookup.id(), 1, GL_RGBA32F, width, height);
-  glTextureStorage2D(s.frameReceiverPlane.id(), 1, GL_RG32F, width, height);
-  glTextureStorage2D(s.frameDepth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
-  glCreateFramebuffers(1, &s.frameFramebuffer);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT0, s.frameColor.id(), 0);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT1, s.frameVisibility.id(), 0);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT2, s.frameDiagnostic.id(), 0);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT3, s.frameLookup.id(), 0);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT4, s.frameReceiverPlane.id(), 0);
-  glNamedFramebufferTexture(s.frameFramebuffer, GL_DEPTH_ATTACHMENT, s.frameDepth.id(), 0);
-  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 5, buffers);
-  if (glCheckNamedFramebufferStatus(s.frameFramebuffer, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    throw Error("the camera-pass framebuffer is incomplete");
-  }
-}
-
-void renderLightPass(Renderer::State& s, const GpuScene& gpuScene, const LightView& light) {
-  const Program& program = s.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
-  program.set("lightViewFromWorld", light.lightFromWorld);
-  program.set("lightClipFromView", light.clipFromLight);
-  program.set("lightPerspective", light.perspective ? 1 : 0);
-  program.set("lightNear", light.nearDistance);
-  program.set("lightFar", light.farDistance);
-  program.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, s.lightFramebuffer);
-  glViewport(0, 0, s.shadowMapSize, s.shadowMapSize);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  glDisable(GL_CULL_FACE);
-  if (s.msaaSamples > 1) glEnable(GL_MULTISAMPLE);
-  const float far = 1.0f;  // nothing there: the far plane
-  glClearNamedFramebufferfv(s.lightFramebuffer, GL_COLOR, 0, &far);
-  glClearNamedFramebufferfi(s.lightFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  s.lightTimer.begin();
-  gpuScene.draw(nullptr);
-  s.lightTimer.end();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  checkErrors("light pass");
-}
-
-void setChannelSampling(Renderer::State& s) {
-  const FilterMode mode = s.settings.filter;
-  const GLuint t = s.channels.id();
-  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, mode == FilterMode::Point ? GL_NEAREST : GL_LINEAR);
-  GLint minFilter = GL_LINEAR;
-  if (mode == FilterMode::Point) minFilter = GL_NEAREST;
-  if (s.channelLevels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
-  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
-  const float anisotropy = mode == FilterMode::Anisotropic ? float(s.settings.anisotropy) : 1.0f;
-  glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
-}
-
-void setReferenceKernel(Renderer::State& s, const Program& program) {
-  const RenderSettings& settings = s.settings;
-  const bool summedArea = settings.filter == FilterMode::SummedArea;
-  const std::vector<float> weights = summedArea ? std::vector<float>{1.0f} : blurWeights(settings.blur);
-  glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "referenceBlurWeights"),
-                      GLsizei(weights.size()), weights.data());
-  program.set("referenceBlurRadius", int(weights.size() / 2));
-  program.set("referenceLevels", usesMips(settings.filter) ? mipLevelCount(s.shadowMapSize, s.shadowMapSize) : 1);
-  glBindTextureUnit(2, s.lightDepth.id());
-}
-
-void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gpuScene,
-                      const LightView& light, bool reference = false) {
-  const RenderSettings& settings = s.settings;
-  const bool summedArea = !reference && settings.filter == FilterMode::SummedArea && s.satSums.has_value();
-  const bool zmax = !reference && s.zmax.id() != 0;
-  const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
-                                      {{"SUMMED_AREA", summedArea ? "1" : "0"},
-                                       {"ZMAX", zmax ? "1" : "0"},
-                                       {"REFERENCE", reference ? "1" : "0"}});
-  if (reference) setReferenceKernel(s, program);
-  s.bindParameters();
-  const float aspect = float(settings.width) / float(settings.height);
-  program.set("clipFromWorld", clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera));
-  program.set("lightViewFromWorld", light.lightFromWorld);
-  program.set("lightClipFromView", light.clipFromLight);
-  program.set("lightPerspective", light.perspective ? 1 : 0);
-  program.set("lightNear", light.nearDistance);
-  program.set("lightFar", light.farDistance);
-  program.set("lightDirection", glm::normalize(scene.light.direction));
-  program.set("lightPosition", scene.light.position);
-  program.set("spotAxis", glm::normalize(scene.light.target - scene.light.position));
-  program.set("spotCosine", std::cos(glm::radians(0.5f * scene.light.spotAngleDegrees)));
-  program.set("normalOffset", settings.normalOffsetTexels * light.texelWorldSize(s.shadowMapSize));
-  program.set("ambient", settings.ambient);
-  program.set("filterMode", int(settings.filter));
-  program.set("channelLayers", s.layout.layers);
-  program.set("shadowMapSize", s.shadowMapSize);
-  program.set("satMinRadius", settings.blur.radius);
-  program.set("blurRadius", settings.blur.radius);
-  program.set("zmaxLevels", s.zmaxLevels);
-  program.set("channelLevels", s.channelLevels);
-  program.set("anisotropy", settings.anisotropy);
-  setChannelSampling(s);
-  glBindTextureUnit(0, s.channels.id());
-  if (zmax) glBindTextureUnit(1, s.zmax.id());
-  if (summedArea) {
-    s.satStats->bindStorage(2);
-    s.satSums->bindStorage(3);
-  }
-  program.use();
-  glBindFramebuffer(GL_FRAMEBUFFER, s.frameFramebuffer);
-  glViewport(0, 0, settings.width, settings.height);
-  glEnable(GL_DEPTH_TEST);
-  glDisable(GL_CULL_FACE);
-  const float sky[4] = {0.62f, 0.72f, 0.86f, 1.0f};
-  const float lit[4] = {1.0f, 0.0f, 0.0f, 0.0f};
-  const float nothing[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
-  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 0, sky);
-  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 1, lit);
-  glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 2, nothing);
-  glClearNamedFramebufferfi(s.frameFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  s.cameraTimer.begin();
-  gpuScene.draw([&](const Mesh& mesh) { program.set("albedo", mesh.albedo); });
-  s.cameraTimer.end();
-  glBindFramebuffer(GL_FRAMEBUFFER, 0);
-  checkErrors("camera pass");
-}
-
 MemoryReport memoryReport(const Renderer::State& s) {
   const RenderSettings& settings = s.settings;
   const uint64_t texels = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize);
   MemoryReport m;
   m.lightPass = texels * (4 + 4) * uint64_t(s.msaaSamples);
-  m.technique = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, s.channelLevels > 1);
+  m.technique =
+      channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, s.channelLevels > 1);
   if (s.satSums) m.summedArea = s.satSums->size() + s.satStats->size() + s.satRows->size();
-  if (s.scratch.id() != 0) m.scratch = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, false);
+  if (s.scratch.id() != 0)
+    m.scratch = channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, false);
   if (s.zmax.id() != 0) {
     const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
     m.auxiliary += channelTextureBytes(r32f, s.shadowMapSize, s.shadowMapSize, true);
@@ -300,7 +147,9 @@ const Program& Renderer::State::compute(const std::string& path,
   return found->second;
 }
 
-void Renderer::State::bindParameters() const { paramsBlock->bindUniform(0); }
+void Renderer::State::bindParameters() const {
+  paramsBlock->bindUniform(0);
+}
 
 void Renderer::State::uploadParameters() {
   glNamedBufferSubData(paramsBlock->id(), 0, sizeof(TechniqueParams), &params);
@@ -320,7 +169,9 @@ Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<Sta
 
 Renderer::~Renderer() = default;
 
-std::string Renderer::deviceDescription() const { return state_->device; }
+std::string Renderer::deviceDescription() const {
+  return state_->device;
+}
 
 void Renderer::validate(const RenderSettings& settings) const {
   const State& s = *state_;
@@ -329,7 +180,8 @@ void Renderer::validate(const RenderSettings& settings) const {
   checkRange("frame height", settings.height, 1, s.maxTextureSize);
   if (settings.msaaSamples != 1 && settings.msaaSamples != 2 && settings.msaaSamples != 4 &&
       settings.msaaSamples != 8) {
-    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": valid values are 1 (off), 2, 4, 8");
+    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) +
+                ": valid values are 1 (off), 2, 4, 8");
   }
   if (settings.msaaSamples > s.maxSamples) {
     throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": this GL (" + s.device +
@@ -345,9 +197,10 @@ void Renderer::validate(const RenderSettings& settings) const {
     const TechniqueParams& p = settings.params;
     for (int c = 0; c < channelCount(settings.technique, p); ++c) {
       if (channelReduction(settings.technique, p, c) != ChannelReduction::Mean) {
-        throw Error("the summed-area filter averages channels, but " +
-                    std::string(techniqueId(settings.technique)) +
-                    " has min/max or log-space channels; use point, bilinear, trilinear or anisotropic");
+        throw Error(
+            "the summed-area filter averages channels, but " +
+            std::string(techniqueId(settings.technique)) +
+            " has min/max or log-space channels; use point, bilinear, trilinear or anisotropic");
       }
     }
   }
@@ -379,10 +232,12 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   renderLightPass(s, gpuScene, light);
   s.auxiliaryTimer.begin();
-  if (settings.technique == Technique::Esm && s.params.esm.classifier == shaders::kEsmClassifyZmax) {
+  if (settings.technique == Technique::Esm &&
+      s.params.esm.classifier == shaders::kEsmClassifyZmax) {
     buildZmaxPyramid(s, s.lightDepth.id(), s.msaaSamples > 1);
   }
-  if (settings.technique == Technique::Lvsm && s.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
+  if (settings.technique == Technique::Lvsm &&
+      s.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
     placeLayersByLloyd(s, s.lightDepth.id(), s.msaaSamples > 1);
     s.uploadParameters();
   }
@@ -392,13 +247,19 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   renderCameraPass(s, scene, gpuScene, light);
 
   RenderResult result;
-  result.color = readTexture(s.frameColor.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
-  result.visibility = readTexture(s.frameVisibility.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
-  result.diagnostic = readTexture(s.frameDiagnostic.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
+  result.color =
+      readTexture(s.frameColor.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
+  result.visibility =
+      readTexture(s.frameVisibility.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
+  result.diagnostic =
+      readTexture(s.frameDiagnostic.id(), 0, settings.width, settings.height, 1, 1, GL_RED, true);
   result.params = s.params;
-  result.lookup = readTexture(s.frameLookup.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
-  result.receiverPlane = readTexture(s.frameReceiverPlane.id(), 0, settings.width, settings.height, 1, 2, GL_RG, true);
-  if (settings.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone) {
+  result.lookup =
+      readTexture(s.frameLookup.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
+  result.receiverPlane =
+      readTexture(s.frameReceiverPlane.id(), 0, settings.width, settings.height, 1, 2, GL_RG, true);
+  if (settings.technique == Technique::Esm &&
+      s.params.esm.classifier != shaders::kEsmClassifyNone) {
     size_t drawn = 0, failed = 0;
     for (float v : result.diagnostic.data()) {
       drawn += v >= 0.0f;
@@ -466,12 +327,18 @@ RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings&
   renderLightPass(s, gpuScene, light);
   renderCameraPass(s, scene, gpuScene, light, true);
   RenderResult result;
-  result.color = downsample(readTexture(s.frameColor.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true), supersample);
-  result.visibility = downsample(readTexture(s.frameVisibility.id(), 0, big.width, big.height, 1, 1, GL_RED, true), supersample);
-  result.diagnostic = downsample(readTexture(s.frameDiagnostic.id(), 0, big.width, big.height, 1, 1, GL_RED, true), supersample);
+  result.color = downsample(
+      readTexture(s.frameColor.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true), supersample);
+  result.visibility =
+      downsample(readTexture(s.frameVisibility.id(), 0, big.width, big.height, 1, 1, GL_RED, true),
+                 supersample);
+  result.diagnostic =
+      downsample(readTexture(s.frameDiagnostic.id(), 0, big.width, big.height, 1, 1, GL_RED, true),
+                 supersample);
   if (supersample == 1) {
     result.lookup = readTexture(s.frameLookup.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
-    result.receiverPlane = readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
+    result.receiverPlane =
+        readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
   }
   result.params = s.params;
   result.wallTimes.light = s.lightTimer.wallMilliseconds();
@@ -511,7 +378,9 @@ Image Renderer::readDepthMap() const {
   return readTexture(s.lightDepth.id(), 0, s.shadowMapSize, s.shadowMapSize, 1, 1, GL_RED, false);
 }
 
-int Renderer::channelMipLevels() const { return state_->channelLevels; }
+int Renderer::channelMipLevels() const {
+  return state_->channelLevels;
+}
 
 uint64_t Renderer::measuredChannelTextureBytes() const {
   const State& s = *state_;
@@ -559,7 +428,8 @@ Image Renderer::readZmaxLevel(int level) const {
 }
 
 std::vector<SplitSample> Renderer::readSplitSamples() const {
-  if (!state_->splitSamples) throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
+  if (!state_->splitSamples)
+    throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
   return readSplitSamplesBuffer(*state_);
 }
 
@@ -579,9 +449,11 @@ double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) 
     glGetNamedBufferSubData(s.satSums->id(), GLintptr(index * 8), 8, &v);
     return v;
   };
-  const uint64_t wrapped = prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
+  const uint64_t wrapped =
+      prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
   const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
-  return double(int64_t(wrapped)) * stats[size_t(channel)].step / area + stats[size_t(channel)].centre;
+  return double(int64_t(wrapped)) * stats[size_t(channel)].step / area +
+         stats[size_t(channel)].centre;
 }
 
 }  // namespace penumbra::gl

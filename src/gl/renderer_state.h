@@ -14,6 +14,8 @@
 
 namespace penumbra::gl {
 
+class GpuScene;
+
 struct Renderer::State {
   ShaderLibrary library;
   std::map<std::string, Program> programs;
@@ -78,6 +80,13 @@ void allocateChannels(Renderer::State& state, const RenderSettings& settings);
 void encodeChannels(Renderer::State& state, unsigned depthTexture, bool multisampled);
 void prefilterChannels(Renderer::State& state);
 bool usesMips(FilterMode mode);
+
+// frame_passes.cpp: render targets, the light pass, the camera pass (or the filtered reference).
+void allocateLightPass(Renderer::State& state);
+void allocateFrame(Renderer::State& state, int width, int height);
+void renderLightPass(Renderer::State& state, const GpuScene& gpuScene, const LightView& light);
+void renderCameraPass(Renderer::State& state, const Scene& scene, const GpuScene& gpuScene,
+                      const LightView& light, bool reference = false);
 
 // auxiliary_passes.cpp.
 void buildZmaxPyramid(Renderer::State& state, unsigned depthTexture, bool multisampled);

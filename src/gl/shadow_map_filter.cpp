@@ -12,7 +12,9 @@ namespace {
 
 constexpr unsigned kGroup = 8;
 
-unsigned groups(int n, unsigned size) { return (unsigned(n) + size - 1) / size; }
+unsigned groups(int n, unsigned size) {
+  return (unsigned(n) + size - 1) / size;
+}
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
   return {{"CHANNEL_FORMAT", imageFormatQualifier(layout)}};
@@ -26,7 +28,8 @@ void blurAxis(Renderer::State& s, const Program& blur, const Texture& from, cons
               glm::ivec2 direction) {
   glBindTextureUnit(0, from.id());
   bindChannelImage(to, s.layout, 0);
-  glProgramUniform2i(blur.id(), glGetUniformLocation(blur.id(), "direction"), direction.x, direction.y);
+  glProgramUniform2i(blur.id(), glGetUniformLocation(blur.id(), "direction"), direction.x,
+                     direction.y);
   blur.dispatch(groups(s.shadowMapSize, kGroup), groups(s.shadowMapSize, kGroup));
 }
 
@@ -39,8 +42,10 @@ void buildMipChain(Renderer::State& s) {
     const int source = std::max(1, s.shadowMapSize >> level);
     const int target = std::max(1, s.shadowMapSize >> (level + 1));
     reduce.set("sourceLevel", level);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source, source);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target, target);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source,
+                       source);
+    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
+                       target);
     bindChannelImage(s.channels, s.layout, level + 1);
     reduce.dispatch(groups(target, kGroup), groups(target, kGroup));
   }
@@ -82,13 +87,17 @@ bool usesMips(FilterMode mode) {
 
 void allocateChannels(Renderer::State& s, const RenderSettings& settings) {
   // PCF and the hard test read raw depth: no prefilter, no mips, no scratch.
-  const bool prefiltered = !filtersAfterTest(settings.technique) && settings.technique != Technique::Hard;
+  const bool prefiltered =
+      !filtersAfterTest(settings.technique) && settings.technique != Technique::Hard;
   s.layout = channelLayout(settings.technique, settings.params);
-  s.channelLevels = prefiltered && usesMips(settings.filter) ? mipLevelCount(s.shadowMapSize, s.shadowMapSize) : 1;
+  s.channelLevels = prefiltered && usesMips(settings.filter)
+                        ? mipLevelCount(s.shadowMapSize, s.shadowMapSize)
+                        : 1;
   s.channels = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.channels.id(), s.channelLevels, internalFormat(s.layout), s.shadowMapSize,
                      s.shadowMapSize, s.layout.layers);
-  const bool blurred = prefiltered && settings.blur.radius > 0 && settings.filter != FilterMode::SummedArea;
+  const bool blurred =
+      prefiltered && settings.blur.radius > 0 && settings.filter != FilterMode::SummedArea;
   s.scratch = Texture();
   if (blurred) {
     s.scratch = Texture(GL_TEXTURE_2D_ARRAY);
@@ -126,8 +135,8 @@ void prefilterChannels(Renderer::State& s) {
     const Program& blur = s.compute("passes/blur.comp", formatDefines(s.layout));
     s.bindParameters();
     const std::vector<float> weights = blurWeights(settings.blur);
-    glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"), GLsizei(weights.size()),
-                        weights.data());
+    glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
+                        GLsizei(weights.size()), weights.data());
     blur.set("radius", settings.blur.radius);
     blur.set("layerCount", s.layout.layers);
     glProgramUniform2i(blur.id(), glGetUniformLocation(blur.id(), "size"), s.shadowMapSize,

@@ -40,12 +40,17 @@ void addTree(Scene& s, glm::vec3 base, float height, float crown) {
 
 // ESM Fig. 1/8, CSM Fig. 9: a fence of thin slats with objects and a tree behind it.
 Scene backyard() {
-  Scene s{"backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{
+      "backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed",
+      {},         {},
+      {},         {0.03f, 0.0f, 0.0f},
+      {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 12.0f);
   s.meshes.push_back(std::move(ground));
   Mesh fence = makeMesh(kWoodAlbedo);
-  for (int i = -20; i <= 20; ++i) addBox(fence, glm::vec3(0.25f * float(i), 0.75f, 0.0f), glm::vec3(0.05f, 0.75f, 0.02f));
+  for (int i = -20; i <= 20; ++i)
+    addBox(fence, glm::vec3(0.25f * float(i), 0.75f, 0.0f), glm::vec3(0.05f, 0.75f, 0.02f));
   addBox(fence, glm::vec3(0.0f, 1.25f, 0.05f), glm::vec3(5.2f, 0.06f, 0.03f));
   addBox(fence, glm::vec3(0.0f, 0.35f, 0.05f), glm::vec3(5.2f, 0.06f, 0.03f));
   s.meshes.push_back(std::move(fence));
@@ -66,19 +71,24 @@ Scene backyard() {
 
 // Thesis Fig. 3.4/3.5: canopy (A) over a bench (B) over the ground (C), a large A-B to B-C ratio.
 Scene bench() {
-  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case",
+          {},      {},
+          {},      {0.03f, 0.0f, 0.0f},
+          {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 6.0f);
   s.meshes.push_back(std::move(ground));
   Mesh seat = makeMesh(kWoodAlbedo);
   addBox(seat, glm::vec3(0.0f, 0.45f, 0.0f), glm::vec3(1.5f, 0.04f, 0.35f));
   for (float x : {-1.3f, 1.3f}) {
-    for (float z : {-0.28f, 0.28f}) addBox(seat, glm::vec3(x, 0.22f, z), glm::vec3(0.04f, 0.22f, 0.04f));
+    for (float z : {-0.28f, 0.28f})
+      addBox(seat, glm::vec3(x, 0.22f, z), glm::vec3(0.04f, 0.22f, 0.04f));
   }
   s.meshes.push_back(std::move(seat));
   Mesh canopy = makeMesh(kLeafAlbedo);
   // Slatted canopy high above: its penumbrae fall across the bench and bleed onto the ground.
-  for (int i = -6; i <= 6; ++i) addBox(canopy, glm::vec3(0.35f * float(i), 4.5f, 0.0f), glm::vec3(0.08f, 0.05f, 2.5f));
+  for (int i = -6; i <= 6; ++i)
+    addBox(canopy, glm::vec3(0.35f * float(i), 4.5f, 0.0f), glm::vec3(0.08f, 0.05f, 2.5f));
   s.meshes.push_back(std::move(canopy));
   s.camera = {glm::vec3(0.0f, 2.8f, 4.5f), glm::vec3(0.0f, 0.3f, 0.0f), 45.0f};
   s.light = directional(glm::vec3(0.08f, -1.0f, 0.05f));
@@ -88,7 +98,10 @@ Scene bench() {
 
 // CSM Fig. 6, Gumbau Fig. 3: a slanted plane and boxes touching the ground.
 Scene contact() {
-  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows",
+          {},        {},
+          {},        {0.03f, 0.0f, 0.0f},
+          {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 5.0f);
   s.meshes.push_back(std::move(ground));
@@ -123,14 +136,17 @@ Scene spheres() {
   addSphere(balls, glm::vec3(1.1f, 0.25f, -0.5f), 0.25f, 32);
   s.meshes.push_back(std::move(balls));
   s.camera = {glm::vec3(0.5f, 2.5f, 4.0f), glm::vec3(0.0f, 0.5f, 0.0f), 45.0f};
-  s.light = Light{LightKind::Spot, glm::vec3(0.0f), glm::vec3(2.5f, 5.0f, 1.5f), glm::vec3(0.0f), 70.0f};
+  s.light =
+      Light{LightKind::Spot, glm::vec3(0.0f), glm::vec3(2.5f, 5.0f, 1.5f), glm::vec3(0.0f), 70.0f};
   s.troubleSpots = {{"sphere contacts", {0.15f, 0.5f, 0.5f, 0.85f}}};
   return s;
 }
 
 // Thesis Fig. 4.3/4.8: many overlapping shadows at very different depths.
 Scene overlap() {
-  Scene s{"overlap", "many overlapping shadows at different depths", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{
+      "overlap", "many overlapping shadows at different depths", {}, {}, {}, {0.03f, 0.0f, 0.0f},
+      {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 6.0f);
   s.meshes.push_back(std::move(ground));
@@ -150,14 +166,21 @@ Scene overlap() {
 
 // CSM Fig. 10, thesis Fig. 2.2: fine receding geometry seen from far away.
 Scene minification() {
-  Scene s{"minification", "fine receding rows of posts seen from far: minification aliasing", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{"minification",
+          "fine receding rows of posts seen from far: minification aliasing",
+          {},
+          {},
+          {},
+          {0.03f, 0.0f, 0.0f},
+          {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f, 0.0f, -20.0f), 30.0f);
   s.meshes.push_back(std::move(ground));
   Mesh posts = makeMesh(kWoodAlbedo);
   for (int row = 0; row < 40; ++row) {
     for (int i = -12; i <= 12; ++i) {
-      addBox(posts, glm::vec3(0.3f * float(i), 0.4f, -1.2f * float(row)), glm::vec3(0.03f, 0.4f, 0.03f));
+      addBox(posts, glm::vec3(0.3f * float(i), 0.4f, -1.2f * float(row)),
+             glm::vec3(0.03f, 0.4f, 0.03f));
     }
   }
   s.meshes.push_back(std::move(posts));
@@ -170,7 +193,10 @@ Scene minification() {
 
 // Thesis §3.2: one planar occluder parallel to a planar receiver, both facing the light.
 Scene planar() {
-  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
+  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)",
+          {},       {},
+          {},       {0.03f, 0.0f, 0.0f},
+          {}};
   Mesh ground = makeMesh(kGroundAlbedo);
   addGround(ground, glm::vec3(0.0f), 4.0f);
   s.meshes.push_back(std::move(ground));
@@ -196,12 +222,14 @@ constexpr std::array<SceneEntry, 7> kScenes{{{"backyard", backyard},
                                              {"minification", minification},
                                              {"planar", planar}}};
 
-constexpr std::array<std::string_view, 7> kSceneNames{"backyard", "bench",        "contact", "spheres",
-                                                      "overlap",  "minification", "planar"};
+constexpr std::array<std::string_view, 7> kSceneNames{
+    "backyard", "bench", "contact", "spheres", "overlap", "minification", "planar"};
 
 }  // namespace
 
-std::span<const std::string_view> builtinSceneNames() { return kSceneNames; }
+std::span<const std::string_view> builtinSceneNames() {
+  return kSceneNames;
+}
 
 std::string builtinSceneNameList() {
   std::string list;

@@ -9,7 +9,8 @@
 namespace penumbra {
 
 Bounds Scene::bounds() const {
-  Bounds b{glm::vec3(std::numeric_limits<float>::max()), glm::vec3(std::numeric_limits<float>::lowest())};
+  Bounds b{glm::vec3(std::numeric_limits<float>::max()),
+           glm::vec3(std::numeric_limits<float>::lowest())};
   for (const Mesh& m : meshes) {
     for (const Vertex& v : m.vertices) {
       b.min = glm::min(b.min, v.position);
@@ -57,7 +58,8 @@ LightView fitLightView(const Scene& scene) {
     view.lightFromWorld = glm::lookAt(eye, centre, upFor(dir));
     view.nearDistance = radius;
     view.farDistance = 3.0f * radius;
-    view.clipFromLight = glm::ortho(-radius, radius, -radius, radius, view.nearDistance, view.farDistance);
+    view.clipFromLight =
+        glm::ortho(-radius, radius, -radius, radius, view.nearDistance, view.farDistance);
     view.perspective = false;
   } else {
     const glm::vec3 eye = scene.light.position;
@@ -79,11 +81,13 @@ float LightView::texelWorldSize(int shadowMapSize) const {
 }
 
 glm::mat4 viewFromWorld(const Camera& camera) {
-  return glm::lookAt(camera.position, camera.target, upFor(glm::normalize(camera.target - camera.position)));
+  return glm::lookAt(camera.position, camera.target,
+                     upFor(glm::normalize(camera.target - camera.position)));
 }
 
 glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
-  const float far = glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
+  const float far =
+      glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
   return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, 0.05f, far);
 }
 

@@ -64,7 +64,8 @@ TEST(LayerPlacement, SplitsStayIncreasingApartAndInsideTheUnitInterval) {
 
 TEST(LayerPlacement, IsDeterministic) {
   std::vector<SplitSample> samples;
-  for (int i = 0; i < 200; ++i) samples.push_back({std::fmod(0.37f * float(i), 1.0f), float(i % 7)});
+  for (int i = 0; i < 200; ++i)
+    samples.push_back({std::fmod(0.37f * float(i), 1.0f), float(i % 7)});
   const shaders::LayerSplits a = lloydRelaxation(samples, 6, 16, 1e-3f);
   const shaders::LayerSplits b = lloydRelaxation(samples, 6, 16, 1e-3f);
   for (int i = 1; i < 6; ++i) EXPECT_EQ(shaders::layerSplit(a, i), shaders::layerSplit(b, i));

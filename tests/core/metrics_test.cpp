@@ -9,7 +9,9 @@
 namespace penumbra {
 namespace {
 
-Image filled(int w, int h, float v) { return Image(w, h, 1, v); }
+Image filled(int w, int h, float v) {
+  return Image(w, h, 1, v);
+}
 
 TEST(Metrics, KnownErrorsOfAConstantOffset) {
   const Image reference = filled(10, 10, 0.5f);
@@ -63,11 +65,13 @@ TEST(Metrics, FlickerIsTheChangeBeyondTheReferencesOwn) {
   const std::vector<Image> opposite{filled(2, 2, 0.5f), filled(2, 2, 0.4f), filled(2, 2, 0.5f)};
   EXPECT_NEAR(temporalFlicker(opposite, reference, masks), 0.2, 1e-6);
   EXPECT_THROW(temporalFlicker(std::span(steady).first(1), std::span(reference).first(1),
-                               std::span(masks).first(1)), Error);
+                               std::span(masks).first(1)),
+               Error);
 }
 
 TEST(Metrics, MismatchedImagesAreRejected) {
-  EXPECT_THROW(measureVisibilityErrors(filled(2, 2, 0.0f), filled(3, 2, 0.0f), filled(2, 2, 1.0f)), Error);
+  EXPECT_THROW(measureVisibilityErrors(filled(2, 2, 0.0f), filled(3, 2, 0.0f), filled(2, 2, 1.0f)),
+               Error);
 }
 
 TEST(Metrics, CoverageComesFromTheDiagnosticImage) {

@@ -44,7 +44,8 @@ TEST_F(ComparisonTest, VsmMatchesTheFilteredReferenceOnThePlanarScene) {
   const compare::ComparisonResult r =
       compare::runComparison(request("planar", {Technique::Vsm, Technique::Pcf}), *renderer);
   EXPECT_LT(find(r, Technique::Vsm).filtered.rmse, 1e-3);
-  EXPECT_LT(find(r, Technique::Pcf).filtered.rmse, 1e-5) << "PCF of the same kernel is the reference";
+  EXPECT_LT(find(r, Technique::Pcf).filtered.rmse, 1e-5)
+      << "PCF of the same kernel is the reference";
   EXPECT_GT(find(r, Technique::Vsm).filtered.pixels, 10000);
 }
 
@@ -75,7 +76,8 @@ TEST_F(ComparisonTest, ImpossiblePairsFailBeforeAnythingRenders) {
     compare::validateRequest(q, *renderer);
     FAIL() << "power-CDF with a summed-area table must be refused";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("cannot run with technique 'powercdf'"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("cannot run with technique 'powercdf'"), std::string::npos)
+        << e.what();
   }
   q = request("garden", {Technique::Vsm});
   EXPECT_THROW(compare::validateRequest(q, *renderer), Error);

@@ -131,7 +131,8 @@ TEST_F(PaperTechniques, EsmLogSpaceFilteringAgreesWithLinearSpaceThroughHardware
     EXPECT_LT(difference, 2e-3) << gl::filterModeName(filter);
   }
   // Far beyond fp32's exp range, log space still renders finite shadows.
-  const gl::RenderResult huge = render("backyard", settings(Technique::Esm, {"filtering=log", "c=2000"}));
+  const gl::RenderResult huge =
+      render("backyard", settings(Technique::Esm, {"filtering=log", "c=2000"}));
   for (float v : huge.visibility.data()) ASSERT_TRUE(v >= 0.0f && v <= 1.0f);
 }
 
@@ -146,19 +147,22 @@ TEST_F(PaperTechniques, LloydSamplesAndSplitsMatchTheCpuReference) {
     ASSERT_NEAR(gpu[i].depth, cpu[i].depth, 1e-5f) << i;
     ASSERT_NEAR(gpu[i].weight, cpu[i].weight, 1e-6f) << i;
   }
-  const shaders::LayerSplits expected =
-      lloydRelaxation(cpu, 4, s.params.lvsm.lloydIterations, 2.0f * s.params.lvsm.overlap,
-                      s.params.lvsm.overlap);
+  const shaders::LayerSplits expected = lloydRelaxation(
+      cpu, 4, s.params.lvsm.lloydIterations, 2.0f * s.params.lvsm.overlap, s.params.lvsm.overlap);
   for (int i = 1; i < 4; ++i) {
-    EXPECT_NEAR(shaders::layerSplit(r.params.lvsm.splits, i), shaders::layerSplit(expected, i), 1e-4f);
+    EXPECT_NEAR(shaders::layerSplit(r.params.lvsm.splits, i), shaders::layerSplit(expected, i),
+                1e-4f);
   }
 }
 
 TEST_F(PaperTechniques, LvsmWithLloydSplitsRemovesBenchBleedingWithFewerLayersThanUniform) {
   const Image pcf = render("bench", benchKernel(settings(Technique::Pcf))).visibility;
-  const double vsm = bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
+  const double vsm =
+      bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
   auto lvsm = [&](const char* placement, const char* layers) {
-    return bleeding(pcf, render("bench", benchKernel(settings(Technique::Lvsm, {layers, placement}))).visibility);
+    return bleeding(
+        pcf,
+        render("bench", benchKernel(settings(Technique::Lvsm, {layers, placement}))).visibility);
   };
   const double lloyd2 = lvsm("placement=lloyd", "layers=2");
   RecordProperty("vsm", std::to_string(vsm));
@@ -179,7 +183,8 @@ TEST_F(PaperTechniques, LvsmWithLloydSplitsRemovesBenchBleedingWithFewerLayersTh
 }
 
 TEST_F(PaperTechniques, LvsmLayerImageShowsEveryLayerUsed) {
-  const gl::RenderResult r = render("overlap", settings(Technique::Lvsm, {"layers=4", "placement=uniform"}));
+  const gl::RenderResult r =
+      render("overlap", settings(Technique::Lvsm, {"layers=4", "placement=uniform"}));
   std::vector<int> seen(4, 0);
   for (float v : r.diagnostic.data()) {
     if (v >= 0.0f) seen[size_t(std::lround(v))]++;
@@ -235,15 +240,18 @@ TEST_F(PaperTechniques, CsmMemoryIsHalfMRgba8Textures) {
 
 TEST_F(PaperTechniques, PowerCdfDoesNotBleedOnTheBenchWhereVsmDoes) {
   const Image pcf = render("bench", benchKernel(settings(Technique::Pcf))).visibility;
-  const double vsm = bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
-  const double power = bleeding(pcf, render("bench", benchKernel(settings(Technique::PowerCdf))).visibility);
+  const double vsm =
+      bleeding(pcf, render("bench", benchKernel(settings(Technique::Vsm))).visibility);
+  const double power =
+      bleeding(pcf, render("bench", benchKernel(settings(Technique::PowerCdf))).visibility);
   RecordProperty("powercdf", std::to_string(power));
   EXPECT_LT(power, 0.2 * vsm);
 }
 
 TEST_F(PaperTechniques, PowerCdfSixteenBitStaysCloseToThirtyTwo) {
   const Image p32 = render("spheres", settings(Technique::PowerCdf)).visibility;
-  const Image p16 = render("spheres", settings(Technique::PowerCdf, {"storage=float16"})).visibility;
+  const Image p16 =
+      render("spheres", settings(Technique::PowerCdf, {"storage=float16"})).visibility;
   const double mean = meanAbsoluteDifference(p16, p32);
   RecordProperty("powercdf_16_vs_32_mean_abs", std::to_string(mean));
   EXPECT_LT(mean, 0.01);

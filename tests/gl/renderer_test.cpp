@@ -11,8 +11,8 @@
 #include "penumbra/channel_layout.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
-#include "penumbra/params.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
 
@@ -63,11 +63,13 @@ std::vector<Image> referenceChain(const Image& depth, const gl::RenderSettings& 
     }
   }
   std::vector<ChannelReduction> reductions;
-  for (int c = 0; c < channels; ++c) reductions.push_back(channelReduction(s.technique, s.params, c));
+  for (int c = 0; c < channels; ++c)
+    reductions.push_back(channelReduction(s.technique, s.params, c));
   const float c = s.params.esm.exponent;
   Image level = quantize(separableFilter(quantize(encoded), s.blur, reductions, c));
   std::vector<Image> chain{level};
-  while (chain.back().width() > 1) chain.push_back(quantize(reduceMipLevel(chain.back(), reductions, c)));
+  while (chain.back().width() > 1)
+    chain.push_back(quantize(reduceMipLevel(chain.back(), reductions, c)));
   return chain;
 }
 
@@ -114,7 +116,8 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
         const float expected = cpu.data()[i];
         if (std::abs(gpu.data()[i] - expected) > tolerance(storage, expected) && ++bad <= 3) {
           ADD_FAILURE() << techniqueId(k.technique) << (k.param ? k.param : "") << " level "
-                        << level << " value " << i << ": gpu " << gpu.data()[i] << " cpu " << expected;
+                        << level << " value " << i << ": gpu " << gpu.data()[i] << " cpu "
+                        << expected;
         }
       }
       EXPECT_EQ(bad, 0);
@@ -129,8 +132,9 @@ TEST_F(RendererTest, SummedAreaTableMatchesTheCpuReference) {
   renderer->filterDepthMap(depth, s);
   const Image encoded = renderer->readChannels(0);
   const SummedAreaTable cpu(encoded);
-  for (auto [x0, y0, x1, y1] : {std::array{0, 0, 0, 0}, std::array{3, 5, 9, 40}, std::array{0, 0, 127, 127},
-                                std::array{60, 61, 127, 100}, std::array{17, 17, 17, 17}}) {
+  for (auto [x0, y0, x1, y1] :
+       {std::array{0, 0, 0, 0}, std::array{3, 5, 9, 40}, std::array{0, 0, 127, 127},
+        std::array{60, 61, 127, 100}, std::array{17, 17, 17, 17}}) {
     for (int c = 0; c < 2; ++c) {
       EXPECT_NEAR(renderer->summedAreaBoxMean(x0, y0, x1, y1, c), cpu.boxMean(x0, y0, x1, y1, c),
                   2.0 * cpu.errorBound(c) + 1e-9)
@@ -217,13 +221,15 @@ TEST_F(RendererTest, BenchVsmBleedsWherePcfIsDarkAndEvsm4BleedsFarLess) {
 
 TEST_F(RendererTest, MemoryEqualsTheFormulaAndTheGlObjects) {
   const Scene scene = makeBuiltinScene("planar");
-  for (Technique t : {Technique::Esm, Technique::Vsm, Technique::Evsm4, Technique::Msm, Technique::Csm}) {
+  for (Technique t :
+       {Technique::Esm, Technique::Vsm, Technique::Evsm4, Technique::Msm, Technique::Csm}) {
     for (gl::FilterMode filter : {gl::FilterMode::Bilinear, gl::FilterMode::Trilinear}) {
       gl::RenderSettings s = small(t);
       s.filter = filter;
       const gl::RenderResult r = renderer->render(scene, s);
       const ChannelLayout layout = channelLayout(t, s.params);
-      EXPECT_EQ(r.memory.technique, channelTextureBytes(layout, 256, 256, filter == gl::FilterMode::Trilinear));
+      EXPECT_EQ(r.memory.technique,
+                channelTextureBytes(layout, 256, 256, filter == gl::FilterMode::Trilinear));
       EXPECT_EQ(r.memory.technique, renderer->measuredChannelTextureBytes()) << techniqueId(t);
     }
   }
@@ -300,7 +306,8 @@ float bruteForceReference(const Image& depth, float u, float v, float receiver, 
   for (int j = 0; j < 2; ++j) {
     for (int i = 0; i < 2; ++i) {
       const double w = (i == 0 ? 1 - fx : fx) * (j == 0 ? 1 - fy : fy);
-      const int tx = std::clamp(int(bx) + i, 0, size - 1), ty = std::clamp(int(by) + j, 0, size - 1);
+      const int tx = std::clamp(int(bx) + i, 0, size - 1),
+                ty = std::clamp(int(by) + j, 0, size - 1);
       for (int b = -r; b <= r; ++b) {
         for (int a = -r; a <= r; ++a) {
           const float z = depth.clamped(tx + a, ty + b);
@@ -334,7 +341,8 @@ TEST_F(ReferenceTest, FilteredReferenceEqualsABruteForceCpuEvaluation) {
       ++checked;
       partial += cpu > 0.01f && cpu < 0.99f;
       if (std::abs(cpu - r.visibility.at(x, y)) > 1e-4f && ++bad <= 5) {
-        ADD_FAILURE() << "pixel " << x << "," << y << ": gpu " << r.visibility.at(x, y) << " cpu " << cpu;
+        ADD_FAILURE() << "pixel " << x << "," << y << ": gpu " << r.visibility.at(x, y) << " cpu "
+                      << cpu;
       }
     }
   }

@@ -54,9 +54,9 @@ void runCompare(const CompareOptions& o) {
   {
     ProgressBar bar(o.quiet);
     try {
-      result = compare::runComparison(request, renderer, [&](int done, int total, const std::string& step) {
-        bar.update(done, total, step);
-      });
+      result = compare::runComparison(
+          request, renderer,
+          [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
     } catch (...) {
       std::error_code ec;
       std::filesystem::remove_all(staging, ec);
@@ -80,9 +80,12 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("-s,--scene", o->scene, "built-in scene")->capture_default_str();
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
-  cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")->capture_default_str();
-  cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")->capture_default_str();
-  cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")->capture_default_str();
+  cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")
+      ->capture_default_str();
+  cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")
+      ->capture_default_str();
+  cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
+      ->capture_default_str();
   cmd->add_option("-o,--out", o->outDir, "report folder (replaced when the new report is complete)")
       ->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");

@@ -26,7 +26,8 @@ void ProgressBar::update(int done, int total, const std::string& step) {
   bar[30] = '\0';
   char etaText[32] = "--:--";
   if (eta >= 0) std::snprintf(etaText, sizeof etaText, "%d:%02d", eta / 60, eta % 60);
-  std::fprintf(stderr, "\r[%s] %3d%%  ETA %s  %-40.40s", bar, int(fraction * 100.0), etaText, step.c_str());
+  std::fprintf(stderr, "\r[%s] %3d%%  ETA %s  %-40.40s", bar, int(fraction * 100.0), etaText,
+               step.c_str());
   std::fflush(stderr);
   drawn_ = true;
 }

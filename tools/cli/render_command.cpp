@@ -60,8 +60,8 @@ void runRender(const RenderCommandOptions& options) {
                                              {"visibility_exr", stem + "_visibility.exr"},
                                              {"visibility_png", stem + "_visibility.png"},
                                              {"record", stem + ".json"}};
-    const bool classified = technique == Technique::Esm &&
-                            result.params.esm.classifier != shaders::kEsmClassifyNone;
+    const bool classified =
+        technique == Technique::Esm && result.params.esm.classifier != shaders::kEsmClassifyNone;
     if (classified) {
       files["failure_mask"] = stem + "_failures.png";
       writeFailureMaskPng(result.diagnostic, result.color, dir / files.at("failure_mask"));

@@ -8,7 +8,8 @@
 namespace penumbra::cli {
 
 void addRenderOptions(CLI::App& app, RenderOptions& o) {
-  app.add_option("--shadow-size", o.shadowSize, "shadow-map texels per side")->capture_default_str();
+  app.add_option("--shadow-size", o.shadowSize, "shadow-map texels per side")
+      ->capture_default_str();
   app.add_option("--msaa", o.msaa, "light-pass samples: 1 (off), 2, 4, 8")->capture_default_str();
   app.add_option("--blur", o.blurTaps,
                  "prefilter width in taps (odd; 1 = none); the summed-area filter's smallest box")
@@ -17,7 +18,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--blur-sigma", o.blurSigma, "Gaussian sigma in texels (default: radius/2)");
   app.add_option("--filter", o.filter, "point, bilinear, trilinear, anisotropic or sat")
       ->capture_default_str();
-  app.add_option("--aniso", o.aniso, "anisotropy for the anisotropic filter, 1..16")->capture_default_str();
+  app.add_option("--aniso", o.aniso, "anisotropy for the anisotropic filter, 1..16")
+      ->capture_default_str();
   app.add_option("--width", o.width, "frame width in pixels")->capture_default_str();
   app.add_option("--height", o.height, "frame height in pixels")->capture_default_str();
   app.add_option("--normal-offset", o.normalOffset, "normal-offset bias in shadow-map texels")

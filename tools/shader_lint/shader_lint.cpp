@@ -72,7 +72,8 @@ std::vector<Defines> variants(const std::string& source) {
   };
   std::vector<std::string> formats;
   for (const char* components : {"r", "rg", "rgba"}) {
-    for (const char* suffix : {"32f", "16f", "16", "8"}) formats.push_back(std::string(components) + suffix);
+    for (const char* suffix : {"32f", "16f", "16", "8"})
+      formats.push_back(std::string(components) + suffix);
   }
   expand("CHANNEL_FORMAT", formats);
   expand("MSAA", {"0", "1"});

@@ -36,9 +36,9 @@ struct TechniqueResult {
   gl::PassTimes gpuTimes;           // frame 0
   gl::PassTimes wallTimes;
   gl::MemoryReport memory;
-  Image color;                      // frame 0, row 0 at the top
+  Image color;  // frame 0, row 0 at the top
   Image visibility;
-  Image error;                      // visibility - filtered reference, 0 where uncovered
+  Image error;  // visibility - filtered reference, 0 where uncovered
 };
 
 struct ComparisonResult {

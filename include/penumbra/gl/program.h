@@ -16,7 +16,8 @@ class Program {
   static Program compute(const ShaderLibrary& library, std::string_view path,
                          std::span<const ShaderDefine> defines = {});
   static Program graphics(const ShaderLibrary& library, std::string_view vertexPath,
-                          std::string_view fragmentPath, std::span<const ShaderDefine> defines = {});
+                          std::string_view fragmentPath,
+                          std::span<const ShaderDefine> defines = {});
   Program(Program&& other) noexcept;
   Program& operator=(Program&& other) noexcept;
   ~Program();

@@ -27,13 +27,13 @@ std::string filterModeNameList();
 struct RenderSettings {
   Technique technique = Technique::Vsm;
   TechniqueParams params = defaultTechniqueParams();
-  int shadowMapSize = 1024;  // texels per side, [16, GL_MAX_TEXTURE_SIZE]
-  int msaaSamples = 1;       // 1 (off), 2, 4 or 8, at most GL_MAX_SAMPLES
+  int shadowMapSize = 1024;                      // texels per side, [16, GL_MAX_TEXTURE_SIZE]
+  int msaaSamples = 1;                           // 1 (off), 2, 4 or 8, at most GL_MAX_SAMPLES
   BlurSpec blur{BlurKernel::Gaussian, 2, 1.0f};  // prefilter; radius 0 = none. With the
                                                  // summed-area filter the radius is the box minimum
   FilterMode filter = FilterMode::Trilinear;
-  int anisotropy = 16;          // [1, 16], used by the anisotropic filter
-  int width = 960;              // frame size in pixels, [1, GL_MAX_TEXTURE_SIZE]
+  int anisotropy = 16;  // [1, 16], used by the anisotropic filter
+  int width = 960;      // frame size in pixels, [1, GL_MAX_TEXTURE_SIZE]
   int height = 540;
   float normalOffsetTexels = 0.0f;  // normal-offset bias in shadow-map texels, [0, 10]
   float ambient = 0.2f;             // ambient share of the shading, [0, 1]
@@ -42,21 +42,23 @@ struct RenderSettings {
 struct PassTimes {  // milliseconds per pass
   double light = 0.0;
   double encode = 0.0;
-  double prefilter = 0.0;   // separable blur
-  double mipsOrSat = 0.0;   // mip chain or summed-area table
-  double auxiliary = 0.0;   // ESM's Z-max pyramid or LVSM's Lloyd split placement
+  double prefilter = 0.0;  // separable blur
+  double mipsOrSat = 0.0;  // mip chain or summed-area table
+  double auxiliary = 0.0;  // ESM's Z-max pyramid or LVSM's Lloyd split placement
   double camera = 0.0;
   double total() const { return light + encode + prefilter + mipsOrSat + auxiliary + camera; }
 };
 
-struct MemoryReport {  // exact bytes allocated
+struct MemoryReport {       // exact bytes allocated
   uint64_t lightPass = 0;   // linear depth target and depth buffer (times MSAA samples)
   uint64_t technique = 0;   // the technique's channel texture, mips included when allocated
   uint64_t summedArea = 0;  // summed-area table sums and statistics
   uint64_t scratch = 0;     // the blur's intermediate texture
   uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
   uint64_t frame = 0;       // camera-pass colour, visibility, diagnostic and depth targets
-  uint64_t total() const { return lightPass + technique + summedArea + scratch + auxiliary + frame; }
+  uint64_t total() const {
+    return lightPass + technique + summedArea + scratch + auxiliary + frame;
+  }
 };
 
 struct RenderResult {

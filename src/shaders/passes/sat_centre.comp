@@ -10,8 +10,12 @@ struct RowStats {
   float lo;
   float hi;
 };
-layout(std430, binding = 1) readonly buffer Rows { RowStats rows[]; };
-layout(std430, binding = 2) writeonly buffer Stats { SatChannelStats stats[]; };
+layout(std430, binding = 1) readonly buffer Rows {
+  RowStats rows[];
+};
+layout(std430, binding = 2) writeonly buffer Stats {
+  SatChannelStats stats[];
+};
 
 uniform ivec2 size;
 

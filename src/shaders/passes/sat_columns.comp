@@ -3,7 +3,9 @@
 #include "../lib/summed_area.glsl"
 
 layout(local_size_x = 64) in;
-layout(std430, binding = 3) buffer Sums { uint64_t sums[]; };
+layout(std430, binding = 3) buffer Sums {
+  uint64_t sums[];
+};
 
 uniform ivec2 size;
 uniform int channelCount;

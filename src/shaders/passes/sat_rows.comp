@@ -4,8 +4,12 @@
 
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2DArray channelMap;
-layout(std430, binding = 2) readonly buffer Stats { SatChannelStats stats[]; };
-layout(std430, binding = 3) writeonly buffer Sums { uint64_t sums[]; };
+layout(std430, binding = 2) readonly buffer Stats {
+  SatChannelStats stats[];
+};
+layout(std430, binding = 3) writeonly buffer Sums {
+  uint64_t sums[];
+};
 
 uniform ivec2 size;
 uniform int channelCount;

@@ -10,7 +10,9 @@ struct RowStats {
   float lo;
   float hi;
 };
-layout(std430, binding = 1) writeonly buffer Rows { RowStats rows[]; };
+layout(std430, binding = 1) writeonly buffer Rows {
+  RowStats rows[];
+};
 
 uniform ivec2 size;
 uniform int channelCount;

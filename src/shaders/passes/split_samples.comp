@@ -7,7 +7,9 @@ layout(binding = 0) uniform sampler2DMS depthMap;
 #else
 layout(binding = 0) uniform sampler2D depthMap;
 #endif
-layout(std430, binding = 1) writeonly buffer Samples { vec2 samples[]; };
+layout(std430, binding = 1) writeonly buffer Samples {
+  vec2 samples[];
+};
 uniform ivec2 size;
 uniform float minWeight;
 

@@ -8,10 +8,10 @@
 PENUMBRA_BEGIN_SHARED
 
 struct PcfParams {
-  int kernel;   // kKernelBox, kKernelGaussian or kKernelBilinear
-  int radius;   // taps each side of the centre: (2r+1)^2 taps, r in [0, 15]
-  float sigma;         // Gaussian standard deviation in texels, [0.25, 16]
-  int receiverPlane;   // 1: each tap's receiver depth follows the receiver plane (bias)
+  int kernel;         // kKernelBox, kKernelGaussian or kKernelBilinear
+  int radius;         // taps each side of the centre: (2r+1)^2 taps, r in [0, 15]
+  float sigma;        // Gaussian standard deviation in texels, [0.25, 16]
+  int receiverPlane;  // 1: each tap's receiver depth follows the receiver plane (bias)
   HardParams bias;
 };
 
