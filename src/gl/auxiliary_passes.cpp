@@ -29,20 +29,8 @@ void buildZmaxPyramid(Renderer::State& s, unsigned depthTexture, bool multisampl
   const Program& reduce = s.compute(
       "passes/mip_reduce.comp",
       {{"CHANNEL_FORMAT", "r32f"}, {"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}});
-  s.bindParameters();
-  reduce.set("layerCount", 1);
-  glBindTextureUnit(0, s.zmax.id());
-  for (int level = 0; level + 1 < s.zmaxLevels; ++level) {
-    const int source = std::max(1, s.shadowMapSize >> level);
-    const int target = std::max(1, s.shadowMapSize >> (level + 1));
-    reduce.set("sourceLevel", level);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source,
-                       source);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
-                       target);
-    glBindImageTexture(0, s.zmax.id(), level + 1, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-    reduce.dispatch(groups(target), groups(target));
-  }
+  const ChannelLayout depthOnly{1, 1, 1, StorageFormat::Float32};
+  reduceMipLevels(s, reduce, s.zmax, depthOnly, s.zmaxLevels);
   checkErrors("building the Z-max pyramid");
 }
 

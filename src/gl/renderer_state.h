@@ -80,6 +80,10 @@ void allocateChannels(Renderer::State& state, const RenderSettings& settings);
 void encodeChannels(Renderer::State& state, unsigned depthTexture, bool multisampled);
 void prefilterChannels(Renderer::State& state);
 bool usesMips(FilterMode mode);
+// Fills levels 1..levels-1 of a 2D-array texture of `layout` from level 0 with `reduce`
+// (passes/mip_reduce.comp in the layout's image format).
+void reduceMipLevels(Renderer::State& state, const Program& reduce, const Texture& texture,
+                     const ChannelLayout& layout, int levels);
 
 // frame_passes.cpp: render targets, the light pass, the camera pass (or the filtered reference).
 void allocateLightPass(Renderer::State& state);

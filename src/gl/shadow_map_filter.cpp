@@ -33,12 +33,14 @@ void blurAxis(Renderer::State& s, const Program& blur, const Texture& from, cons
   blur.dispatch(groups(s.shadowMapSize, kGroup), groups(s.shadowMapSize, kGroup));
 }
 
-void buildMipChain(Renderer::State& s) {
-  const Program& reduce = s.compute("passes/mip_reduce.comp", formatDefines(s.layout));
+}  // namespace
+
+void reduceMipLevels(Renderer::State& s, const Program& reduce, const Texture& texture,
+                     const ChannelLayout& layout, int levels) {
   s.bindParameters();
-  reduce.set("layerCount", s.layout.layers);
-  glBindTextureUnit(0, s.channels.id());
-  for (int level = 0; level + 1 < s.channelLevels; ++level) {
+  reduce.set("layerCount", layout.layers);
+  glBindTextureUnit(0, texture.id());
+  for (int level = 0; level + 1 < levels; ++level) {
     const int source = std::max(1, s.shadowMapSize >> level);
     const int target = std::max(1, s.shadowMapSize >> (level + 1));
     reduce.set("sourceLevel", level);
@@ -46,9 +48,16 @@ void buildMipChain(Renderer::State& s) {
                        source);
     glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
                        target);
-    bindChannelImage(s.channels, s.layout, level + 1);
+    bindChannelImage(texture, layout, level + 1);
     reduce.dispatch(groups(target, kGroup), groups(target, kGroup));
   }
+}
+
+namespace {
+
+void buildMipChain(Renderer::State& s) {
+  reduceMipLevels(s, s.compute("passes/mip_reduce.comp", formatDefines(s.layout)), s.channels,
+                  s.layout, s.channelLevels);
 }
 
 void buildSummedAreaTable(Renderer::State& s) {
