@@ -216,21 +216,30 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "against the filtered reference unless marked <i>GT</i>; see "
        "<code>metrics.json</code>.</p>\n"
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
-    << "<h2>Metrics</h2>\n<p>Click a column to sort.</p>\n<table id=\"metrics\"><thead><tr>"
-    << "<th>technique</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR dB</th><th>leak "
+    << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the filtered reference; click a column to "
+       "sort.</p>\n<table id=\"metrics\"><thead><tr>"
+    << "<th>technique</th><th>rank</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR "
+       "dB</th><th>leak "
        "share</th>"
        "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
        "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory "
        "MiB</th></tr></thead><tbody>\n";
-  for (const TechniqueResult& t : r.techniques) {
+  std::vector<const TechniqueResult*> ranked;
+  for (const TechniqueResult& t : r.techniques) ranked.push_back(&t);
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const TechniqueResult* a, const TechniqueResult* b) {
+                     return a->filtered.rmse < b->filtered.rmse;
+                   });
+  for (size_t rank = 0; rank < ranked.size(); ++rank) {
+    const TechniqueResult& t = *ranked[rank];
     const VisibilityErrors& e = t.filtered;
     h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique)
-      << "</a></td><td>" << e.rmse << "</td><td>" << e.meanAbsolute << "</td><td>" << e.maxAbsolute
-      << "</td><td>" << e.psnr << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess
-      << "</td><td>" << e.darkShare << "</td><td>" << e.darkMeanExcess << "</td><td>"
-      << t.groundTruth.rmse << "</td><td>" << t.flicker << "</td><td>" << t.failureRatePercent
-      << "</td><td>" << t.wallTimes.total() << "</td><td>" << t.gpuTimes.total() << "</td><td>"
-      << mib(techniqueBytes(t)) << "</td></tr>\n";
+      << "</a></td><td>" << rank + 1 << "</td><td>" << e.rmse << "</td><td>" << e.meanAbsolute
+      << "</td><td>" << e.maxAbsolute << "</td><td>" << e.psnr << "</td><td>" << e.leakShare
+      << "</td><td>" << e.leakMeanExcess << "</td><td>" << e.darkShare << "</td><td>"
+      << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse << "</td><td>" << t.flicker
+      << "</td><td>" << t.failureRatePercent << "</td><td>" << t.wallTimes.total() << "</td><td>"
+      << t.gpuTimes.total() << "</td><td>" << mib(techniqueBytes(t)) << "</td></tr>\n";
   }
   h << "</tbody></table>\n<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
