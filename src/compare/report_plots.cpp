@@ -21,14 +21,15 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
     if (!out) throw Error("cannot write " + data.string());
   }
   std::ostringstream gp;
-  gp << "set terminal pngcairo size " << error.width() + 220 << "," << error.height() + 80
+  // Room for the colour bar and its label whatever the image size.
+  gp << "set terminal pngcairo size " << error.width() + 240 << "," << std::max(error.height() + 80, 340)
      << " font 'DejaVu Sans,10'\n"
      << "set output " << gnuplotQuote(png.string()) << "\n"
      << "set title " << gnuplotQuote(title) << " noenhanced\n"
      << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', 1 "
         "'#b2182b')\n"
      << "set cbrange [" << -range << ":" << range << "]\n"
-     << "set cblabel 'visibility - reference: over-darkening (blue) < 0 < light leaking (red)'\n"
+     << "set cblabel 'red: leaks light   blue: over-darkens'\n"
      << "unset xtics\nunset ytics\nset size ratio -1\n"
      << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5
      << "]\n"
