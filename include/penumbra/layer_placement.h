@@ -3,6 +3,8 @@
 // filter footprint's "second occluder" depth mu + sigma, weighted by its variance sigma^2.
 #pragma once
 
+#include <algorithm>
+#include <functional>
 #include <span>
 #include <vector>
 
@@ -24,6 +26,26 @@ constexpr float kMinSplitWeight = 1e-6f;
 // cleared far plane) weigh nothing: an edge against nothing is no occluder.
 std::vector<SplitSample> secondOccluderSamples(const Image& depth);
 
+// What a Lloyd step gathers from the samples: per split (cluster) and per layer, the total
+// weight and the weighted sum of depths.
+struct LloydSums {
+  explicit LloydSums(int layerCount)
+      : clusterWeight(size_t(std::max(layerCount - 1, 0)), 0.0),
+        clusterSum(size_t(std::max(layerCount - 1, 0)), 0.0),
+        layerWeight(size_t(layerCount), 0.0),
+        layerSum(size_t(layerCount), 0.0) {}
+  std::vector<double> clusterWeight, clusterSum;
+  std::vector<double> layerWeight, layerSum;
+};
+
+// Gathers the sums: each weighted sample joins its nearest split (the first of equals) and the
+// layer that contains it. The GPU gathers the same sums (passes/lloyd_sums.comp).
+LloydSums accumulateLloyd(std::span<const SplitSample> samples, const shaders::LayerSplits& splits);
+
+// Moves each split to its cluster's weighted mean, teleports empty ones (below), keeps order.
+shaders::LayerSplits lloydUpdate(const LloydSums& sums, const shaders::LayerSplits& splits,
+                                 float minGap);
+
 // One Lloyd step: each sample joins its nearest split, each split moves to its samples' weighted
 // mean. A split left with no weight is teleported (thesis: "merge the two adjacent layers and
 // split whatever layer has the highest weight"): removed, and a split placed at the weighted
@@ -38,5 +60,10 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
 // one overlap in front of its centre.
 shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
                                      int iterations, float minGap, float frontMargin = 0.0f);
+
+// The same relaxation with the sums gathered elsewhere (on the GPU).
+using LloydAccumulator = std::function<LloydSums(const shaders::LayerSplits&)>;
+shaders::LayerSplits lloydRelaxation(int layerCount, int iterations, float minGap,
+                                     float frontMargin, const LloydAccumulator& accumulate);
 
 }  // namespace penumbra

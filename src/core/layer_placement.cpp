@@ -54,30 +54,35 @@ std::vector<SplitSample> secondOccluderSamples(const Image& depth) {
   return samples;
 }
 
-shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
-                               const shaders::LayerSplits& splits, float minGap) {
-  std::vector<float> s = interior(splits);
-  if (s.empty()) return splits;
-  std::vector<double> clusterWeight(s.size(), 0.0), clusterSum(s.size(), 0.0);
-  std::vector<double> layerWeight(size_t(splits.layerCount), 0.0),
-      layerSum(size_t(splits.layerCount), 0.0);
+LloydSums accumulateLloyd(std::span<const SplitSample> samples,
+                          const shaders::LayerSplits& splits) {
+  const std::vector<float> s = interior(splits);
+  LloydSums sums(splits.layerCount);
   for (const SplitSample& sample : samples) {
-    if (sample.weight <= 0.0f) continue;
-    const auto nearest = std::min_element(s.begin(), s.end(), [&](float a, float b) {
-      return std::abs(a - sample.depth) < std::abs(b - sample.depth);
-    });
-    const size_t k = size_t(nearest - s.begin());
-    clusterWeight[k] += sample.weight;
-    clusterSum[k] += double(sample.weight) * sample.depth;
+    if (sample.weight <= 0.0f || s.empty()) continue;
+    size_t k = 0;  // the nearest split, the first of equals
+    for (size_t i = 1; i < s.size(); ++i) {
+      if (std::abs(s[i] - sample.depth) < std::abs(s[k] - sample.depth)) k = i;
+    }
+    sums.clusterWeight[k] += sample.weight;
+    sums.clusterSum[k] += double(sample.weight) * sample.depth;
     const size_t layer = size_t(shaders::selectLayer(sample.depth, splits));
-    layerWeight[layer] += sample.weight;
-    layerSum[layer] += double(sample.weight) * sample.depth;
+    sums.layerWeight[layer] += sample.weight;
+    sums.layerSum[layer] += double(sample.weight) * sample.depth;
   }
+  return sums;
+}
+
+shaders::LayerSplits lloydUpdate(const LloydSums& sums, const shaders::LayerSplits& splits,
+                                 float minGap) {
+  const std::vector<float> s = interior(splits);
+  if (s.empty()) return splits;
+  std::vector<double> layerWeight = sums.layerWeight;
   std::vector<float> next;
   int empty = 0;
   for (size_t k = 0; k < s.size(); ++k) {
-    if (clusterWeight[k] > 0.0) {
-      next.push_back(float(clusterSum[k] / clusterWeight[k]));
+    if (sums.clusterWeight[k] > 0.0) {
+      next.push_back(float(sums.clusterSum[k] / sums.clusterWeight[k]));
     } else {
       ++empty;
     }
@@ -87,7 +92,7 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
     const size_t heaviest =
         size_t(std::max_element(layerWeight.begin(), layerWeight.end()) - layerWeight.begin());
     if (layerWeight[heaviest] > 0.0) {
-      next.push_back(float(layerSum[heaviest] / layerWeight[heaviest]));
+      next.push_back(float(sums.layerSum[heaviest] / layerWeight[heaviest]));
       layerWeight[heaviest] = 0.0;  // the next teleport goes elsewhere
     } else {
       next.push_back(s[size_t(i) % s.size()]);  // no weight anywhere: keep the split
@@ -96,11 +101,16 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
   return pack(next, splits.layerCount, minGap);
 }
 
-shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
-                                     int iterations, float minGap, float frontMargin) {
+shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
+                               const shaders::LayerSplits& splits, float minGap) {
+  return lloydUpdate(accumulateLloyd(samples, splits), splits, minGap);
+}
+
+shaders::LayerSplits lloydRelaxation(int layerCount, int iterations, float minGap,
+                                     float frontMargin, const LloydAccumulator& accumulate) {
   shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
   for (int i = 0; i < iterations; ++i) {
-    const shaders::LayerSplits next = lloydStep(samples, splits, minGap);
+    const shaders::LayerSplits next = lloydUpdate(accumulate(splits), splits, minGap);
     float moved = 0.0f;
     for (int k = 1; k < layerCount; ++k) {
       moved =
@@ -112,6 +122,13 @@ shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int l
   std::vector<float> placed = interior(splits);
   for (float& s : placed) s -= frontMargin;
   return pack(placed, layerCount, minGap);
+}
+
+shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
+                                     int iterations, float minGap, float frontMargin) {
+  return lloydRelaxation(
+      layerCount, iterations, minGap, frontMargin,
+      [&](const shaders::LayerSplits& splits) { return accumulateLloyd(samples, splits); });
 }
 
 }  // namespace penumbra

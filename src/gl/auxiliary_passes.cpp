@@ -50,11 +50,39 @@ void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisam
   glBindTextureUnit(0, depthTexture);
   s.splitSamples->bindStorage(1);
   samples.dispatch(groups(size), groups(size));
-  // The k-means itself runs on the read-back samples, as the thesis reads back its reduction.
+  // Each step's sums are gathered on the GPU, row by row; the CPU adds the rows and moves the
+  // splits, as the thesis reads back its reduction.
+  const int rows = size - 1;
+  Buffer rowSums(size_t(rows) * 4 * shaders::kMaxLayers * sizeof(float));
+  const Program& gather = s.compute("passes/lloyd_sums.comp", {});
+  gather.set("rowCount", rows);
+  gather.set("rowLength", size - 1);
+  s.splitSamples->bindStorage(1);
+  rowSums.bindStorage(2);
+  std::vector<float> partial(size_t(rows) * 4 * shaders::kMaxLayers);
+  auto accumulate = [&](const shaders::LayerSplits& splits) {
+    glProgramUniform4fv(gather.id(), glGetUniformLocation(gather.id(), "splitInterior"), 4,
+                        &splits.interior[0][0]);
+    gather.set("layerCount", splits.layerCount);
+    gather.dispatch((unsigned(rows) + 63u) / 64u);
+    rowSums.read(std::as_writable_bytes(std::span(partial)));
+    LloydSums sums(splits.layerCount);
+    for (int row = 0; row < rows; ++row) {
+      const float* r = &partial[size_t(row) * 4 * shaders::kMaxLayers];
+      for (int k = 0; k + 1 < splits.layerCount; ++k) {
+        sums.clusterWeight[size_t(k)] += r[k];
+        sums.clusterSum[size_t(k)] += r[shaders::kMaxLayers + k];
+      }
+      for (int l = 0; l < splits.layerCount; ++l) {
+        sums.layerWeight[size_t(l)] += r[2 * shaders::kMaxLayers + l];
+        sums.layerSum[size_t(l)] += r[3 * shaders::kMaxLayers + l];
+      }
+    }
+    return sums;
+  };
   shaders::LvsmParams& lvsm = s.params.lvsm;
-  lvsm.splits =
-      lloydRelaxation(readSplitSamplesBuffer(s), lvsm.splits.layerCount, lvsm.lloydIterations,
-                      std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap);
+  lvsm.splits = lloydRelaxation(lvsm.splits.layerCount, lvsm.lloydIterations,
+                                std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap, accumulate);
   checkErrors("placing the layers");
 }
 

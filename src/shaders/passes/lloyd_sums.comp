@@ -1,0 +1,63 @@
+// One Lloyd step's sums for layered VSM split placement (thesis §4.1.2), one invocation per row
+// of samples: for each split (cluster) and each layer, the total weight and weighted depth of
+// the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them.
+#include "../shared/layers.h"
+
+layout(local_size_x = 64) in;
+layout(std430, binding = 1) readonly buffer Samples {
+  vec2 samples[];
+};
+// Per row: cluster weights, cluster sums, layer weights, layer sums, kMaxLayers entries each.
+layout(std430, binding = 2) writeonly buffer Sums {
+  float sums[];
+};
+
+uniform vec4 splitInterior[4];
+uniform int layerCount;
+uniform int rowCount;
+uniform int rowLength;
+
+void main() {
+  int row = int(gl_GlobalInvocationID.x);
+  if (row >= rowCount) return;
+  LayerSplits splits;
+  for (int k = 0; k < 4; ++k) splits.interior[k] = splitInterior[k];
+  splits.layerCount = layerCount;
+  splits.pad0 = 0;
+  splits.pad1 = 0;
+  splits.pad2 = 0;
+  float clusterWeight[kMaxLayers];
+  float clusterSum[kMaxLayers];
+  float layerWeight[kMaxLayers];
+  float layerSum[kMaxLayers];
+  for (int i = 0; i < kMaxLayers; ++i) {
+    clusterWeight[i] = 0.0f;
+    clusterSum[i] = 0.0f;
+    layerWeight[i] = 0.0f;
+    layerSum[i] = 0.0f;
+  }
+  for (int x = 0; x < rowLength; ++x) {
+    vec2 entry = samples[row * rowLength + x];
+    float depth = entry.x;
+    float weight = entry.y;
+    if (weight <= 0.0f || layerCount < 2) continue;
+    int nearest = 0;  // the first of equals, as on the CPU
+    for (int k = 1; k < layerCount - 1; ++k) {
+      if (abs(layerSplit(splits, k + 1) - depth) < abs(layerSplit(splits, nearest + 1) - depth)) {
+        nearest = k;
+      }
+    }
+    clusterWeight[nearest] += weight;
+    clusterSum[nearest] += weight * depth;
+    int layer = selectLayer(depth, splits);
+    layerWeight[layer] += weight;
+    layerSum[layer] += weight * depth;
+  }
+  int base = row * 4 * kMaxLayers;
+  for (int i = 0; i < kMaxLayers; ++i) {
+    sums[base + i] = clusterWeight[i];
+    sums[base + kMaxLayers + i] = clusterSum[i];
+    sums[base + 2 * kMaxLayers + i] = layerWeight[i];
+    sums[base + 3 * kMaxLayers + i] = layerSum[i];
+  }
+}
