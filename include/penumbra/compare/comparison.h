@@ -33,7 +33,7 @@ struct TechniqueResult {
   VisibilityErrors groundTruth;     // frame 0 against the supersampled ground truth
   double flicker = 0.0;             // along the camera path, beyond the reference's own
   double failureRatePercent = 0.0;  // ESM classification; 0 otherwise
-  gl::PassTimes gpuTimes;           // frame 0
+  gl::PassTimes gpuTimes;           // the last frame (warm: no first-use shader compilation)
   gl::PassTimes wallTimes;
   gl::MemoryReport memory;
   Image color;  // frame 0, row 0 at the top
