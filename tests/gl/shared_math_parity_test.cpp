@@ -12,6 +12,7 @@
 
 #include "gl_test_context.h"
 #include "penumbra/depth_distribution.h"
+#include "penumbra/error.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/params.h"
 #include "penumbra/shader_library.h"
@@ -150,6 +151,29 @@ TEST_F(SharedMathParity, GpuMatchesCppForEveryTechnique) {
   EXPECT_LT(othersBeyondForwardTolerance, 10) << "of 2700 cases of the other techniques";
   RecordProperty("other_cases_beyond_1e-5", othersBeyondForwardTolerance);
   RecordProperty("msm_cases_beyond_1e-5", msmBeyondForwardTolerance);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+class ShaderCompilation : public testing::GlTest {};
+
+TEST_F(ShaderCompilation, ErrorsNameTheOriginalFileAndLine) {
+  ShaderLibrary library;
+  library.addFile("tests/broken.glsl", "// a helper\nfloat helper() { return undefinedThing; }\n");
+  library.addFile("tests/broken.comp",
+                  "#include \"broken.glsl\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+  try {
+    gl::Program::compute(library, "tests/broken.comp");
+    FAIL() << "the shader must not compile";
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("compiling tests/broken.comp failed"), std::string::npos) << message;
+    EXPECT_NE(message.find("tests/broken.glsl:2"), std::string::npos) << message;
+  }
 }
 
 }  // namespace
