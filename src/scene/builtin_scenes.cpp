@@ -27,6 +27,18 @@ Light directional(glm::vec3 direction) {
   return light;
 }
 
+// A scene of that name and description standing on a ground square.
+Scene sceneWithGround(std::string name, std::string description, glm::vec3 groundCentre,
+                      float groundHalfSize) {
+  Scene s;
+  s.name = std::move(name);
+  s.description = std::move(description);
+  Mesh ground = makeMesh(kGroundAlbedo);
+  addGround(ground, groundCentre, groundHalfSize);
+  s.meshes.push_back(std::move(ground));
+  return s;
+}
+
 void addTree(Scene& s, glm::vec3 base, float height, float crown) {
   Mesh trunk = makeMesh(kWoodAlbedo);
   addCylinder(trunk, base, 0.12f, height);
@@ -40,14 +52,9 @@ void addTree(Scene& s, glm::vec3 base, float height, float crown) {
 
 // ESM Fig. 1/8, CSM Fig. 9: a fence of thin slats with objects and a tree behind it.
 Scene backyard() {
-  Scene s{
+  Scene s = sceneWithGround(
       "backyard", "fence of thin slats, objects and a tree: depth complexity that makes VSM bleed",
-      {},         {},
-      {},         {0.03f, 0.0f, 0.0f},
-      {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 12.0f);
-  s.meshes.push_back(std::move(ground));
+      glm::vec3(0.0f), 12.0f);
   Mesh fence = makeMesh(kWoodAlbedo);
   for (int i = -20; i <= 20; ++i)
     addBox(fence, glm::vec3(0.25f * float(i), 0.75f, 0.0f), glm::vec3(0.05f, 0.75f, 0.02f));
@@ -71,13 +78,9 @@ Scene backyard() {
 
 // Thesis Fig. 3.4/3.5: canopy (A) over a bench (B) over the ground (C), a large A-B to B-C ratio.
 Scene bench() {
-  Scene s{"bench", "canopy above a bench above the ground: the three-object light-bleeding case",
-          {},      {},
-          {},      {0.03f, 0.0f, 0.0f},
-          {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 6.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s = sceneWithGround(
+      "bench", "canopy above a bench above the ground: the three-object light-bleeding case",
+      glm::vec3(0.0f), 6.0f);
   Mesh seat = makeMesh(kWoodAlbedo);
   addBox(seat, glm::vec3(0.0f, 0.45f, 0.0f), glm::vec3(1.5f, 0.04f, 0.35f));
   for (float x : {-1.3f, 1.3f}) {
@@ -98,13 +101,9 @@ Scene bench() {
 
 // CSM Fig. 6, Gumbau Fig. 3: a slanted plane and boxes touching the ground.
 Scene contact() {
-  Scene s{"contact", "a slanted plane and boxes touching the ground: contact shadows",
-          {},        {},
-          {},        {0.03f, 0.0f, 0.0f},
-          {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 5.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s =
+      sceneWithGround("contact", "a slanted plane and boxes touching the ground: contact shadows",
+                      glm::vec3(0.0f), 5.0f);
   Mesh objects = makeMesh(kStoneAlbedo);
   const float tilt = 0.35f;
   const glm::mat3 axes(glm::vec3(1.0f, 0.0f, 0.0f), glm::vec3(0.0f, std::cos(tilt), std::sin(tilt)),
@@ -123,10 +122,7 @@ Scene contact() {
 
 // Gumbau Fig. 3: stacked and overlapping spheres.
 Scene spheres() {
-  Scene s{"spheres", "stacked and overlapping spheres", {}, {}, {}, {0.03f, 0.0f, 0.0f}, {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 5.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s = sceneWithGround("spheres", "stacked and overlapping spheres", glm::vec3(0.0f), 5.0f);
   Mesh balls = makeMesh(glm::vec3(0.8f, 0.5f, 0.45f));
   addSphere(balls, glm::vec3(0.0f, 0.5f, 0.0f), 0.5f, 32);
   addSphere(balls, glm::vec3(0.2f, 1.25f, 0.1f), 0.35f, 32);
@@ -144,12 +140,8 @@ Scene spheres() {
 
 // Thesis Fig. 4.3/4.8: many overlapping shadows at very different depths.
 Scene overlap() {
-  Scene s{
-      "overlap", "many overlapping shadows at different depths", {}, {}, {}, {0.03f, 0.0f, 0.0f},
-      {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 6.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s = sceneWithGround("overlap", "many overlapping shadows at different depths",
+                            glm::vec3(0.0f), 6.0f);
   Mesh blades = makeMesh(kStoneAlbedo);
   for (int i = 0; i < 8; ++i) {
     const float height = 0.6f + 0.55f * float(i);
@@ -166,16 +158,9 @@ Scene overlap() {
 
 // CSM Fig. 10, thesis Fig. 2.2: fine receding geometry seen from far away.
 Scene minification() {
-  Scene s{"minification",
-          "fine receding rows of posts seen from far: minification aliasing",
-          {},
-          {},
-          {},
-          {0.03f, 0.0f, 0.0f},
-          {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f, 0.0f, -20.0f), 30.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s = sceneWithGround("minification",
+                            "fine receding rows of posts seen from far: minification aliasing",
+                            glm::vec3(0.0f, 0.0f, -20.0f), 30.0f);
   Mesh posts = makeMesh(kWoodAlbedo);
   for (int row = 0; row < 40; ++row) {
     for (int i = -12; i <= 12; ++i) {
@@ -193,13 +178,9 @@ Scene minification() {
 
 // Thesis §3.2: one planar occluder parallel to a planar receiver, both facing the light.
 Scene planar() {
-  Scene s{"planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)",
-          {},       {},
-          {},       {0.03f, 0.0f, 0.0f},
-          {}};
-  Mesh ground = makeMesh(kGroundAlbedo);
-  addGround(ground, glm::vec3(0.0f), 4.0f);
-  s.meshes.push_back(std::move(ground));
+  Scene s = sceneWithGround(
+      "planar", "a planar occluder parallel to a planar receiver: VSM is exact (thesis §3.2)",
+      glm::vec3(0.0f), 4.0f);
   Mesh occluder = makeMesh(kStoneAlbedo);
   addGround(occluder, glm::vec3(0.0f, 1.5f, 0.0f), 1.0f);
   s.meshes.push_back(std::move(occluder));
