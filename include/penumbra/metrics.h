@@ -33,9 +33,6 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
 double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
                        std::span<const Image> masks);
 
-// A coverage mask (1 covered, 0 not) from a renderer diagnostic image (-1 where nothing drawn).
-Image coverageFromDiagnostic(const Image& diagnostic);
-
 // The pixels whose shading the shadow test decides — inside the shadow map, on surfaces facing
 // the light beyond grazing — from a renderer lookup image (channel 3 == 1).
 Image litSurfaceMask(const Image& lookup);

@@ -82,13 +82,6 @@ double temporalFlicker(std::span<const Image> estimates, std::span<const Image> 
   return pixels == 0 ? 0.0 : change / double(pixels);
 }
 
-Image coverageFromDiagnostic(const Image& diagnostic) {
-  Image mask(diagnostic.width(), diagnostic.height(), 1);
-  for (size_t i = 0; i < mask.data().size(); ++i)
-    mask.data()[i] = diagnostic.data()[i] >= 0.0f ? 1.0f : 0.0f;
-  return mask;
-}
-
 Image litSurfaceMask(const Image& lookup) {
   Image mask(lookup.width(), lookup.height(), 1);
   for (int y = 0; y < lookup.height(); ++y) {

@@ -74,12 +74,14 @@ TEST(Metrics, MismatchedImagesAreRejected) {
                Error);
 }
 
-TEST(Metrics, CoverageComesFromTheDiagnosticImage) {
-  Image diagnostic = filled(2, 1, -1.0f);
-  diagnostic.at(1, 0) = 0.0f;
-  const Image mask = coverageFromDiagnostic(diagnostic);
-  EXPECT_EQ(mask.at(0, 0), 0.0f);
-  EXPECT_EQ(mask.at(1, 0), 1.0f);
+TEST(Metrics, LitSurfaceMaskKeepsPixelsWhereTheShadowTestDecides) {
+  Image lookup(3, 1, 4, 0.0f);
+  lookup.at(0, 0, 3) = 1.0f;  // inside, facing the light
+  lookup.at(1, 0, 3) = 0.5f;  // inside, facing away or grazing
+  const Image mask = litSurfaceMask(lookup);
+  EXPECT_EQ(mask.at(0, 0), 1.0f);
+  EXPECT_EQ(mask.at(1, 0), 0.0f);
+  EXPECT_EQ(mask.at(2, 0), 0.0f);
 }
 
 }  // namespace
