@@ -193,6 +193,16 @@ void Renderer::validate(const RenderSettings& settings) const {
   checkRange("normal offset (texels)", double(settings.normalOffsetTexels), 0.0, 10.0);
   checkRange("ambient", double(settings.ambient), 0.0, 1.0);
   validateParams(settings.technique, settings.params);
+  if (settings.filter == FilterMode::SummedArea &&
+      (settings.technique == Technique::Evsm2 || settings.technique == Technique::Evsm4 ||
+       settings.technique == Technique::Esm)) {
+    // Fixed-point sums bound the error by the channel's largest deviation (R * 2^-32): exponential
+    // channels span up to e^+-84, so every small value would drown.
+    throw Error("the summed-area filter sums channels in fixed point relative to their range; " +
+                std::string(techniqueId(settings.technique)) +
+                "'s exponential channels span too many orders of magnitude; use vsm, lvsm, csm or "
+                "msm with sat, or trilinear/anisotropic for this technique");
+  }
   if (settings.filter == FilterMode::SummedArea) {
     const TechniqueParams& p = settings.params;
     for (int c = 0; c < channelCount(settings.technique, p); ++c) {

@@ -273,6 +273,9 @@ TEST_F(RendererTest, BadSettingsAreRejectedWithTheRange) {
   s = small(Technique::PowerCdf);
   s.filter = gl::FilterMode::SummedArea;
   EXPECT_THROW(renderer->validate(s), Error);
+  s = small(Technique::Evsm4);  // exponential moments overflow any fixed-point range
+  s.filter = gl::FilterMode::SummedArea;
+  EXPECT_THROW(renderer->validate(s), Error);
   s = small(Technique::Vsm);
   s.width = 1 << 20;
   EXPECT_THROW(renderer->validate(s), Error);
