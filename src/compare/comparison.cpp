@@ -14,8 +14,12 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
   gl::RenderSettings s = request.settings;
   s.technique = technique;
   if (technique == Technique::Pcf && request.matchPcfKernel) {
+    // Point lookups take the blur kernel alone; the others add the bilinear tent (exactly for
+    // bilinear, as the nearest PCF kernel for mip-mapped lookups).
     const bool box = s.blur.kernel == BlurKernel::Box;
-    s.params.pcf.kernel = box ? shaders::kKernelBilinear : shaders::kKernelGaussian;
+    const bool point = s.filter == gl::FilterMode::Point;
+    s.params.pcf.kernel =
+        !box ? shaders::kKernelGaussian : (point ? shaders::kKernelBox : shaders::kKernelBilinear);
     s.params.pcf.radius = std::min(s.blur.radius, 15);
     s.params.pcf.sigma = std::max(0.25f, s.blur.sigma);
     // The reference's own depth test: the receiver plane, ties within its tolerance, no bias.

@@ -21,8 +21,9 @@ struct ComparisonRequest {
   int supersample = 4;          // ground-truth sub-pixels per side, [1, 8]
   int pathFrames = 4;           // camera-path frames for flicker, [2, 32]
   double tau = 0.05;            // leak / over-darkening threshold on visibility, (0, 1)
-  // Give PCF the kernel of the prefilter (box blur: box x bilinear; Gaussian blur: Gaussian) so
-  // that it is the filtered reference itself; off when the user set PCF's kernel.
+  // Give PCF the kernel of the prefilter (box blur: box x bilinear, or box for point lookups;
+  // Gaussian blur: Gaussian) so that it is the filtered reference itself where the lookup allows
+  // (point, bilinear); off when the user set PCF's kernel.
   bool matchPcfKernel = true;
 };
 
