@@ -21,12 +21,21 @@ struct BlurSpec {
 
 // The normalised 1D weights of the kernel, 2r+1 values (shared/filter_weights.h).
 std::vector<float> blurWeights(const BlurSpec& spec);
+// Running sums of blurWeights in tap order (2r+1 values, the last one their total): the filtered
+// reference's blur, summed over a mip texel's block in closed form (shared/filtered_reference.h).
+std::vector<float> cumulativeBlurWeights(const BlurSpec& spec);
 
 // Separable filter over every channel. `reductions` gives one entry per channel (empty: all
 // Mean). Min and Max channels take the extreme over the kernel's support; LogMeanExp channels
 // (ESM log space) take the weighted log-mean-exp with exponent `logExponent`.
 Image separableFilter(const Image& image, const BlurSpec& spec,
                       std::span<const ChannelReduction> reductions = {}, float logExponent = 80.0f);
+
+// One axis of separableFilter (horizontal: along x), as the GPU's blur runs it: the renderer
+// stores the intermediate in the channels' format, so its CPU twin rounds between the axes.
+Image separableFilterPass(const Image& image, const BlurSpec& spec, bool horizontal,
+                          std::span<const ChannelReduction> reductions = {},
+                          float logExponent = 80.0f);
 
 Image boxBlur(const Image& image, int radius);
 Image gaussianBlur(const Image& image, int radius, float sigma);

@@ -28,9 +28,13 @@ class SummedAreaTable {
   // The guaranteed bound on |boxMean - exact mean| for a channel: R * 2^-32.
   double errorBound(int channel) const;
 
- private:
-  uint64_t prefix(int x, int y, int channel) const;  // sum over [0,x] x [0,y]; 0 if x or y < 0
+  // The raw table, as the GPU's lookup reads it: the wrapping fixed-point sum over [0,x] x [0,y]
+  // (0 if x or y < 0); a channel's value is centre + fixed * step.
+  uint64_t prefixSum(int x, int y, int channel) const;
+  double centre(int channel) const { return centre_[size_t(channel)]; }
+  double step(int channel) const { return step_[size_t(channel)]; }
 
+ private:
   int width_ = 0;
   int height_ = 0;
   int channels_ = 0;

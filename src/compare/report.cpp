@@ -105,7 +105,7 @@ ordered_json settingsJson(const ComparisonRequest& r) {
            {{"kernel", s.blur.kernel == BlurKernel::Box ? "box" : "gaussian"},
             {"taps", 2 * s.blur.radius + 1},
             {"sigma", s.blur.sigma}}},
-          {"filter", gl::filterModeName(s.filter)},
+          {"filter", filterModeName(s.filter)},
           {"anisotropy", s.anisotropy},
           {"width", s.width},
           {"height", s.height},
@@ -203,7 +203,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     << "</p>\n<p>Device: " << html(r.device) << ". Shadow map " << r.request.settings.shadowMapSize
     << "², " << (2 * r.request.settings.blur.radius + 1) << "-tap "
     << (r.request.settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " prefilter, "
-    << gl::filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width
+    << filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width
     << "×" << r.request.settings.height << ", ground truth " << r.request.supersample << "×"
     << r.request.supersample << " sub-pixels, flicker over " << r.request.pathFrames
     << " camera-path frames, τ = " << r.request.tau << ".</p>\n"

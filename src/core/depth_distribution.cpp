@@ -9,7 +9,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/storage_format.h"
-#include "shared/esm.h"
+#include "shared/channel_reduction.h"
 
 namespace penumbra {
 namespace {
@@ -99,28 +99,12 @@ std::vector<float> filterRegion(Technique technique, const TechniqueParams& para
   }
   std::vector<float> filtered(size_t(count), 0.0f);
   for (int c = 0; c < count; ++c) {
-    const ChannelReduction reduction = channelReduction(technique, params, c);
-    float acc = 0.0f;
-    if (reduction == ChannelReduction::Min) acc = std::numeric_limits<float>::max();
-    if (reduction == ChannelReduction::Max) acc = std::numeric_limits<float>::lowest();
-    bool first = true;
+    auto acc = shaders::startReduction(int(channelReduction(technique, params, c)),
+                                       params.esm.exponent);
     for (size_t i = 0; i < region.size(); ++i) {
-      const float v = encoded[i][size_t(c)];
-      const float w = region[i].weight / total;
-      switch (reduction) {
-        case ChannelReduction::Mean: acc += w * v; break;
-        case ChannelReduction::Min: acc = std::min(acc, v); break;
-        case ChannelReduction::Max: acc = std::max(acc, v); break;
-        case ChannelReduction::LogMeanExp: {
-          const float c_esm = params.esm.exponent;
-          const float term = shaders::esmLogSpaceWeighted(v, w, c_esm);
-          acc = first ? term : shaders::esmLogSpaceAdd(acc, term, c_esm);
-          break;
-        }
-      }
-      first = false;
+      acc = shaders::accumulateTap(acc, encoded[i][size_t(c)], region[i].weight / total);
     }
-    filtered[size_t(c)] = quantizeToStorage(acc, storage);
+    filtered[size_t(c)] = quantizeToStorage(acc.value, storage);
   }
   return filtered;
 }

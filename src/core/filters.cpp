@@ -3,13 +3,13 @@
 
 #include <algorithm>
 #include <cassert>
-#include <limits>
 #include <string>
 
 #include "parallel.h"
 #include "penumbra/error.h"
-#include "shared/esm.h"
+#include "shared/channel_reduction.h"
 #include "shared/filter_weights.h"
+#include "shared/mip_span.h"
 
 namespace penumbra {
 namespace {
@@ -26,38 +26,9 @@ void checkReductions(const Image& image, std::span<const ChannelReduction> reduc
   }
 }
 
-// Reduces taps (value, weight) one at a time; weights of a kernel sum to 1.
-class Reducer {
- public:
-  Reducer(ChannelReduction reduction, float logExponent)
-      : reduction_(reduction), logExponent_(logExponent) {
-    if (reduction == ChannelReduction::Min) acc_ = std::numeric_limits<float>::max();
-    if (reduction == ChannelReduction::Max) acc_ = std::numeric_limits<float>::lowest();
-  }
-
-  void add(float value, float weight) {
-    switch (reduction_) {
-      case ChannelReduction::Mean: acc_ += weight * value; break;
-      case ChannelReduction::Min: acc_ = std::min(acc_, value); break;
-      case ChannelReduction::Max: acc_ = std::max(acc_, value); break;
-      case ChannelReduction::LogMeanExp: {
-        if (weight <= 0.0f) break;
-        float term = shaders::esmLogSpaceWeighted(value, weight, logExponent_);
-        acc_ = empty_ ? term : shaders::esmLogSpaceAdd(acc_, term, logExponent_);
-        break;
-      }
-    }
-    empty_ = false;
-  }
-
-  float result() const { return acc_; }
-
- private:
-  ChannelReduction reduction_;
-  float logExponent_;
-  float acc_ = 0.0f;
-  bool empty_ = true;
-};
+shaders::ChannelAccumulator startReduction(ChannelReduction reduction, float logExponent) {
+  return shaders::startReduction(int(reduction), logExponent);
+}
 
 // One 1D pass along x (horizontal) or y with edge clamping.
 Image filterPass(const Image& in, std::span<const float> weights, bool horizontal,
@@ -67,12 +38,12 @@ Image filterPass(const Image& in, std::span<const float> weights, bool horizonta
   detail::parallelForRows(in.height(), [&](int y) {
     for (int x = 0; x < in.width(); ++x) {
       for (int c = 0; c < in.channels(); ++c) {
-        Reducer reducer(reductionOf(reductions, c), logExponent);
+        auto acc = startReduction(reductionOf(reductions, c), logExponent);
         for (int i = -radius; i <= radius; ++i) {
           float v = horizontal ? in.clamped(x + i, y, c) : in.clamped(x, y + i, c);
-          reducer.add(v, weights[size_t(i + radius)]);
+          acc = shaders::accumulateTap(acc, v, weights[size_t(i + radius)]);
         }
-        out.at(x, y, c) = reducer.result();
+        out.at(x, y, c) = acc.value;
       }
     }
   });
@@ -97,12 +68,24 @@ std::vector<float> blurWeights(const BlurSpec& spec) {
   return weights;
 }
 
+std::vector<float> cumulativeBlurWeights(const BlurSpec& spec) {
+  std::vector<float> sums = blurWeights(spec);
+  for (size_t i = 1; i < sums.size(); ++i) sums[i] += sums[i - 1];
+  return sums;
+}
+
 Image separableFilter(const Image& image, const BlurSpec& spec,
                       std::span<const ChannelReduction> reductions, float logExponent) {
   checkReductions(image, reductions);
   const std::vector<float> weights = blurWeights(spec);
   Image horizontal = filterPass(image, weights, true, reductions, logExponent);
   return filterPass(horizontal, weights, false, reductions, logExponent);
+}
+
+Image separableFilterPass(const Image& image, const BlurSpec& spec, bool horizontal,
+                          std::span<const ChannelReduction> reductions, float logExponent) {
+  checkReductions(image, reductions);
+  return filterPass(image, blurWeights(spec), horizontal, reductions, logExponent);
 }
 
 Image boxBlur(const Image& image, int radius) {
@@ -126,26 +109,23 @@ Image maxFilter(const Image& image, int radius) {
 Image reduceMipLevel(const Image& image, std::span<const ChannelReduction> reductions,
                      float logExponent) {
   checkReductions(image, reductions);
-  const int w = std::max(1, image.width() / 2);
-  const int h = std::max(1, image.height() / 2);
+  const int w = shaders::mipLevelSize(image.width(), 1);
+  const int h = shaders::mipLevelSize(image.height(), 1);
   Image out(w, h, image.channels());
-  // The source span of destination texel i: [2i, 2i+1], the last one extended to the edge.
-  auto span = [](int i, int count, int source) {
-    int first = std::min(2 * i, source - 1);
-    int last = i == count - 1 ? source - 1 : 2 * i + 1;
-    return std::pair{first, last};
-  };
   detail::parallelForRows(h, [&](int y) {
-    auto [y0, y1] = span(y, h, image.height());
+    const glm::ivec2 ys = shaders::mipSourceSpan(y, h, image.height());
+    const int y0 = ys.x, y1 = ys.y;
     for (int x = 0; x < w; ++x) {
-      auto [x0, x1] = span(x, w, image.width());
+      const glm::ivec2 xs = shaders::mipSourceSpan(x, w, image.width());
+      const int x0 = xs.x, x1 = xs.y;
       const float weight = 1.0f / float((x1 - x0 + 1) * (y1 - y0 + 1));
       for (int c = 0; c < image.channels(); ++c) {
-        Reducer reducer(reductionOf(reductions, c), logExponent);
+        auto acc = startReduction(reductionOf(reductions, c), logExponent);
         for (int sy = y0; sy <= y1; ++sy) {
-          for (int sx = x0; sx <= x1; ++sx) reducer.add(image.at(sx, sy, c), weight);
+          for (int sx = x0; sx <= x1; ++sx)
+            acc = shaders::accumulateTap(acc, image.at(sx, sy, c), weight);
         }
-        out.at(x, y, c) = reducer.result();
+        out.at(x, y, c) = acc.value;
       }
     }
   });

@@ -163,6 +163,11 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                  [](TechniqueParams& p) { return &p.esm.classifier; }),
           real("zmaxOffset", "offset added to the receiver depth for Z-max classification", 0.0,
                0.1, [](TechniqueParams& p) { return &p.esm.zmaxOffset; }),
+          choice("fallback",
+                 "shading of failing pixels: pcf (PCF of the unfiltered depth with the "
+                 "prefilter's kernel) or paper (2x2 test on the prefiltered ESM, §3.3)",
+                 {{"pcf", shaders::kEsmFallbackPcf}, {"paper", shaders::kEsmFallbackPaper}},
+                 [](TechniqueParams& p) { return &p.esm.fallback; }),
       };
     case Technique::Csm:
       return {
@@ -184,6 +189,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
           splitList(kSplitsDoc, [](TechniqueParams& p) { return &p.powerCdf.splits; }),
           real("depthBias", "subtracted from the receiver depth against storage rounding", 0.0, 0.1,
                [](TechniqueParams& p) { return &p.powerCdf.depthBias; }),
+          real("overlap", "layer intervals widened by this on the inner sides (as LVSM's delta)",
+               0.0, 0.1, [](TechniqueParams& p) { return &p.powerCdf.overlap; }),
           choice("storage", "min/max/mean storage (Gumbau §4: 16 bits suffice)",
                  {kFloat32, kFloat16}, [](TechniqueParams& p) { return &p.powerCdf.storage; }),
       };

@@ -51,7 +51,7 @@ SummedAreaTable::SummedAreaTable(const Image& image)
   }
 }
 
-uint64_t SummedAreaTable::prefix(int x, int y, int channel) const {
+uint64_t SummedAreaTable::prefixSum(int x, int y, int channel) const {
   if (x < 0 || y < 0) return 0;
   return sums_[(size_t(y) * size_t(width_) + size_t(x)) * size_t(channels_) + size_t(channel)];
 }
@@ -62,8 +62,8 @@ double SummedAreaTable::boxMean(int x0, int y0, int x1, int y1, int channel) con
   x1 = std::clamp(x1, 0, width_ - 1);
   y0 = std::clamp(y0, 0, height_ - 1);
   y1 = std::clamp(y1, 0, height_ - 1);
-  const uint64_t wrapped = prefix(x1, y1, channel) - prefix(x0 - 1, y1, channel) -
-                           prefix(x1, y0 - 1, channel) + prefix(x0 - 1, y0 - 1, channel);
+  const uint64_t wrapped = prefixSum(x1, y1, channel) - prefixSum(x0 - 1, y1, channel) -
+                           prefixSum(x1, y0 - 1, channel) + prefixSum(x0 - 1, y0 - 1, channel);
   const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
   return double(int64_t(wrapped)) * step_[size_t(channel)] / area + centre_[size_t(channel)];
 }

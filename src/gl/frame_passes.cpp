@@ -6,6 +6,7 @@
 #include "gpu_scene.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
+#include "shared/filter_weights.h"
 #include "penumbra/gl/context.h"
 #include "renderer_state.h"
 
@@ -26,16 +27,27 @@ void setChannelSampling(Renderer::State& s) {
   glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
 }
 
-void setReferenceKernel(Renderer::State& s, const Program& program) {
+// The lookup's settings (shared/lookup_footprint.h LookupSettings) and its textures beyond the
+// channels: the light pass's depth (ESM's fallback, the reference) and the blur's weights.
+void setLookupUniforms(Renderer::State& s, const Program& program, bool reference) {
   const RenderSettings& settings = s.settings;
-  const bool summedArea = settings.filter == FilterMode::SummedArea;
-  const std::vector<float> weights =
-      summedArea ? std::vector<float>{1.0f} : blurWeights(settings.blur);
-  glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "referenceBlurWeights"),
-                      GLsizei(weights.size()), weights.data());
-  program.set("referenceBlurRadius", int(weights.size() / 2));
-  program.set("referenceLevels",
-              usesMips(settings.filter) ? mipLevelCount(s.shadowMapSize, s.shadowMapSize) : 1);
+  const std::vector<float> cumulative = cumulativeBlurWeights(settings.blur);
+  glProgramUniform1fv(program.id(), glGetUniformLocation(program.id(), "blurCumulative"),
+                      GLsizei(cumulative.size()), cumulative.data());
+  program.set("filterMode", int(settings.filter));
+  program.set("shadowMapSize", s.shadowMapSize);
+  // The reference follows the technique's lookup over every level the lookup may use.
+  const int levels = reference && usesMips(settings.filter)
+                         ? mipLevelCount(s.shadowMapSize, s.shadowMapSize)
+                         : s.channelLevels;
+  program.set("channelLevels", levels);
+  program.set("anisotropy", settings.anisotropy);
+  program.set("blurKernel", settings.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian
+                                                                         : shaders::kKernelBox);
+  program.set("blurRadius", settings.blur.radius);
+  program.set("blurSigma", settings.blur.sigma);
+  program.set("zmaxLevels", s.zmaxLevels);
+  if (s.msaaSamples > 1) program.set("lightSamples", s.msaaSamples);
   glBindTextureUnit(2, s.lightDepth.id());
 }
 
@@ -74,11 +86,13 @@ void allocateFrame(Renderer::State& s, int width, int height) {
   s.frameLookup = Texture(GL_TEXTURE_2D);
   s.frameReceiverPlane = Texture(GL_TEXTURE_2D);
   s.frameDepth = Texture(GL_TEXTURE_2D);
+  s.frameDerivatives = Texture(GL_TEXTURE_2D);
   glTextureStorage2D(s.frameColor.id(), 1, GL_RGBA8, width, height);
   glTextureStorage2D(s.frameVisibility.id(), 1, GL_R32F, width, height);
   glTextureStorage2D(s.frameDiagnostic.id(), 1, GL_R32F, width, height);
   glTextureStorage2D(s.frameLookup.id(), 1, GL_RGBA32F, width, height);
   glTextureStorage2D(s.frameReceiverPlane.id(), 1, GL_RG32F, width, height);
+  glTextureStorage2D(s.frameDerivatives.id(), 1, GL_RGBA32F, width, height);
   glTextureStorage2D(s.frameDepth.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &s.frameFramebuffer);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT0, s.frameColor.id(), 0);
@@ -86,10 +100,11 @@ void allocateFrame(Renderer::State& s, int width, int height) {
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT2, s.frameDiagnostic.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT3, s.frameLookup.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT4, s.frameReceiverPlane.id(), 0);
+  glNamedFramebufferTexture(s.frameFramebuffer, GL_COLOR_ATTACHMENT5, s.frameDerivatives.id(), 0);
   glNamedFramebufferTexture(s.frameFramebuffer, GL_DEPTH_ATTACHMENT, s.frameDepth.id(), 0);
-  const GLenum buffers[5] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
-                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4};
-  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 5, buffers);
+  const GLenum buffers[6] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1, GL_COLOR_ATTACHMENT2,
+                             GL_COLOR_ATTACHMENT3, GL_COLOR_ATTACHMENT4, GL_COLOR_ATTACHMENT5};
+  glNamedFramebufferDrawBuffers(s.frameFramebuffer, 6, buffers);
   if (glCheckNamedFramebufferStatus(s.frameFramebuffer, GL_FRAMEBUFFER) !=
       GL_FRAMEBUFFER_COMPLETE) {
     throw Error("the camera-pass framebuffer is incomplete");
@@ -129,8 +144,9 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   const Program& program = s.graphics("passes/camera.vert", "passes/camera.frag",
                                       {{"SUMMED_AREA", summedArea ? "1" : "0"},
                                        {"ZMAX", zmax ? "1" : "0"},
+                                       {"MSAA", s.msaaSamples > 1 ? "1" : "0"},
                                        {"REFERENCE", reference ? "1" : "0"}});
-  if (reference) setReferenceKernel(s, program);
+  setLookupUniforms(s, program, reference);
   s.bindParameters();
   const float aspect = float(settings.width) / float(settings.height);
   program.set("clipFromWorld",
@@ -146,14 +162,6 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   program.set("spotCosine", std::cos(glm::radians(0.5f * scene.light.spotAngleDegrees)));
   program.set("normalOffset", settings.normalOffsetTexels * light.texelWorldSize(s.shadowMapSize));
   program.set("ambient", settings.ambient);
-  program.set("filterMode", int(settings.filter));
-  program.set("channelLayers", s.layout.layers);
-  program.set("shadowMapSize", s.shadowMapSize);
-  program.set("satMinRadius", settings.blur.radius);
-  program.set("blurRadius", settings.blur.radius);
-  program.set("zmaxLevels", s.zmaxLevels);
-  program.set("channelLevels", s.channelLevels);
-  program.set("anisotropy", settings.anisotropy);
   setChannelSampling(s);
   glBindTextureUnit(0, s.channels.id());
   if (zmax) glBindTextureUnit(1, s.zmax.id());

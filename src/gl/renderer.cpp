@@ -17,14 +17,6 @@
 namespace penumbra::gl {
 namespace {
 
-constexpr std::array<std::pair<FilterMode, std::string_view>, 5> kFilterModes{{
-    {FilterMode::Point, "point"},
-    {FilterMode::Bilinear, "bilinear"},
-    {FilterMode::Trilinear, "trilinear"},
-    {FilterMode::Anisotropic, "anisotropic"},
-    {FilterMode::SummedArea, "sat"},
-}};
-
 void checkRange(std::string_view what, double value, double lo, double hi) {
   if (!(value >= lo && value <= hi)) {
     throw Error(std::string(what) + " " + std::to_string(value) + " is out of range [" +
@@ -78,31 +70,12 @@ MemoryReport memoryReport(const Renderer::State& s) {
     m.auxiliary += channelTextureBytes(r32f, s.shadowMapSize, s.shadowMapSize, true);
   }
   if (s.splitSamples) m.auxiliary += s.splitSamples->size();
-  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 16 + 8 + 4);
+  // Colour, visibility, diagnostic, lookup, receiver plane, uv derivatives, depth.
+  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 16 + 8 + 16 + 4);
   return m;
 }
 
 }  // namespace
-
-std::string_view filterModeName(FilterMode mode) {
-  for (const auto& [m, name] : kFilterModes) {
-    if (m == mode) return name;
-  }
-  return "unknown";
-}
-
-std::string filterModeNameList() {
-  std::string list;
-  for (const auto& [m, name] : kFilterModes) list += (list.empty() ? "" : ", ") + std::string(name);
-  return list;
-}
-
-FilterMode parseFilterMode(std::string_view name) {
-  for (const auto& [m, n] : kFilterModes) {
-    if (n == name) return m;
-  }
-  throw Error("unknown filter '" + std::string(name) + "'; valid filters: " + filterModeNameList());
-}
 
 Renderer::State::~State() {
   if (lightFramebuffer != 0) glDeleteFramebuffers(1, &lightFramebuffer);
@@ -268,6 +241,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       readTexture(s.frameLookup.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
   result.receiverPlane =
       readTexture(s.frameReceiverPlane.id(), 0, settings.width, settings.height, 1, 2, GL_RG, true);
+  result.uvDerivatives = readTexture(s.frameDerivatives.id(), 0, settings.width, settings.height,
+                                     1, 4, GL_RGBA, true);
   if (settings.technique == Technique::Esm &&
       s.params.esm.classifier != shaders::kEsmClassifyNone) {
     size_t drawn = 0, failed = 0;
@@ -349,6 +324,8 @@ RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings&
     result.lookup = readTexture(s.frameLookup.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
     result.receiverPlane =
         readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
+    result.uvDerivatives =
+        readTexture(s.frameDerivatives.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
   }
   result.params = s.params;
   result.wallTimes.light = s.lightTimer.wallMilliseconds();

@@ -54,6 +54,7 @@ struct Renderer::State {
   Texture frameDiagnostic;
   Texture frameLookup;
   Texture frameReceiverPlane;
+  Texture frameDerivatives;
   Texture frameDepth;
   unsigned frameFramebuffer = 0;
 
@@ -79,7 +80,6 @@ struct Renderer::State {
 void allocateChannels(Renderer::State& state, const RenderSettings& settings);
 void encodeChannels(Renderer::State& state, unsigned depthTexture, bool multisampled);
 void prefilterChannels(Renderer::State& state);
-bool usesMips(FilterMode mode);
 // Fills levels 1..levels-1 of a 2D-array texture of `layout` from level 0 with `reduce`
 // (passes/mip_reduce.comp in the layout's image format).
 void reduceMipLevels(Renderer::State& state, const Program& reduce, const Texture& texture,

@@ -90,10 +90,6 @@ void buildSummedAreaTable(Renderer::State& s) {
 
 }  // namespace
 
-bool usesMips(FilterMode mode) {
-  return mode == FilterMode::Trilinear || mode == FilterMode::Anisotropic;
-}
-
 void allocateChannels(Renderer::State& s, const RenderSettings& settings) {
   // PCF and the hard test read raw depth: no prefilter, no mips, no scratch.
   const bool prefiltered =

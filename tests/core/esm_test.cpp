@@ -112,20 +112,6 @@ TEST(Esm, LinearSpaceRejectsExponentsFp32CannotHold) {
 namespace penumbra {
 namespace {
 
-TEST(EsmFallback, CustomPcfIsTheBilinearTestOfTheFourDecodedTexels) {
-  shaders::EsmParams p = shaders::esmDefaultParams();
-  const glm::vec4 stored(shaders::esmEncode(0.3f, p), shaders::esmEncode(0.7f, p),
-                         shaders::esmEncode(0.7f, p), shaders::esmEncode(0.3f, p));
-  // Receiver at 0.5: texels (1,0) and (0,1) at 0.7 are lit, the others occlude.
-  EXPECT_NEAR(shaders::esmCustomPcf2x2(stored, glm::vec2(0.0f), 0.5f, p), 0.0f, 1e-6f);
-  EXPECT_NEAR(shaders::esmCustomPcf2x2(stored, glm::vec2(1.0f, 0.0f), 0.5f, p), 1.0f, 1e-6f);
-  EXPECT_NEAR(shaders::esmCustomPcf2x2(stored, glm::vec2(0.25f, 0.5f), 0.5f, p),
-              0.5f * 0.25f + 0.5f * 0.75f, 1e-6f);
-  // A receiver on its own texels is lit despite exp/log rounding.
-  const glm::vec4 own(shaders::esmEncode(0.42f, p));
-  EXPECT_EQ(shaders::esmCustomPcf2x2(own, glm::vec2(0.3f), 0.42f, p), 1.0f);
-}
-
 TEST(EsmFallback, ZmaxFlagsOccludersBehindTheReceiverBeyondTheOffset) {
   shaders::EsmParams p = shaders::esmDefaultParams();
   p.zmaxOffset = 0.01f;

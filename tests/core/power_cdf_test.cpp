@@ -67,8 +67,29 @@ TEST(PowerCdf, LayeredVariantSeparatesOccluderGroups) {
   const float layered = evaluateOnRegion(Technique::PowerCdf, params, region, receiver);
   EXPECT_FLOAT_EQ(exact, 0.5f);
   EXPECT_GT(std::abs(single - exact), 0.3f);  // beta = 1, t = 11/12: (1 - t) / (1/2) = 1/6
-  EXPECT_NEAR(layered, exact, 1e-5f);         // clamped to [0.5, 1]: beta = 1, t = 3/4: 1/2
+  // Clamped to the layer [0.5 - overlap, 1] = [0.49, 1]: min 0.49, mean 0.595, max 0.7, so
+  // beta = 1, t = 0.16 / 0.21 = 16/21 and (1 - t) / (1/2) = 10/21. fp32 rounding: 1e-5.
+  EXPECT_NEAR(layered, 10.0f / 21.0f, 1e-5f);
+  setParam(Technique::PowerCdf, params, "overlap", "0");
+  // Without overlap the layer is [0.5, 1]: beta = 1, t = 3/4: exactly the 1/2 of PCF.
+  EXPECT_NEAR(evaluateOnRegion(Technique::PowerCdf, params, region, receiver), exact, 1e-5f);
   EXPECT_EQ(channelCount(Technique::PowerCdf, params), 6);
+}
+
+TEST(PowerCdf, LayerOverlapKeepsASlopedReceiverBelowASplitLit) {
+  // A lit receiver whose filter region spans +-0.01 of its own sloped surface, 0.0005 below the
+  // split at 0.5 (review item 3). One layer: the receiver sits at the region's mean, lit.
+  TechniqueParams params = float32Params();
+  std::vector<DepthSample> ownSurface;
+  for (int i = 0; i < 21; ++i) ownSurface.push_back({0.4895f + 0.001f * float(i), 1.0f / 21.0f});
+  const float receiver = 0.4995f;
+  EXPECT_EQ(evaluateOnRegion(Technique::PowerCdf, params, ownSurface, receiver), 1.0f);
+  setParam(Technique::PowerCdf, params, "splits", "0.5");
+  // The default overlap (0.01) keeps the surface inside the receiver's layer: still lit.
+  EXPECT_EQ(evaluateOnRegion(Technique::PowerCdf, params, ownSurface, receiver), 1.0f);
+  // Without it the far half is clamped onto the split and the receiver darkens (about 0.6).
+  setParam(Technique::PowerCdf, params, "overlap", "0");
+  EXPECT_LT(evaluateOnRegion(Technique::PowerCdf, params, ownSurface, receiver), 0.75f);
 }
 
 TEST(PowerCdf, SixteenBitStorageStaysCloseToThirtyTwo) {

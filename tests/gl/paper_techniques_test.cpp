@@ -126,9 +126,9 @@ TEST_F(PaperTechniques, EsmLogSpaceFilteringAgreesWithLinearSpaceThroughHardware
     logSpace.params.esm.filterSpace = shaders::kEsmFilterLog;
     const double difference = meanAbsoluteDifference(render("backyard", linear).visibility,
                                                      render("backyard", logSpace).visibility);
-    RecordProperty(std::string("log_vs_linear_") + std::string(gl::filterModeName(filter)),
+    RecordProperty(std::string("log_vs_linear_") + std::string(filterModeName(filter)),
                    std::to_string(difference));
-    EXPECT_LT(difference, 2e-3) << gl::filterModeName(filter);
+    EXPECT_LT(difference, 2e-3) << filterModeName(filter);
   }
   // Far beyond fp32's exp range, log space still renders finite shadows.
   const gl::RenderResult huge =

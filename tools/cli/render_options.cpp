@@ -40,7 +40,7 @@ gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   }
   s.blur.kernel = o.blurKernel == "box" ? BlurKernel::Box : BlurKernel::Gaussian;
   s.blur.sigma = o.blurSigma > 0.0f ? o.blurSigma : std::max(0.5f, 0.5f * float(s.blur.radius));
-  s.filter = gl::parseFilterMode(o.filter);
+  s.filter = parseFilterMode(o.filter);
   s.anisotropy = o.aniso;
   s.width = o.width;
   s.height = o.height;

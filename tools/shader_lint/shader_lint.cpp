@@ -119,6 +119,12 @@ int main(int argc, char** argv) {
       target = "lint/" + path + ".comp";
       library.addFile(target,
                       "#include \"" + path + "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+      // Summed-area code needs 64-bit integers, enabled before any declaration.
+      if (library.expand(target).source.find("SUMMED_AREA") != std::string::npos) {
+        library.addFile(target, "#if SUMMED_AREA\n#extension GL_ARB_gpu_shader_int64 : require\n"
+                                "#endif\n#include \"" + path +
+                                    "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+      }
       stage = "comp";
     }
     if (stage.empty()) continue;

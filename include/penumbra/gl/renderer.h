@@ -7,6 +7,7 @@
 #include <string>
 #include <string_view>
 
+#include "penumbra/filter_mode.h"
 #include "penumbra/filters.h"
 #include "penumbra/image.h"
 #include "penumbra/layer_placement.h"
@@ -17,12 +18,7 @@ namespace penumbra::gl {
 
 class HeadlessContext;
 
-enum class FilterMode { Point, Bilinear, Trilinear, Anisotropic, SummedArea };
-
-std::string_view filterModeName(FilterMode mode);  // "point", "bilinear", ..., "sat"
-// Throws Error listing the valid names.
-FilterMode parseFilterMode(std::string_view name);
-std::string filterModeNameList();
+using penumbra::FilterMode;  // penumbra/filter_mode.h
 
 struct RenderSettings {
   Technique technique = Technique::Vsm;
@@ -77,6 +73,7 @@ struct RenderResult {
   // gradient per shadow-map texel.
   Image lookup;
   Image receiverPlane;
+  Image uvDerivatives;  // per pixel, row 0 at the top: dFdx(uv) and dFdy(uv), the footprint
   PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;

@@ -1,7 +1,8 @@
 // One axis of the separable prefilter (box or Gaussian weights from shared/filter_weights.h,
 // computed on the CPU and passed in): clamp-to-edge taps, each channel reduced by its technique's
 // reduction. Accumulation is fp32 whatever the storage, so fp16 storage cannot overflow.
-#include "../lib/channel_reduce.glsl"
+#include "../lib/technique_block.glsl"
+#include "../shared/channel_reduction.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray source;
@@ -23,14 +24,13 @@ void main() {
     for (int c = 0; c < 4; ++c) {
       int channel = 4 * layer + c;
       if (channel >= count) continue;
-      int reduction = channelReduction(technique, channel, params);
-      float acc = reduceStart(reduction);
+      ChannelAccumulator acc =
+          startReduction(channelReduction(technique, channel, params), params.esm.exponent);
       for (int i = -radius; i <= radius; ++i) {
         ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
-        float v = texelFetch(source, ivec3(q, layer), 0)[c];
-        acc = reduceAdd(reduction, acc, i == -radius, v, weights[i + radius]);
+        acc = accumulateTap(acc, texelFetch(source, ivec3(q, layer), 0)[c], weights[i + radius]);
       }
-      result[c] = acc;
+      result[c] = acc.value;
     }
     imageStore(target, ivec3(p, layer), result);
   }

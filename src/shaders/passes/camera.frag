@@ -9,10 +9,10 @@
 #ifndef REFERENCE
 #define REFERENCE 0
 #endif
-#include "../lib/shadow_lookup.glsl"
-#if REFERENCE
-#include "../lib/filtered_reference.glsl"
+#ifndef MSAA
+#define MSAA 0
 #endif
+#include "../lib/lookup_access.glsl"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -32,9 +32,10 @@ uniform float ambient;
 
 layout(location = 0) out vec4 color;
 layout(location = 1) out float visibilityOut;
-layout(location = 2) out float diagnosticOut;  // see shadowVisibility; -1 where nothing is drawn
+layout(location = 2) out float diagnosticOut;  // ShadowSample's; -1 where nothing is drawn
 layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, where (see main)
 layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
+layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the lookup's footprint
 
 const float kGrazingCosine = 0.05f;
 
@@ -76,11 +77,17 @@ void main() {
   bool inside = all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))) &&
                 receiver <= 1.0f && clip.w > 0.0f;
   if (inside) {
+    LookupSources sources;
+    sources.unused = 0;
 #if REFERENCE
     // Weights sum to 1 up to fp32 rounding.
-    visibility = clamp(referenceVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel), 0.0f, 1.0f);
+    visibility = clamp(referenceVisibility(sources, lookupSettings(), uv, receiver, uvDx, uvDy,
+                                           depthPerTexel), 0.0f, 1.0f);
 #else
-    visibility = shadowVisibility(uv, clamp(receiver, 0.0f, 1.0f), uvDx, uvDy, depthPerTexel, diagnostic);
+    ShadowSample shadow = shadowLookup(sources, lookupSettings(), technique, params, uv, receiver,
+                                       uvDx, uvDy, depthPerTexel);
+    visibility = shadow.visibility;
+    diagnostic = shadow.diagnostic;
 #endif
   }
 
@@ -94,4 +101,5 @@ void main() {
   // test decides the shading), 0.5 inside but facing away or grazing, 0 outside.
   lookupOut = vec4(uv, receiver, inside ? (cosine > kGrazingCosine ? 1.0f : 0.5f) : 0.0f);
   depthPerTexelOut = depthPerTexel;
+  uvDerivativesOut = vec4(uvDx, uvDy);
 }

@@ -1,7 +1,8 @@
 // Encode pass: light-space depth -> the technique's channels (shared encodeChannel), written to
 // its storage format. With MSAA every sample is encoded, then the samples are reduced like
 // filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
-#include "../lib/channel_reduce.glsl"
+#include "../lib/technique_block.glsl"
+#include "../shared/channel_reduction.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channelImage;
@@ -18,12 +19,12 @@ float encodeTexel(ivec2 p, int channel) {
 #if MSAA
   bool depthOnly = technique == kTechniqueHard || technique == kTechniquePcf;
   int reduction = depthOnly ? kReduceMin : channelReduction(technique, channel, params);
-  float acc = reduceStart(reduction);
+  ChannelAccumulator acc = startReduction(reduction, params.esm.exponent);
   for (int s = 0; s < sampleCount; ++s) {
     float v = encodeChannel(technique, texelFetch(depthMap, p, s).x, channel, params);
-    acc = reduceAdd(reduction, acc, s == 0, v, 1.0f / float(sampleCount));
+    acc = accumulateTap(acc, v, 1.0f / float(sampleCount));
   }
-  return acc;
+  return acc.value;
 #else
   return encodeChannel(technique, texelFetch(depthMap, p, 0).x, channel, params);
 #endif

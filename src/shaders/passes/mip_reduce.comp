@@ -1,7 +1,9 @@
 // One mip level down: each texel reduces the 2x2 block below it by its channel's reduction; with
-// an odd source size the last texel also takes the leftover row/column (as filters.cpp does).
+// an odd source size the last texel also takes the leftover row/column (shared/mip_span.h).
 // FORCE_REDUCTION overrides the technique's reduction (the Z-max pyramid uses kReduceMax).
-#include "../lib/channel_reduce.glsl"
+#include "../lib/technique_block.glsl"
+#include "../shared/channel_reduction.h"
+#include "../shared/mip_span.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray source;
@@ -12,17 +14,11 @@ uniform ivec2 sourceSize;
 uniform ivec2 targetSize;
 uniform int layerCount;
 
-ivec2 sourceSpan(int i, int count, int sourceCount) {
-  int first = min(2 * i, sourceCount - 1);
-  int last = i == count - 1 ? sourceCount - 1 : 2 * i + 1;
-  return ivec2(first, last);
-}
-
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= targetSize.x || p.y >= targetSize.y) return;
-  ivec2 xs = sourceSpan(p.x, targetSize.x, sourceSize.x);
-  ivec2 ys = sourceSpan(p.y, targetSize.y, sourceSize.y);
+  ivec2 xs = mipSourceSpan(p.x, targetSize.x, sourceSize.x);
+  ivec2 ys = mipSourceSpan(p.y, targetSize.y, sourceSize.y);
   float weight = 1.0f / float((xs.y - xs.x + 1) * (ys.y - ys.x + 1));
   int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
@@ -35,16 +31,13 @@ void main() {
 #else
       int reduction = channelReduction(technique, channel, params);
 #endif
-      float acc = reduceStart(reduction);
-      bool first = true;
+      ChannelAccumulator acc = startReduction(reduction, params.esm.exponent);
       for (int y = ys.x; y <= ys.y; ++y) {
         for (int x = xs.x; x <= xs.y; ++x) {
-          float v = texelFetch(source, ivec3(x, y, layer), sourceLevel)[c];
-          acc = reduceAdd(reduction, acc, first, v, weight);
-          first = false;
+          acc = accumulateTap(acc, texelFetch(source, ivec3(x, y, layer), sourceLevel)[c], weight);
         }
       }
-      result[c] = acc;
+      result[c] = acc.value;
     }
     imageStore(target, ivec3(p, layer), result);
   }

@@ -16,6 +16,11 @@ const int kEsmFilterLog = 1;
 const int kEsmClassifyNone = 0;
 const int kEsmClassifyThreshold = 1;  // the filtered ESM value exceeds 1 + epsilon
 const int kEsmClassifyZmax = 2;       // the max depth under the filter lies behind the receiver
+// What a failing pixel is shaded with: PCF over the light pass's unfiltered depth with the
+// prefilter's kernel (the default: it undoes the prefilter, which the paper's cannot), or the
+// paper's 2x2 test on the prefiltered ESM texels (ESM paper §3.3, §3.4).
+const int kEsmFallbackPcf = 0;
+const int kEsmFallbackPaper = 1;
 // exp(88) = 1.65e38 < FLT_MAX: the largest c whose exp(c z) fp32 stores for z in [0,1].
 const float kEsmMaxLinearExponent = 88.0f;
 
@@ -25,7 +30,7 @@ struct EsmParams {
   float threshold;   // epsilon of threshold classification (ESM paper §3.3), [0, 10]
   int classifier;    // kEsmClassifyNone, kEsmClassifyThreshold (the paper's choice) or Zmax
   float zmaxOffset;  // added to the receiver depth before the Z-max test (§3.3), [0, 0.1]
-  float pad0;
+  int fallback;      // kEsmFallbackPcf or kEsmFallbackPaper
   float pad1;
   float pad2;
 };
@@ -37,7 +42,7 @@ PENUMBRA_INLINE EsmParams esmDefaultParams() {
   p.threshold = 0.05f;
   p.classifier = kEsmClassifyThreshold;
   p.zmaxOffset = 0.005f;
-  p.pad0 = 0.0f;
+  p.fallback = kEsmFallbackPcf;
   p.pad1 = 0.0f;
   p.pad2 = 0.0f;
   return p;
@@ -81,25 +86,6 @@ PENUMBRA_INLINE bool esmFailsThreshold(float filtered, float receiverDepth, EsmP
 // (offset so that lit surfaces are not flagged), so exp(-c(d - z)) > 1 somewhere in the sum.
 PENUMBRA_INLINE bool esmFailsZmax(float maxDepth, float receiverDepth, EsmParams p) {
   return maxDepth > receiverDepth + p.zmaxOffset;
-}
-
-// The depth a stored ESM texel stands for: ln(v)/c in linear space, v itself in log space.
-PENUMBRA_INLINE float esmDecodeDepth(float stored, EsmParams p) {
-  if (p.filterSpace == kEsmFilterLog) return stored;
-  return log(max(stored, 1.0e-30f)) / p.exponent;
-}
-
-// The fallback for failing pixels: PCF over the ESM's 2x2 nearest texels (x: (0,0), y: (1,0),
-// z: (0,1), w: (1,1)) with bilinear weights at `fraction` (ESM paper §3.3, Fig. 5). The depth
-// test tolerates ln(1 + epsilon)/c, the margin the threshold classifier allows.
-PENUMBRA_INLINE float esmCustomPcf2x2(vec4 stored, vec2 fraction, float receiverDepth,
-                                      EsmParams p) {
-  float d = receiverDepth - log(1.0f + p.threshold) / p.exponent;
-  float v00 = esmDecodeDepth(stored.x, p) >= d ? 1.0f : 0.0f;
-  float v10 = esmDecodeDepth(stored.y, p) >= d ? 1.0f : 0.0f;
-  float v01 = esmDecodeDepth(stored.z, p) >= d ? 1.0f : 0.0f;
-  float v11 = esmDecodeDepth(stored.w, p) >= d ? 1.0f : 0.0f;
-  return mix(mix(v00, v10, fraction.x), mix(v01, v11, fraction.x), fraction.y);
 }
 
 PENUMBRA_END_SHARED

@@ -52,5 +52,13 @@ PENUMBRA_INLINE int selectLayer(float depth, LayerSplits splits) {
   return layer;
 }
 
+// [p_i, q_i] of layer i: its split interval widened by `overlap` on the inner sides (thesis
+// §4.1.1), so that a receiver near a split still sees its own surface's depths inside the layer.
+PENUMBRA_INLINE vec2 overlappedLayerRange(LayerSplits splits, int layer, float overlap) {
+  float lower = layer == 0 ? 0.0f : layerSplit(splits, layer) - overlap;
+  float upper = layer == splits.layerCount - 1 ? 1.0f : layerSplit(splits, layer + 1) + overlap;
+  return vec2(max(lower, 0.0f), min(upper, 1.0f));
+}
+
 PENUMBRA_END_SHARED
 #endif

@@ -34,12 +34,8 @@ PENUMBRA_INLINE LvsmParams lvsmDefaultParams() {
   return p;
 }
 
-// [p_i, q_i] of layer i: its split interval widened by the overlap on the inner sides (§4.1.1).
 PENUMBRA_INLINE vec2 lvsmLayerRange(int layer, LvsmParams p) {
-  float lower = layer == 0 ? 0.0f : layerSplit(p.splits, layer) - p.overlap;
-  float upper =
-      layer == p.splits.layerCount - 1 ? 1.0f : layerSplit(p.splits, layer + 1) + p.overlap;
-  return vec2(max(lower, 0.0f), min(upper, 1.0f));
+  return overlappedLayerRange(p.splits, layer, p.overlap);
 }
 
 // The layer warp of thesis eq. 4.2: 0 in front of the layer, 1 behind it, linear inside.

@@ -1,6 +1,8 @@
 // The power-function CDF method (Gumbau et al. 2011): the occluder depth CDF over the filter
 // region is fitted with t^beta from the filtered min, max and mean, and visibility follows eq. 4.
-// The layered variant clamps depths into each layer's split interval, like LVSM's warps.
+// The layered variant clamps depths into each layer's interval, widened by an overlap as LVSM's
+// layers are (thesis §4.1.1): without it a sloped receiver just below a split sees its own far
+// side clamped onto the split and darkens.
 #ifndef PENUMBRA_SHARED_POWER_CDF_H
 #define PENUMBRA_SHARED_POWER_CDF_H
 #include "constants.h"
@@ -16,7 +18,7 @@ struct PowerCdfParams {
   int storage;      // kStorageFloat32 or kStorageFloat16 (Gumbau §4: 16 bits suffice)
   float depthBias;  // subtracted from the receiver depth, [0, 0.1]: a planar receiver sits at
                     // the filtered mean, and storage rounding must not push it behind (eq. 1)
-  int pad1;
+  float overlap;    // layer intervals widened by this on the inner sides, [0, 0.1] (layered)
   int pad2;
   LayerSplits splits;  // one layer is the paper's method; more is its layered variant
 };
@@ -25,15 +27,17 @@ PENUMBRA_INLINE PowerCdfParams powerCdfDefaultParams() {
   PowerCdfParams p;
   p.storage = kStorageFloat32;
   p.depthBias = 0.001f;
-  p.pad1 = 0;
+  p.overlap = 0.01f;
   p.pad2 = 0;
   p.splits = uniformLayerSplits(1);
   return p;
 }
 
-// Depth clamped into layer `layer`: occluders in front pile up at its lower split.
+// Depth clamped into layer `layer`'s overlapped interval: occluders in front pile up at its
+// lower end.
 PENUMBRA_INLINE float powerCdfLayerDepth(float depth, int layer, PowerCdfParams p) {
-  return clamp(depth, layerSplit(p.splits, layer), layerSplit(p.splits, layer + 1));
+  vec2 range = overlappedLayerRange(p.splits, layer, p.overlap);
+  return clamp(depth, range.x, range.y);
 }
 
 // (min, max, mean) channels of one depth, filtered with min, max and mean reductions.

@@ -1,13 +1,15 @@
 // The only glue between GLSL 4.50 and C++20 for the shared headers in this folder.
 // Shared code uses the common subset: GLM mirrors GLSL's types and functions on the C++ side.
-// Rules: include guards, `f` literals, no swizzles, no out/inout, no texture access, structs
-// built member by member (constructor syntax differs), every function marked PENUMBRA_INLINE.
+// Rules: include guards, `f` literals, no swizzles, no out/inout, structs built member by member
+// (constructor syntax differs), every function marked PENUMBRA_INLINE. Texture access only
+// through the functions lookup_access.h declares, which each side defines over its own textures.
 // PENUMBRA_PRECISE marks ill-conditioned arithmetic (MSM's Hankel solve) where GLSL compilers
 // must not fuse or reorder operations, so the GPU rounds as the C++ reference does.
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
 
 #ifdef __cplusplus
+#include <cstdint>
 #include <glm/glm.hpp>
 #define PENUMBRA_INLINE inline
 #define PENUMBRA_PRECISE

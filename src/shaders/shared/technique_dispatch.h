@@ -46,6 +46,22 @@ PENUMBRA_INLINE int channelReduction(int technique, int channel, TechniqueParams
   return kReduceMean;
 }
 
+// The channels [x, y] that reconstructVisibility reads for a receiver at `receiverDepth`: the
+// receiver's layer (and LVSM's next one, for its transition) for the layered techniques, all
+// channels otherwise. The lookup fetches only these.
+PENUMBRA_INLINE ivec2 receiverChannelRange(int technique, TechniqueParams p, float receiverDepth) {
+  if (technique == kTechniqueLvsm) {
+    int layer = selectLayer(receiverDepth, p.lvsm.splits);
+    int next = min(layer + 1, p.lvsm.splits.layerCount - 1);
+    return ivec2(2 * layer, 2 * next + 1);
+  }
+  if (technique == kTechniquePowerCdf) {
+    int layer = selectLayer(receiverDepth - p.powerCdf.depthBias, p.powerCdf.splits);
+    return ivec2(3 * layer, 3 * layer + 2);
+  }
+  return ivec2(0, techniqueChannelCount(technique, p) - 1);
+}
+
 // Visibility in [0,1] of a receiver at `receiverDepth` (linear light-space depth in [0,1]) from
 // the technique's filtered channels. For PCF and the hard test the channel is one depth texel.
 PENUMBRA_INLINE float reconstructVisibility(int technique, float channels[kMaxChannels],

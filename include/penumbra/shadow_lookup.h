@@ -1,0 +1,69 @@
+// The camera pass's per-pixel shadow lookup on the CPU: the twin of the GPU's, running the same
+// shared code (shared/shadow_lookup.h, shared/filtered_reference.h) over channels built by the
+// CPU reference filters (encode, blur, mips, summed-area table, Z-max pyramid, each rounded to
+// the technique's storage format as the GPU's textures are). Only texture access differs, so the
+// GPU renderer can be tested pixel by pixel against it (tests/gl/lookup_parity_test.cpp).
+#pragma once
+
+#include <glm/glm.hpp>
+#include <memory>
+
+#include "penumbra/filter_mode.h"
+#include "penumbra/filters.h"
+#include "penumbra/image.h"
+#include "penumbra/technique.h"
+
+namespace penumbra {
+
+namespace shaders {
+struct CpuLookupTextures;
+}
+
+struct LookupConfig {
+  Technique technique = Technique::Vsm;
+  TechniqueParams params = defaultTechniqueParams();  // as rendered (LVSM's splits as placed)
+  FilterMode filter = FilterMode::Bilinear;
+  BlurSpec blur{BlurKernel::Box, 2, 1.0f};  // prefilter; with `SummedArea`, the smallest box
+  int anisotropy = 16;                      // [1, 16]
+};
+
+// One pixel's lookup inputs, as the camera pass computes them (RenderResult::lookup,
+// receiverPlane and uvDerivatives hold them per pixel).
+struct LookupPixel {
+  glm::vec2 uv{0.5f};
+  float receiverDepth = 0.5f;  // linear light-space depth (clamped to [0,1] by the lookup)
+  glm::vec2 uvDx{0.0f};
+  glm::vec2 uvDy{0.0f};
+  glm::vec2 depthPerTexel{0.0f};  // receiver plane's depth gradient per shadow-map texel
+};
+
+struct LookupSample {
+  float visibility = 1.0f;
+  float diagnostic = 0.0f;  // ESM: 1 where classification failed; LVSM: the layer; else 0
+};
+
+class CpuShadowLookup {
+ public:
+  // depth: the light pass's linear depth, square, one channel, row 0 at the bottom (GL's).
+  // Single-sampled: the GPU's MSAA encode (moments of every sample) is not modelled.
+  CpuShadowLookup(const Image& depth, const LookupConfig& config);
+  ~CpuShadowLookup();
+  CpuShadowLookup(const CpuShadowLookup&) = delete;
+  CpuShadowLookup& operator=(const CpuShadowLookup&) = delete;
+
+  // What the technique's camera-pass lookup returns for the pixel.
+  LookupSample lookup(const LookupPixel& pixel) const;
+  // The filtered reference for the pixel (docs/reference.md). Mip-mapped filter modes need a
+  // power-of-two map size (throws Error otherwise).
+  float referenceVisibility(const LookupPixel& pixel) const;
+
+  // The technique's prefiltered channels at a mip level (row 0 at the bottom).
+  const Image& channels(int level) const;
+  int channelLevels() const;
+
+ private:
+  std::unique_ptr<shaders::CpuLookupTextures> textures_;
+  LookupConfig config_;
+};
+
+}  // namespace penumbra

@@ -1,0 +1,199 @@
+// The CPU twin of the camera pass's lookup: the CPU reference filters build the textures, and
+// the shared lookup reads them through the access functions of shared/lookup_access.h.
+#include "penumbra/shadow_lookup.h"
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "penumbra/channel_layout.h"
+#include "penumbra/error.h"
+#include "penumbra/params.h"
+#include "penumbra/storage_format.h"
+#include "penumbra/summed_area_table.h"
+#include "shared/filtered_reference.h"
+#include "shared/shadow_lookup.h"
+
+namespace penumbra {
+
+namespace shaders {
+
+struct CpuLookupTextures {
+  LookupSettings settings{};
+  Image depth;
+  std::vector<Image> channels;  // mip chain; level 0 alone without mips
+  std::optional<SummedAreaTable> summedArea;
+  std::vector<Image> zmax;
+  std::vector<float> blurCumulative;
+};
+
+vec4 channelTexel(LookupSources s, int layer, ivec2 texel, int level) {
+  const Image& image = s.textures->channels[size_t(level)];
+  vec4 v(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    const int c = 4 * layer + k;
+    if (c < image.channels()) v[k] = image.at(texel.x, texel.y, c);
+  }
+  return v;
+}
+
+vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
+  const CpuLookupTextures& t = *s.textures;
+  const TrilinearLevels levels = trilinearLevels(lod, int(t.channels.size()));
+  const int size = t.settings.shadowMapSize;
+  vec4 v(0.0f);
+  for (int k = 0; k < 4; ++k) {
+    ChannelAccumulator a = startReduction(kReduceMean, 0.0f);
+    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.level,
+                           mipLevelSize(size, levels.level), 1.0f - levels.fraction);
+    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.next, mipLevelSize(size, levels.next),
+                           levels.fraction);
+    v[k] = a.value;
+  }
+  return v;
+}
+
+// The usual model of anisotropic filtering: trilinear probes along the footprint's major axis.
+vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy) {
+  const LookupProbes probes = lookupProbes(uvDx, uvDy, s.textures->settings);
+  vec4 v(0.0f);
+  for (int k = 0; k < probes.count; ++k) {
+    v += channelLinear(s, layer, uv + probeOffset(probes, k), probes.lod) / float(probes.count);
+  }
+  return v;
+}
+
+float lightDepthTexel(LookupSources s, ivec2 texel) {
+  return s.textures->depth.at(texel.x, texel.y);
+}
+
+float zmaxTexel(LookupSources s, ivec2 texel, int level) {
+  return s.textures->zmax[size_t(level)].at(texel.x, texel.y);
+}
+
+float blurCumulativeWeight(LookupSources s, int u) {
+  return s.textures->blurCumulative[size_t(u + s.textures->settings.blurRadius)];
+}
+
+uint64_t summedAreaPrefix(LookupSources s, int channel, int x, int y) {
+  return s.textures->summedArea->prefixSum(x, y, channel);
+}
+
+double summedAreaCentre(LookupSources s, int channel) {
+  return s.textures->summedArea->centre(channel);
+}
+
+double summedAreaStep(LookupSources s, int channel) {
+  return s.textures->summedArea->step(channel);
+}
+
+}  // namespace shaders
+
+namespace {
+
+Image quantized(Image image, StorageFormat storage) {
+  for (float& v : image.data()) v = quantizeToStorage(v, storage);
+  return image;
+}
+
+bool isPowerOfTwo(int n) {
+  return n > 0 && (n & (n - 1)) == 0;
+}
+
+}  // namespace
+
+CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
+    : textures_(std::make_unique<shaders::CpuLookupTextures>()), config_(config) {
+  if (depth.width() != depth.height() || depth.channels() != 1 || depth.width() < 1) {
+    throw Error("the CPU shadow lookup needs a square one-channel depth map");
+  }
+  validateParams(config.technique, config.params);
+  shaders::CpuLookupTextures& t = *textures_;
+  const Technique technique = config.technique;
+  const TechniqueParams& params = config.params;
+  const int size = depth.width();
+  t.depth = depth;
+  t.blurCumulative = cumulativeBlurWeights(config.blur);
+
+  // Encode, then the prefilter the renderer runs (shadow_map_filter.cpp), every stage rounded to
+  // the storage format as the GPU's textures round it.
+  const int count = channelCount(technique, params);
+  const StorageFormat storage = techniqueStorage(technique, params);
+  Image channels(size, size, count);
+  std::vector<float> encoded(static_cast<size_t>(count));
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      encodeDepth(technique, params, depth.at(x, y), encoded);
+      for (int c = 0; c < count; ++c) channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage);
+    }
+  }
+  std::vector<ChannelReduction> reductions;
+  for (int c = 0; c < count; ++c) reductions.push_back(channelReduction(technique, params, c));
+  const bool prefiltered = !filtersAfterTest(technique) && technique != Technique::Hard;
+  const float logExponent = params.esm.exponent;
+  if (prefiltered && config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
+    channels = quantized(separableFilterPass(channels, config.blur, true, reductions, logExponent),
+                         storage);
+    channels = quantized(separableFilterPass(channels, config.blur, false, reductions, logExponent),
+                         storage);
+  }
+  t.channels.push_back(channels);
+  if (prefiltered && usesMips(config.filter)) {
+    while (t.channels.back().width() > 1) {
+      t.channels.push_back(
+          quantized(reduceMipLevel(t.channels.back(), reductions, logExponent), storage));
+    }
+  }
+  if (prefiltered && config.filter == FilterMode::SummedArea) t.summedArea.emplace(channels);
+  if (technique == Technique::Esm && params.esm.classifier == shaders::kEsmClassifyZmax) {
+    const std::vector<ChannelReduction> max{ChannelReduction::Max};
+    t.zmax = buildMipChain(depth, max);
+  }
+
+  t.settings.filterMode = int(config.filter);
+  t.settings.shadowMapSize = size;
+  t.settings.channelLevels = int(t.channels.size());
+  t.settings.anisotropy = config.anisotropy;
+  t.settings.blurKernel =
+      config.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian : shaders::kKernelBox;
+  t.settings.blurRadius = config.blur.radius;
+  t.settings.blurSigma = config.blur.sigma;
+  t.settings.zmaxLevels = int(t.zmax.size());
+}
+
+CpuShadowLookup::~CpuShadowLookup() = default;
+
+LookupSample CpuShadowLookup::lookup(const LookupPixel& p) const {
+  const shaders::LookupSources sources{textures_.get()};
+  const shaders::ShadowSample s =
+      shaders::shadowLookup(sources, textures_->settings, int(config_.technique), config_.params,
+                            p.uv, p.receiverDepth, p.uvDx, p.uvDy, p.depthPerTexel);
+  return {s.visibility, s.diagnostic};
+}
+
+float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
+  shaders::LookupSettings settings = textures_->settings;
+  const int size = settings.shadowMapSize;
+  if (usesMips(config_.filter)) {
+    if (!isPowerOfTwo(size)) {
+      throw Error("the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
+                  "size; " + std::to_string(size) + " is not");
+    }
+    settings.channelLevels = mipLevelCount(size, size);
+  }
+  const shaders::LookupSources sources{textures_.get()};
+  return std::clamp(shaders::referenceVisibility(sources, settings, p.uv, p.receiverDepth, p.uvDx,
+                                                 p.uvDy, p.depthPerTexel),
+                    0.0f, 1.0f);
+}
+
+const Image& CpuShadowLookup::channels(int level) const {
+  return textures_->channels.at(size_t(level));
+}
+
+int CpuShadowLookup::channelLevels() const {
+  return int(textures_->channels.size());
+}
+
+}  // namespace penumbra

@@ -1,0 +1,99 @@
+// The GPU's side of the shared lookup (shared/lookup_access.h): the shadow map's textures as
+// samplers and buffers, and the lookup's settings as uniforms. Everything else of the lookup and
+// the filtered reference is shared/shadow_lookup.h and shared/filtered_reference.h.
+#ifndef PENUMBRA_LIB_LOOKUP_ACCESS_GLSL
+#define PENUMBRA_LIB_LOOKUP_ACCESS_GLSL
+#include "technique_block.glsl"
+#include "../shared/filtered_reference.h"
+#include "../shared/shadow_lookup.h"
+
+layout(binding = 0) uniform sampler2DArray channelMap;
+#if ZMAX
+layout(binding = 1) uniform sampler2DArray zmaxMap;
+#endif
+#if MSAA
+layout(binding = 2) uniform sampler2DMS lightDepthMap;
+uniform int lightSamples;
+#else
+layout(binding = 2) uniform sampler2D lightDepthMap;
+#endif
+#if SUMMED_AREA
+#include "summed_area.glsl"
+layout(std430, binding = 2) readonly buffer SatStats { SatChannelStats satStats[]; };
+layout(std430, binding = 3) readonly buffer SatSums { uint64_t satSums[]; };
+#endif
+
+const int kMaxBlurRadius = 64;
+uniform float blurCumulative[2 * kMaxBlurRadius + 1];  // see blurCumulativeWeight
+uniform int filterMode;
+uniform int shadowMapSize;
+uniform int channelLevels;
+uniform int anisotropy;
+uniform int blurKernel;
+uniform int blurRadius;
+uniform float blurSigma;
+uniform int zmaxLevels;
+
+LookupSettings lookupSettings() {
+  LookupSettings s;
+  s.filterMode = filterMode;
+  s.shadowMapSize = shadowMapSize;
+  s.channelLevels = channelLevels;
+  s.anisotropy = anisotropy;
+  s.blurKernel = blurKernel;
+  s.blurRadius = blurRadius;
+  s.blurSigma = blurSigma;
+  s.zmaxLevels = zmaxLevels;
+  return s;
+}
+
+vec4 channelTexel(LookupSources s, int layer, ivec2 texel, int level) {
+  return texelFetch(channelMap, ivec3(texel, layer), level);
+}
+
+vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
+  return textureLod(channelMap, vec3(uv, float(layer)), lod);
+}
+
+vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy) {
+  return textureGrad(channelMap, vec3(uv, float(layer)), uvDx, uvDy);
+}
+
+float lightDepthTexel(LookupSources s, ivec2 texel) {
+#if MSAA
+  float z = 1.0f;
+  for (int i = 0; i < lightSamples; ++i) z = min(z, texelFetch(lightDepthMap, texel, i).x);
+  return z;
+#else
+  return texelFetch(lightDepthMap, texel, 0).x;
+#endif
+}
+
+float zmaxTexel(LookupSources s, ivec2 texel, int level) {
+#if ZMAX
+  return texelFetch(zmaxMap, ivec3(texel, 0), level).x;
+#else
+  return 0.0f;
+#endif
+}
+
+float blurCumulativeWeight(LookupSources s, int u) {
+  return blurCumulative[u + blurRadius];
+}
+
+#if SUMMED_AREA
+uint64_t summedAreaPrefix(LookupSources s, int channel, int x, int y) {
+  if (x < 0 || y < 0) return 0UL;
+  return satSums[satIndex(channel, x, y, ivec2(shadowMapSize))];
+}
+
+double summedAreaCentre(LookupSources s, int channel) {
+  return satStats[channel].centre;
+}
+
+double summedAreaStep(LookupSources s, int channel) {
+  return satStats[channel].step;
+}
+#endif
+
+#endif

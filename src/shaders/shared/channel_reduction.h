@@ -1,0 +1,49 @@
+// How filter taps combine under a channel's reduction (constants.h kReduce*): mean channels take
+// the weighted sum, min/max channels the extreme over the taps that carry weight, ESM's log-space
+// channel the weighted log-mean-exp (Salvi). The one definition behind the GPU's encode, blur,
+// mip and lookup passes and the CPU reference filters.
+#ifndef PENUMBRA_SHARED_CHANNEL_REDUCTION_H
+#define PENUMBRA_SHARED_CHANNEL_REDUCTION_H
+#include "constants.h"
+#include "esm.h"
+#include "prelude.h"
+PENUMBRA_BEGIN_SHARED
+
+struct ChannelAccumulator {
+  int reduction;
+  float logExponent;  // c of the log-space reduction
+  float value;
+  int taps;  // taps with positive weight so far
+};
+
+PENUMBRA_INLINE ChannelAccumulator startReduction(int reduction, float logExponent) {
+  ChannelAccumulator a;
+  a.reduction = reduction;
+  a.logExponent = logExponent;
+  a.value = 0.0f;
+  if (reduction == kReduceMin) a.value = 3.402823e38f;
+  if (reduction == kReduceMax) a.value = -3.402823e38f;
+  a.taps = 0;
+  return a;
+}
+
+// Adds one tap. A tap of weight <= 0 lies outside the kernel and changes nothing, for min and max
+// too: a bilinear lookup exactly on a texel centre must not take the neighbour's extreme.
+PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float value, float weight) {
+  if (weight <= 0.0f) return a;
+  if (a.reduction == kReduceMin) {
+    a.value = min(a.value, value);
+  } else if (a.reduction == kReduceMax) {
+    a.value = max(a.value, value);
+  } else if (a.reduction == kReduceLogMeanExp) {
+    float term = esmLogSpaceWeighted(value, weight, a.logExponent);
+    a.value = a.taps == 0 ? term : esmLogSpaceAdd(a.value, term, a.logExponent);
+  } else {
+    a.value = a.value + weight * value;
+  }
+  a.taps = a.taps + 1;
+  return a;
+}
+
+PENUMBRA_END_SHARED
+#endif

@@ -1,0 +1,295 @@
+// The camera pass's per-pixel shadow lookup, written once for the GPU and the CPU twin: the
+// footprint picks the taps (lookup_footprint.h), the channels come filtered by the filter mode
+// and their reduction, ESM failures take a fallback, and the dispatcher reconstructs visibility.
+// Only texture access differs between the two sides (lookup_access.h).
+#ifndef PENUMBRA_SHARED_SHADOW_LOOKUP_H
+#define PENUMBRA_SHARED_SHADOW_LOOKUP_H
+#include "channel_reduction.h"
+#include "lookup_access.h"
+#include "lookup_footprint.h"
+#include "mip_span.h"
+#include "prelude.h"
+#include "technique_dispatch.h"
+PENUMBRA_BEGIN_SHARED
+
+// Ties within this count as lit in the filtered reference and in the tests that match it: the
+// receiver plane extended to a texel reproduces that texel's stored depth only to fp32 rounding.
+const float kReferenceTie = 0.00002f;
+
+struct FilteredChannels {
+  float values[kMaxChannels];
+};
+
+// One bilinear lookup of `channel` at a level, added to `a` with the lookup's share `weight`.
+PENUMBRA_INLINE ChannelAccumulator accumulateBilinear(LookupSources s, ChannelAccumulator a,
+                                                      int channel, vec2 uv, int level,
+                                                      int levelSize, float weight) {
+  BilinearTaps taps = bilinearTaps(uv, levelSize);
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      float w = weight * bilinearTapWeight(taps, i, j);
+      if (w <= 0.0f) continue;
+      ivec2 texel = clampTexel(taps.base + ivec2(i, j), levelSize);
+      a = accumulateTap(a, channelTexel(s, channel / 4, texel, level)[channel % 4], w);
+    }
+  }
+  return a;
+}
+
+// A channel through the filter mode's taps, reduced by its own reduction: what the hardware
+// filter does for mean channels, done by hand for min/max (power-CDF) and log-space (ESM)
+// channels, which a linear filter would get wrong.
+PENUMBRA_INLINE float filterChannelByTaps(LookupSources s, LookupSettings ls, int channel,
+                                          int reduction, float logExponent, vec2 uv, vec2 uvDx,
+                                          vec2 uvDy) {
+  int size = ls.shadowMapSize;
+  if (ls.filterMode == kFilterPoint) {
+    return channelTexel(s, channel / 4, nearestTexel(uv, size), 0)[channel % 4];
+  }
+  ChannelAccumulator a = startReduction(reduction, logExponent);
+  if (ls.filterMode == kFilterBilinear || ls.channelLevels == 1) {
+    return accumulateBilinear(s, a, channel, uv, 0, size, 1.0f).value;
+  }
+  LookupProbes probes = lookupProbes(uvDx, uvDy, ls);
+  TrilinearLevels levels = trilinearLevels(probes.lod, ls.channelLevels);
+  float share = 1.0f / float(probes.count);
+  for (int k = 0; k < probes.count; ++k) {
+    vec2 at = uv + probeOffset(probes, k);
+    a = accumulateBilinear(s, a, channel, at, levels.level, mipLevelSize(size, levels.level),
+                           share * (1.0f - levels.fraction));
+    a = accumulateBilinear(s, a, channel, at, levels.next, mipLevelSize(size, levels.next),
+                           share * levels.fraction);
+  }
+  return a.value;
+}
+
+#if PENUMBRA_SUMMED_AREA
+// The table's continuous prefix sum at texel-edge coordinates (X, Y): bilinear between the
+// integer prefix sums, since the channel is constant over each texel. Relative to `origin`, a
+// prefix sum at or below every corner used; wrapped differences of the fixed-point sums are exact
+// integers, and the bilinear form is taken on differences so that doubles keep every digit.
+PENUMBRA_INLINE double summedAreaContinuousPrefix(LookupSources s, int channel, vec2 at,
+                                                  uint64_t origin, int size) {
+  ivec2 edge = ivec2(floor(at));
+  double fx = double(at.x) - double(edge.x);
+  double fy = double(at.y) - double(edge.y);
+  int x1 = min(edge.x, size - 1);  // a corner on the far edge has weight 0 beyond it
+  int y1 = min(edge.y, size - 1);
+  uint64_t p00 = summedAreaPrefix(s, channel, edge.x - 1, edge.y - 1);
+  uint64_t p10 = summedAreaPrefix(s, channel, x1, edge.y - 1);
+  uint64_t p01 = summedAreaPrefix(s, channel, edge.x - 1, y1);
+  uint64_t p11 = summedAreaPrefix(s, channel, x1, y1);
+  double column = double(int64_t(p10 - p00));
+  double row = double(int64_t(p01 - p00));
+  double texel = double(int64_t(p11 - p10 - p01 + p00));
+  return double(int64_t(p00 - origin)) + fx * column + fy * row + fx * fy * texel;
+}
+
+// Mean of a channel over a box with sub-texel corners (summed-area VSM, thesis §3.5, with
+// bilinear corners so that a magnified box moves smoothly instead of snapping to texels).
+PENUMBRA_INLINE float summedAreaBoxMean(LookupSources s, int channel, SummedAreaBox box,
+                                        int size) {
+  ivec2 lo = ivec2(floor(box.lo));
+  uint64_t origin = summedAreaPrefix(s, channel, lo.x - 1, lo.y - 1);
+  double sum = summedAreaContinuousPrefix(s, channel, box.hi, origin, size) -
+               summedAreaContinuousPrefix(s, channel, vec2(box.lo.x, box.hi.y), origin, size) -
+               summedAreaContinuousPrefix(s, channel, vec2(box.hi.x, box.lo.y), origin, size) +
+               summedAreaContinuousPrefix(s, channel, box.lo, origin, size);
+  double area = (double(box.hi.x) - double(box.lo.x)) * (double(box.hi.y) - double(box.lo.y));
+  return float(sum * summedAreaStep(s, channel) / area + summedAreaCentre(s, channel));
+}
+#endif
+
+// The technique's filtered channels at uv; only those the receiver's reconstruction reads are
+// fetched (layered techniques: the receiver's layers), the others stay 0.
+PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings ls, int technique,
+                                                TechniqueParams p, vec2 uv, vec2 uvDx, vec2 uvDy,
+                                                float receiverDepth) {
+  FilteredChannels f;
+  for (int i = 0; i < kMaxChannels; ++i) f.values[i] = 0.0f;
+  ivec2 range = receiverChannelRange(technique, p, receiverDepth);
+#if PENUMBRA_SUMMED_AREA
+  if (ls.filterMode == kFilterSummedArea) {
+    SummedAreaBox box = summedAreaBox(uv, uvDx, uvDy, ls);
+    for (int c = range.x; c <= range.y; ++c) {
+      f.values[c] = summedAreaBoxMean(s, c, box, ls.shadowMapSize);
+    }
+    return f;
+  }
+#endif
+  for (int layer = range.x / 4; layer <= range.y / 4; ++layer) {
+    bool linear = true;  // every channel of this layer that is read averages linearly
+    for (int k = 0; k < 4; ++k) {
+      int c = 4 * layer + k;
+      if (c >= range.x && c <= range.y && channelReduction(technique, c, p) != kReduceMean) {
+        linear = false;
+      }
+    }
+    vec4 v = vec4(0.0f);
+    if (linear) {
+      if (ls.filterMode == kFilterPoint) {
+        v = channelTexel(s, layer, nearestTexel(uv, ls.shadowMapSize), 0);
+      } else if (ls.filterMode == kFilterAnisotropic) {
+        v = channelAnisotropic(s, layer, uv, uvDx, uvDy);
+      } else {
+        float lod = ls.filterMode == kFilterBilinear ? 0.0f : lookupProbes(uvDx, uvDy, ls).lod;
+        v = channelLinear(s, layer, uv, lod);
+      }
+    }
+    for (int k = 0; k < 4; ++k) {
+      int c = 4 * layer + k;
+      if (c < range.x || c > range.y) continue;
+      f.values[c] = linear ? v[k]
+                           : filterChannelByTaps(s, ls, c, channelReduction(technique, c, p),
+                                                 p.esm.exponent, uv, uvDx, uvDy);
+    }
+  }
+  return f;
+}
+
+// A level-0 depth for PCF: the channel texture holds raw depth for PCF and the hard test; ESM's
+// fallback reads the light pass's depth, which its prefilter never touched.
+PENUMBRA_INLINE float pcfDepthTexel(LookupSources s, bool fromLightDepth, ivec2 texel) {
+  return fromLightDepth ? lightDepthTexel(s, texel) : channelTexel(s, 0, texel, 0).x;
+}
+
+// PCF (or the hard test, a 1-tap PCF) over raw depth. depthPerTexel is the receiver plane's
+// depth gradient per shadow-map texel (receiver-plane depth bias).
+PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, vec2 uv,
+                                float receiverDepth, vec2 depthPerTexel, PcfParams pcf) {
+  vec2 position = uv * float(size);
+  bool bilinear = pcf.kernel == kKernelBilinear;
+  vec2 origin = bilinear ? floor(position - 0.5f) : floor(position);
+  vec2 fraction = bilinear ? position - 0.5f - origin : vec2(0.0f);
+  float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
+  float lit = 0.0f;
+  for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); ++j) {
+    for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); ++i) {
+      float w = pcfTapWeight(i, j, fraction, pcf);
+      if (w <= 0.0f) continue;
+      vec2 tap = origin + vec2(float(i), float(j));
+      float z = pcfDepthTexel(s, fromLightDepth, clampTexel(ivec2(tap), size));
+      float d = receiverDepth;
+      if (pcf.receiverPlane != 0) d += dot(depthPerTexel, tap + 0.5f - position);
+      lit += w * hardVisibility(z, biasedReceiverDepth(d, slope, pcf.bias));
+    }
+  }
+  return clamp(lit, 0.0f, 1.0f);  // the weights sum to 1 up to fp32 rounding
+}
+
+// PCF with the prefilter's own kernel (box blur: box x the bilinear tent, or the box alone for
+// point lookups; Gaussian blur: the Gaussian), the receiver plane and the reference's tie: the
+// filtered reference itself for point and bilinear lookups (docs/reference.md).
+PENUMBRA_INLINE PcfParams pcfMatchingPrefilter(LookupSettings ls) {
+  PcfParams p;
+  p.kernel = kKernelGaussian;
+  if (ls.blurKernel != kKernelGaussian) {
+    p.kernel = ls.filterMode == kFilterPoint ? kKernelBox : kKernelBilinear;
+  }
+  p.radius = ls.blurRadius;
+  p.sigma = ls.blurSigma;
+  p.receiverPlane = 1;
+  p.bias.constantBias = kReferenceTie;
+  p.bias.slopeScaledBias = 0.0f;
+  p.bias.pad0 = 0.0f;
+  p.bias.pad1 = 0.0f;
+  return p;
+}
+
+// The largest depth under the lookup's footprint (blur included) from the Z-max pyramid: the
+// level whose texels cover the footprint, max of the 2x2 texels around the lookup; less the most
+// the receiver's own plane rises across that region. Beyond the paper's constant offset: without
+// it, every sloped receiver's own far side counts as an occluder behind it.
+PENUMBRA_INLINE float zmaxUnderFootprint(LookupSources s, LookupSettings ls, vec2 uv, vec2 uvDx,
+                                         vec2 uvDy, vec2 depthPerTexel) {
+  vec2 footprint = max(abs(uvDx), abs(uvDy)) * float(ls.shadowMapSize);
+  float extent = max(max(footprint.x, footprint.y), float(2 * ls.blurRadius + 1));
+  int level = clamp(int(ceil(log2(max(extent, 1.0f)))), 0, ls.zmaxLevels - 1);
+  int size = mipLevelSize(ls.shadowMapSize, level);
+  BilinearTaps taps = bilinearTaps(uv, size);
+  float zmax = 0.0f;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      zmax = max(zmax, zmaxTexel(s, clampTexel(taps.base + ivec2(i, j), size), level));
+    }
+  }
+  float regionTexels = 2.0f * float(1 << level);
+  return zmax - (abs(depthPerTexel.x) + abs(depthPerTexel.y)) * regionTexels;
+}
+
+// ESM failure classification (ESM paper §3.3): true where the planar-receiver assumption fails.
+PENUMBRA_INLINE bool esmFails(LookupSources s, LookupSettings ls, EsmParams esm, float filtered,
+                              float receiverDepth, vec2 uv, vec2 uvDx, vec2 uvDy,
+                              vec2 depthPerTexel) {
+  if (esm.classifier == kEsmClassifyThreshold) {
+    return esmFailsThreshold(filtered, receiverDepth, esm);
+  }
+  if (esm.classifier == kEsmClassifyZmax && ls.zmaxLevels > 0) {
+    return esmFailsZmax(zmaxUnderFootprint(s, ls, uv, uvDx, uvDy, depthPerTexel), receiverDepth,
+                        esm);
+  }
+  return false;
+}
+
+// The paper's fallback exactly as written (ESM paper §3.3): the clamped ESM test at the 4
+// nearest texels of the (prefiltered) ESM, bilinearly interpolated. It cannot undo the
+// prefilter's convolution (§3.4).
+PENUMBRA_INLINE float esmPaperFallback(LookupSources s, LookupSettings ls, EsmParams esm, vec2 uv,
+                                       float receiverDepth) {
+  BilinearTaps taps = bilinearTaps(uv, ls.shadowMapSize);
+  float lit = 0.0f;
+  for (int j = 0; j < 2; ++j) {
+    for (int i = 0; i < 2; ++i) {
+      ivec2 texel = clampTexel(taps.base + ivec2(i, j), ls.shadowMapSize);
+      float stored = channelTexel(s, 0, texel, 0).x;
+      lit += bilinearTapWeight(taps, i, j) * esmVisibility(stored, receiverDepth, esm);
+    }
+  }
+  return lit;
+}
+
+// Visibility and the technique's per-pixel state: 1 for an ESM pixel that failed classification,
+// the layer index for LVSM, 0 otherwise.
+struct ShadowSample {
+  float visibility;
+  float diagnostic;
+};
+
+// The whole lookup for a receiver at uv (its screen derivatives uvDx, uvDy) and linear light-space
+// depth receiverDepth (clamped to [0,1]), with the receiver plane's depth gradient per texel.
+PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, int technique,
+                                          TechniqueParams p, vec2 uv, float receiverDepth,
+                                          vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {
+  ShadowSample r;
+  r.diagnostic = 0.0f;
+  float d = clamp(receiverDepth, 0.0f, 1.0f);
+  if (technique == kTechniquePcf || technique == kTechniqueHard) {
+    PcfParams pcf = p.pcf;
+    if (technique == kTechniqueHard) {
+      pcf.kernel = kKernelBox;
+      pcf.radius = 0;
+      pcf.receiverPlane = 0;
+      pcf.bias = p.hard;
+    }
+    r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
+    return r;
+  }
+  FilteredChannels f = filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+  if (technique == kTechniqueEsm &&
+      esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
+    r.diagnostic = 1.0f;
+    if (p.esm.fallback == kEsmFallbackPaper) {
+      r.visibility = esmPaperFallback(s, ls, p.esm, uv, d);
+    } else {
+      r.visibility =
+          pcfLookup(s, ls.shadowMapSize, true, uv, d, depthPerTexel, pcfMatchingPrefilter(ls));
+    }
+    return r;
+  }
+  if (technique == kTechniqueLvsm) r.diagnostic = float(selectLayer(d, p.lvsm.splits));
+  r.visibility = reconstructVisibility(technique, f.values, d, p);
+  return r;
+}
+
+PENUMBRA_END_SHARED
+#endif
