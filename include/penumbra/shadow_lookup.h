@@ -11,6 +11,7 @@
 #include "penumbra/filter_mode.h"
 #include "penumbra/filters.h"
 #include "penumbra/image.h"
+#include "penumbra/storage_format.h"
 #include "penumbra/technique.h"
 
 namespace penumbra {
@@ -25,6 +26,7 @@ struct LookupConfig {
   FilterMode filter = FilterMode::Bilinear;
   BlurSpec blur{BlurKernel::Box, 2, 1.0f};  // prefilter; with `SummedArea`, the smallest box
   int anisotropy = 16;                      // [1, 16]
+  HalfRounding halfRounding = HalfRounding::Nearest;  // the device's (Renderer::halfFloatRounding)
 };
 
 // One pixel's lookup inputs, as the camera pass computes them (RenderResult::lookup,

@@ -92,8 +92,8 @@ double summedAreaStep(LookupSources s, int channel) {
 
 namespace {
 
-Image quantized(Image image, StorageFormat storage) {
-  for (float& v : image.data()) v = quantizeToStorage(v, storage);
+Image quantized(Image image, StorageFormat storage, HalfRounding rounding) {
+  for (float& v : image.data()) v = quantizeToStorage(v, storage, rounding);
   return image;
 }
 
@@ -120,12 +120,13 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   // the storage format as the GPU's textures round it.
   const int count = channelCount(technique, params);
   const StorageFormat storage = techniqueStorage(technique, params);
+  const HalfRounding rounding = config.halfRounding;
   Image channels(size, size, count);
   std::vector<float> encoded(static_cast<size_t>(count));
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
       encodeDepth(technique, params, depth.at(x, y), encoded);
-      for (int c = 0; c < count; ++c) channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage);
+      for (int c = 0; c < count; ++c) channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage, rounding);
     }
   }
   std::vector<ChannelReduction> reductions;
@@ -134,15 +135,15 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   const float logExponent = params.esm.exponent;
   if (prefiltered && config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
     channels = quantized(separableFilterPass(channels, config.blur, true, reductions, logExponent),
-                         storage);
+                         storage, rounding);
     channels = quantized(separableFilterPass(channels, config.blur, false, reductions, logExponent),
-                         storage);
+                         storage, rounding);
   }
   t.channels.push_back(channels);
   if (prefiltered && usesMips(config.filter)) {
     while (t.channels.back().width() > 1) {
       t.channels.push_back(
-          quantized(reduceMipLevel(t.channels.back(), reductions, logExponent), storage));
+          quantized(reduceMipLevel(t.channels.back(), reductions, logExponent), storage, rounding));
     }
   }
   if (prefiltered && config.filter == FilterMode::SummedArea) t.summedArea.emplace(channels);

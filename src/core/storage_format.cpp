@@ -48,10 +48,26 @@ StorageFormat techniqueStorage(Technique technique, const TechniqueParams& param
   return StorageFormat::Float32;
 }
 
-float quantizeToStorage(float v, StorageFormat format) {
+namespace {
+
+// fp16 rounded toward zero: the nearest half, one step closer to zero when it lies beyond v.
+// Halves are sign and magnitude, so a step toward zero is one less in the 16-bit pattern.
+float halfTowardZero(float v) {
+  glm::uint16 bits = glm::packHalf1x16(v);
+  const float nearest = glm::unpackHalf1x16(bits);
+  if (std::isnan(v)) return nearest;
+  if (std::abs(nearest) > std::abs(v) && (bits & 0x7fffu) != 0) --bits;
+  return glm::unpackHalf1x16(bits);
+}
+
+}  // namespace
+
+float quantizeToStorage(float v, StorageFormat format, HalfRounding halfRounding) {
   switch (format) {
     case StorageFormat::Float32: return v;
-    case StorageFormat::Float16: return glm::unpackHalf1x16(glm::packHalf1x16(v));
+    case StorageFormat::Float16:
+      if (halfRounding == HalfRounding::TowardZero) return halfTowardZero(v);
+      return glm::unpackHalf1x16(glm::packHalf1x16(v));
     case StorageFormat::Unorm16: return std::round(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f;
     case StorageFormat::Unorm8: return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
   }

@@ -55,6 +55,22 @@ Image readTexture(unsigned texture, int level, int width, int height, int layers
   return image;
 }
 
+// 1 + 3/4 of an fp16 step at 1: rounding to nearest stores 1 + 2^-10, truncation stores 1.
+HalfRounding probeHalfRounding(Renderer::State& s) {
+  const float value = 1.0f + 3.0f / 4096.0f;
+  Texture target(GL_TEXTURE_2D);
+  glTextureStorage2D(target.id(), 1, GL_RGBA16F, 1, 1);
+  const Program& probe = s.compute("passes/half_rounding_probe.comp", {});
+  probe.set("value", value);
+  glBindImageTexture(0, target.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_RGBA16F);
+  probe.dispatch(1);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  float stored[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  glGetTextureImage(target.id(), 0, GL_RGBA, GL_FLOAT, sizeof stored, stored);
+  checkErrors("probing fp16 rounding");
+  return stored[0] < value ? HalfRounding::TowardZero : HalfRounding::Nearest;
+}
+
 MemoryReport memoryReport(const Renderer::State& s) {
   const RenderSettings& settings = s.settings;
   const uint64_t texels = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize);
@@ -137,7 +153,12 @@ Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<Sta
   state_->maxSamples = std::min(colorSamples, depthSamples);
   glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &state_->maxAnisotropy);
   state_->paramsBlock.emplace(sizeof(TechniqueParams));
+  state_->halfRounding = probeHalfRounding(*state_);
   checkErrors("creating the renderer");
+}
+
+HalfRounding Renderer::halfFloatRounding() const {
+  return state_->halfRounding;
 }
 
 Renderer::~Renderer() = default;

@@ -11,6 +11,7 @@
 #include "penumbra/gl/program.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/shader_library.h"
+#include "penumbra/storage_format.h"
 
 namespace penumbra::gl {
 
@@ -23,6 +24,7 @@ struct Renderer::State {
   int maxTextureSize = 0;
   int maxSamples = 0;
   float maxAnisotropy = 1.0f;
+  HalfRounding halfRounding = HalfRounding::Nearest;  // how image stores round to fp16
 
   // Light pass.
   Texture lightDepth;   // linear depth R32F (2D or 2D multisample)

@@ -12,6 +12,7 @@
 #include "penumbra/image.h"
 #include "penumbra/layer_placement.h"
 #include "penumbra/scene.h"
+#include "penumbra/storage_format.h"
 #include "penumbra/technique.h"
 
 namespace penumbra::gl {
@@ -119,6 +120,8 @@ class Renderer {
   double summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const;
 
   std::string deviceDescription() const;
+  // How this device rounds floats stored to fp16 textures, measured once at construction.
+  HalfRounding halfFloatRounding() const;
 
   struct State;  // GL objects; defined in src/gl/renderer_state.h for the pass files
 

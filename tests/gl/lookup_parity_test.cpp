@@ -1,0 +1,238 @@
+// The renderer checked pixel by pixel: for every technique x filter mode x storage format on
+// small frames of every built-in scene, the GPU's visibility equals the CPU twin's
+// (penumbra/shadow_lookup.h), which runs the same shared lookup over the CPU reference filters;
+// and the GPU's filtered reference equals the CPU twin's reference.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "gl_test_context.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/params.h"
+#include "penumbra/shadow_lookup.h"
+#include "penumbra/storage_format.h"
+
+namespace penumbra {
+namespace {
+
+struct ParityCase {
+  std::string label;
+  TechniqueParams params;
+  FilterMode filter;
+};
+
+LookupPixel pixelAt(const gl::RenderResult& r, int x, int y) {
+  LookupPixel p;
+  p.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
+  p.receiverDepth = r.lookup.at(x, y, 2);
+  p.uvDx = {r.uvDerivatives.at(x, y, 0), r.uvDerivatives.at(x, y, 1)};
+  p.uvDy = {r.uvDerivatives.at(x, y, 2), r.uvDerivatives.at(x, y, 3)};
+  p.depthPerTexel = {r.receiverPlane.at(x, y, 0), r.receiverPlane.at(x, y, 1)};
+  return p;
+}
+
+class ReferenceParity : public testing::GlTest {};
+
+// |GPU - CPU| over the pixels inside the shadow map, sorted.
+struct Differences {
+  std::vector<float> values;
+  float quantile(double q) const {
+    if (values.empty()) return 0.0f;
+    return values[std::min(values.size() - 1, size_t(q * double(values.size())))];
+  }
+  float max() const { return values.empty() ? 0.0f : values.back(); }
+};
+
+std::vector<std::string> storageChoices(Technique t) {
+  for (const ParamSpec& spec : techniqueParamSpecs(t)) {
+    if (spec.name != "storage") continue;
+    std::vector<std::string> names;
+    for (const ParamChoice& c : spec.choices) names.push_back(std::string(c.name));
+    return names;
+  }
+  return {""};
+}
+
+std::vector<ParityCase> casesFor(Technique t) {
+  std::vector<ParityCase> cases;
+  std::vector<TechniqueParams> variants;
+  std::vector<std::string> labels;
+  for (const std::string& storage : storageChoices(t)) {
+    TechniqueParams p = defaultTechniqueParams();
+    if (!storage.empty()) setParam(t, p, "storage", storage);
+    variants.push_back(p);
+    labels.push_back(storage.empty() ? "default" : storage);
+  }
+  if (t == Technique::Esm) {
+    for (const char* setting : {"classifier=zmax", "fallback=paper", "filtering=log",
+                                "classifier=none"}) {
+      TechniqueParams p = defaultTechniqueParams();
+      const std::string s(setting);
+      setParam(t, p, s.substr(0, s.find('=')), s.substr(s.find('=') + 1));
+      variants.push_back(p);
+      labels.push_back(s);
+    }
+  }
+  if (t == Technique::PowerCdf) {
+    TechniqueParams p = defaultTechniqueParams();
+    setParam(t, p, "layers", "3");
+    variants.push_back(p);
+    labels.push_back("layers=3");
+  }
+  if (t == Technique::Lvsm) {  // fixed splits: the CPU twin needs no Lloyd placement of its own
+    for (TechniqueParams& p : variants) setParam(t, p, "placement", "uniform");
+  }
+  for (size_t v = 0; v < variants.size(); ++v) {
+    for (FilterMode f : {FilterMode::Point, FilterMode::Bilinear, FilterMode::Trilinear,
+                         FilterMode::Anisotropic, FilterMode::SummedArea}) {
+      cases.push_back({labels[v] + " " + std::string(filterModeName(f)), variants[v], f});
+    }
+  }
+  return cases;
+}
+
+// The largest |GPU - CPU| allowed on 99.9% of the pixels, and why. Float formats: the two sides
+// round fp32 arithmetic in different orders (and llvmpipe's exp/log are approximations); MSM's
+// Hankel solve amplifies rounding by about 1/alpha (shared_math_parity_test.cpp). Normalized
+// formats: the hardware filters them with fixed-point weights, so a filtered moment differs by a
+// fraction of a storage step, which the Chebyshev and Hamburger bounds amplify where the
+// variance sits at its floor (measured on llvmpipe: VSM 0.029, MSM 0.075, CSM 0.009).
+float pixelTolerance(Technique t, StorageFormat storage) {
+  const bool normalized = storage == StorageFormat::Unorm16 || storage == StorageFormat::Unorm8;
+  if (normalized) return t == Technique::Msm ? 0.1f : 0.05f;
+  return t == Technique::Msm ? 5e-3f : 2e-3f;
+}
+
+// The hardware anisotropic filter is the driver's own kernel (llvmpipe: an elliptical weighted
+// average, not the probe model the CPU twin and the reference use); pixels may differ by up to 1
+// where the ellipse reaches texels the probes miss. Bound: the mean |GPU - CPU| (measured <= 0.011).
+constexpr double kAnisotropicMeanTolerance = 0.015;
+constexpr double kPixelShare = 0.001;  // pixels allowed beyond the tolerance: 0.1%
+
+std::string render(const char* what, const std::string& scene, const std::string& label,
+                   const Differences& d) {
+  std::ostringstream text;
+  text << what << " " << scene << " " << label << ": " << d.values.size() << " pixels, p99.9 "
+       << d.quantile(0.999) << ", max " << d.max();
+  return text.str();
+}
+
+class LookupParity : public testing::GlTest, public ::testing::WithParamInterface<Technique> {};
+
+TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
+  gl::Renderer renderer(*context);
+  const Technique technique = GetParam();
+  int checked = 0;
+  for (std::string_view sceneName : builtinSceneNames()) {
+    const Scene scene = makeBuiltinScene(sceneName);
+    for (const ParityCase& c : casesFor(technique)) {
+      gl::RenderSettings s;
+      s.technique = technique;
+      s.params = c.params;
+      s.filter = c.filter;
+      s.shadowMapSize = 128;
+      s.width = 96;
+      s.height = 54;
+      s.blur = {BlurKernel::Box, 1, 1.0f};
+      s.anisotropy = 8;
+      try {
+        renderer.validate(s);
+      } catch (const Error&) {
+        continue;  // a refused pair (summed-area tables of exponential or min/max channels)
+      }
+      const gl::RenderResult r = renderer.render(scene, s);
+      const CpuShadowLookup twin(renderer.readDepthMap(),
+                                 {technique, r.params, c.filter, s.blur, s.anisotropy,
+                                  renderer.halfFloatRounding()});
+      Differences d;
+      size_t diagnosticMismatches = 0;
+      for (int y = 0; y < s.height; ++y) {
+        for (int x = 0; x < s.width; ++x) {
+          if (r.lookup.at(x, y, 3) <= 0.0f) continue;  // outside the shadow map
+          const LookupSample cpu = twin.lookup(pixelAt(r, x, y));
+          d.values.push_back(std::abs(cpu.visibility - r.visibility.at(x, y)));
+          diagnosticMismatches += cpu.diagnostic != r.diagnostic.at(x, y);
+        }
+      }
+      std::sort(d.values.begin(), d.values.end());
+      ASSERT_GT(d.values.size(), 1000u) << sceneName << ": the scene must fill the frame";
+      const std::string where = render("", std::string(sceneName), c.label, d);
+      const size_t allowed = size_t(kPixelShare * double(d.values.size()));
+      if (c.filter == FilterMode::Anisotropic) {
+        double mean = 0.0;
+        for (float v : d.values) mean += v;
+        EXPECT_LE(mean / double(d.values.size()), kAnisotropicMeanTolerance) << where;
+      } else {
+        const float tolerance = pixelTolerance(technique, techniqueStorage(technique, r.params));
+        EXPECT_LE(d.quantile(1.0 - kPixelShare), tolerance) << where;
+        // ESM's failure classification and LVSM's layer agree pixel for pixel.
+        EXPECT_LE(diagnosticMismatches, allowed) << where << ", diagnostic mismatches";
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, int(builtinSceneNames().size()));
+}
+
+// fp32 sums of up to a few thousand weighted taps, rounded in different orders.
+constexpr float kSumRounding = 1e-5f;
+// How far the two sides' receiver-plane depths may differ by rounding (fused multiply-adds on
+// the GPU): about 16 ulps of a depth near 1.
+constexpr float kTieRounding = 1e-6f;
+
+TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
+  gl::Renderer renderer(*context);
+  for (std::string_view sceneName : builtinSceneNames()) {
+    const Scene scene = makeBuiltinScene(sceneName);
+    for (FilterMode f : {FilterMode::Point, FilterMode::Bilinear, FilterMode::Trilinear,
+                         FilterMode::Anisotropic, FilterMode::SummedArea}) {
+      gl::RenderSettings s;
+      s.technique = Technique::Pcf;
+      s.filter = f;
+      s.shadowMapSize = 128;
+      s.width = 96;
+      s.height = 54;
+      s.blur = {BlurKernel::Gaussian, 2, 1.0f};
+      s.anisotropy = 8;
+      const gl::RenderResult r = renderer.renderReference(scene, s, 1);
+      const CpuShadowLookup twin(renderer.readDepthMap(),
+                                 {Technique::Pcf, r.params, f, s.blur, s.anisotropy});
+      Differences d;
+      for (int y = 0; y < s.height; ++y) {
+        for (int x = 0; x < s.width; ++x) {
+          if (r.lookup.at(x, y, 3) <= 0.0f) continue;
+          // The two sides sum the same fp32 weights, but a tap whose depth lies within fp32
+          // rounding of the tie tolerance may flip: the GPU's value must then lie between the
+          // CPU's for the receiver moved by kTieRounding either way (more lit in front).
+          LookupPixel px = pixelAt(r, x, y);
+          const float cpu = twin.referenceVisibility(px);
+          const float gpu = r.visibility.at(x, y);
+          float error = std::abs(cpu - gpu);
+          if (error > kSumRounding) {
+            px.receiverDepth -= kTieRounding;
+            const float front = twin.referenceVisibility(px);
+            px.receiverDepth += 2.0f * kTieRounding;
+            const float behind = twin.referenceVisibility(px);
+            if (gpu >= behind - kSumRounding && gpu <= front + kSumRounding) error = 0.0f;
+          }
+          d.values.push_back(error);
+        }
+      }
+      std::sort(d.values.begin(), d.values.end());
+      EXPECT_LE(d.max(), kSumRounding)
+          << render("reference", std::string(sceneName), std::string(filterModeName(f)), d);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(AllTechniques, LookupParity,
+                         ::testing::ValuesIn(allTechniques()),
+                         [](const ::testing::TestParamInfo<Technique>& param) {
+                           return std::string(techniqueId(param.param));
+                         });
+
+}  // namespace
+}  // namespace penumbra
