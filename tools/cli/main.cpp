@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "accuracy_command.h"
 #include "compare_command.h"
 #include "curves_command.h"
 #include "penumbra/error.h"
@@ -11,6 +12,7 @@
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
   app.require_subcommand(1);
+  penumbra::cli::registerAccuracyCommand(app);
   penumbra::cli::registerCompareCommand(app);
   penumbra::cli::registerCurvesCommand(app);
   penumbra::cli::registerRenderCommand(app);

@@ -1,0 +1,120 @@
+// The accuracy gate's matrix, its ceilings table and the check.
+#include "penumbra/compare/accuracy.h"
+
+#include <fstream>
+#include <iomanip>
+#include <sstream>
+
+#include "penumbra/error.h"
+
+namespace penumbra::compare {
+
+ComparisonRequest accuracyRequest(std::string_view scene) {
+  ComparisonRequest r;
+  r.scene = std::string(scene);
+  r.techniques.assign(allTechniques().begin(), allTechniques().end());
+  r.settings.shadowMapSize = 256;
+  r.settings.blur = {BlurKernel::Box, 2, 1.0f};
+  r.settings.filter = FilterMode::Bilinear;
+  r.settings.width = 160;
+  r.settings.height = 90;
+  r.supersample = 1;
+  r.pathFrames = 2;
+  return r;
+}
+
+std::vector<AccuracyEntry> measureAccuracy(gl::Renderer& renderer, const Progress& progress) {
+  std::vector<AccuracyEntry> entries;
+  const auto scenes = builtinSceneNames();
+  for (size_t i = 0; i < scenes.size(); ++i) {
+    if (progress) progress(int(i), int(scenes.size()), std::string(scenes[i]));
+    const ComparisonResult result = runComparison(accuracyRequest(scenes[i]), renderer);
+    for (const TechniqueResult& t : result.techniques) {
+      entries.push_back(
+          {std::string(scenes[i]), std::string(techniqueId(t.technique)), t.filtered.rmse});
+    }
+  }
+  if (progress) progress(int(scenes.size()), int(scenes.size()), "measured");
+  return entries;
+}
+
+std::vector<AccuracyCeiling> readAccuracyCeilings(const std::filesystem::path& csv) {
+  std::ifstream in(csv);
+  if (!in) throw Error("cannot read the accuracy ceilings " + csv.string());
+  std::vector<AccuracyCeiling> ceilings;
+  std::string line;
+  int number = 0;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#' || line.rfind("scene,", 0) == 0) continue;
+    std::istringstream row(line);
+    AccuracyCeiling c;
+    std::string measured, ceiling;
+    std::getline(row, c.scene, ',');
+    std::getline(row, c.technique, ',');
+    std::getline(row, measured, ',');
+    std::getline(row, ceiling, ',');
+    try {
+      size_t used = 0;
+      c.measured = std::stod(measured, &used);
+      c.ceiling = std::stod(ceiling, &used);
+      if (used != ceiling.size() || !(c.ceiling >= 0.0)) throw std::invalid_argument(ceiling);
+    } catch (const std::exception&) {
+      throw Error(csv.string() + ":" + std::to_string(number) +
+                  ": expected scene,technique,measured_rmse,ceiling_rmse with numbers, got '" +
+                  line + "'");
+    }
+    ceilings.push_back(c);
+  }
+  return ceilings;
+}
+
+std::vector<AccuracyCeiling> ceilingsFor(const std::vector<AccuracyEntry>& measured, double factor,
+                                         double floor) {
+  std::vector<AccuracyCeiling> ceilings;
+  for (const AccuracyEntry& e : measured) {
+    ceilings.push_back({e.scene, e.technique, e.rmse, std::max(factor * e.rmse, floor)});
+  }
+  return ceilings;
+}
+
+void writeAccuracyCeilings(const std::vector<AccuracyCeiling>& ceilings,
+                           const std::filesystem::path& csv) {
+  std::ofstream out(csv);
+  out << "scene,technique,measured_rmse,ceiling_rmse\n" << std::setprecision(4);
+  for (const AccuracyCeiling& c : ceilings) {
+    out << c.scene << "," << c.technique << "," << c.measured << "," << c.ceiling << "\n";
+  }
+  if (!out) throw Error("cannot write the accuracy ceilings " + csv.string());
+}
+
+std::vector<std::string> checkAccuracy(const std::vector<AccuracyEntry>& measured,
+                                       const std::vector<AccuracyCeiling>& ceilings) {
+  std::vector<std::string> problems;
+  auto find = [&](const std::string& scene, const std::string& technique) {
+    for (const AccuracyCeiling& c : ceilings) {
+      if (c.scene == scene && c.technique == technique) return &c;
+    }
+    return static_cast<const AccuracyCeiling*>(nullptr);
+  };
+  for (const AccuracyEntry& e : measured) {
+    const AccuracyCeiling* c = find(e.scene, e.technique);
+    std::ostringstream text;
+    text << std::setprecision(4) << e.scene << " " << e.technique << ": RMSE " << e.rmse;
+    if (c == nullptr) {
+      problems.push_back(text.str() + " has no ceiling in the table");
+    } else if (!(e.rmse <= c->ceiling)) {
+      text << " exceeds its ceiling " << c->ceiling << " (measured " << c->measured
+           << " when it was set)";
+      problems.push_back(text.str());
+    }
+  }
+  for (const AccuracyCeiling& c : ceilings) {
+    bool found = false;
+    for (const AccuracyEntry& e : measured) found |= e.scene == c.scene && e.technique == c.technique;
+    if (!found) problems.push_back(c.scene + " " + c.technique + ": a ceiling without a measurement");
+  }
+  return problems;
+}
+
+}  // namespace penumbra::compare
