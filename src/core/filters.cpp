@@ -53,8 +53,9 @@ Image filterPass(const Image& in, std::span<const float> weights, bool horizonta
 }  // namespace
 
 std::vector<float> blurWeights(const BlurSpec& spec) {
-  if (spec.radius < 0 || spec.radius > 64) {
-    throw Error("blur radius " + std::to_string(spec.radius) + " is out of range [0, 64]");
+  if (spec.radius < 0 || spec.radius > shaders::kMaxBlurRadius) {
+    throw Error("blur radius " + std::to_string(spec.radius) + " is out of range [0, " +
+                std::to_string(shaders::kMaxBlurRadius) + "]");
   }
   if (spec.kernel == BlurKernel::Gaussian && !(spec.sigma > 0.0f)) {
     throw Error("Gaussian sigma " + std::to_string(spec.sigma) + " must be positive");

@@ -6,12 +6,9 @@
 #include <cmath>
 
 #include "parallel.h"
+#include "shared/summed_area.h"
 
 namespace penumbra {
-
-namespace {
-constexpr double kStepsPerUnit = 2147483648.0;  // 2^31 fixed-point steps per unit of R
-}
 
 SummedAreaTable::SummedAreaTable(const Image& image)
     : width_(image.width()), height_(image.height()), channels_(image.channels()) {
@@ -28,7 +25,7 @@ SummedAreaTable::SummedAreaTable(const Image& image)
           deviation, std::abs(double(image.data()[i * size_t(channels_) + size_t(c)]) - centre));
     }
     centre_[size_t(c)] = centre;
-    step_[size_t(c)] = (deviation > 0.0 ? deviation : 1.0) / kStepsPerUnit;
+    step_[size_t(c)] = shaders::summedAreaStepFor(deviation);
   }
   sums_.assign(texels * size_t(channels_), 0);
   // Row prefix sums in parallel, then column prefix sums; unsigned arithmetic wraps by design.
@@ -65,7 +62,8 @@ double SummedAreaTable::boxMean(int x0, int y0, int x1, int y1, int channel) con
   const uint64_t wrapped = prefixSum(x1, y1, channel) - prefixSum(x0 - 1, y1, channel) -
                            prefixSum(x1, y0 - 1, channel) + prefixSum(x0 - 1, y0 - 1, channel);
   const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
-  return double(int64_t(wrapped)) * step_[size_t(channel)] / area + centre_[size_t(channel)];
+  return shaders::summedAreaMean(double(int64_t(wrapped)), area, step_[size_t(channel)],
+                                 centre_[size_t(channel)]);
 }
 
 double SummedAreaTable::errorBound(int channel) const {

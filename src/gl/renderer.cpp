@@ -13,6 +13,7 @@
 #include "penumbra/gl/context.h"
 #include "penumbra/params.h"
 #include "renderer_state.h"
+#include "shared/summed_area.h"
 
 namespace penumbra::gl {
 namespace {
@@ -460,8 +461,8 @@ double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) 
   const uint64_t wrapped =
       prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
   const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
-  return double(int64_t(wrapped)) * stats[size_t(channel)].step / area +
-         stats[size_t(channel)].centre;
+  return shaders::summedAreaMean(double(int64_t(wrapped)), area, stats[size_t(channel)].step,
+                                 stats[size_t(channel)].centre);
 }
 
 }  // namespace penumbra::gl

@@ -23,7 +23,6 @@ layout(std430, binding = 2) readonly buffer SatStats { SatChannelStats satStats[
 layout(std430, binding = 3) readonly buffer SatSums { uint64_t satSums[]; };
 #endif
 
-const int kMaxBlurRadius = 64;
 uniform float blurCumulative[2 * kMaxBlurRadius + 1];  // see blurCumulativeWeight
 uniform int filterMode;
 uniform int shadowMapSize;

@@ -8,7 +8,6 @@ layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray source;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
 
-const int kMaxBlurRadius = 64;
 uniform float weights[2 * kMaxBlurRadius + 1];
 uniform int radius;
 uniform ivec2 direction;

@@ -2,6 +2,7 @@
 // R the largest deviation from the centre.
 #extension GL_ARB_gpu_shader_int64 : require
 #include "../lib/summed_area.glsl"
+#include "../shared/summed_area.h"
 
 layout(local_size_x = 1) in;
 
@@ -34,6 +35,6 @@ void main() {
   double deviation = max(double(hi) - centre, centre - double(lo));
   SatChannelStats s;
   s.centre = centre;
-  s.step = (deviation > 0.0LF ? deviation : 1.0LF) / 2147483648.0LF;
+  s.step = summedAreaStepFor(deviation);
   stats[channel] = s;
 }

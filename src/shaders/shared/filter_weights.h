@@ -4,6 +4,9 @@
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
+// The widest prefilter: 2 * 64 + 1 = 129 taps per axis (the passes' weight arrays hold them).
+const int kMaxBlurRadius = 64;
+
 const int kKernelBox = 0;
 const int kKernelGaussian = 1;
 const int kKernelBilinear = 2;  // box of 2r+1 texels convolved with the bilinear tent

@@ -9,6 +9,7 @@
 #include "lookup_footprint.h"
 #include "mip_span.h"
 #include "prelude.h"
+#include "summed_area.h"
 #include "technique_dispatch.h"
 PENUMBRA_BEGIN_SHARED
 
@@ -96,7 +97,7 @@ PENUMBRA_INLINE float summedAreaBoxMean(LookupSources s, int channel, SummedArea
                summedAreaContinuousPrefix(s, channel, vec2(box.hi.x, box.lo.y), origin, size) +
                summedAreaContinuousPrefix(s, channel, box.lo, origin, size);
   double area = (double(box.hi.x) - double(box.lo.x)) * (double(box.hi.y) - double(box.lo.y));
-  return float(sum * summedAreaStep(s, channel) / area + summedAreaCentre(s, channel));
+  return float(summedAreaMean(sum, area, summedAreaStep(s, channel), summedAreaCentre(s, channel)));
 }
 #endif
 
