@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "penumbra/image.h"
-#include "shared/layers.h"
+#include "shared/layer_placement.h"
 
 namespace penumbra {
 
@@ -17,9 +17,6 @@ struct SplitSample {
   float depth;   // mu + sigma of a 2x2 footprint: the farther depth when two depths share it
   float weight;  // sigma^2, zero for flat footprints
 };
-
-// Variances below this carry no discontinuity (a flat or gently sloped footprint).
-constexpr float kMinSplitWeight = 1e-6f;
 
 // One sample per 2x2 texel block between texel centres of the unwarped moments (z, z^2) of a
 // linear depth map: (w-1) x (h-1) samples, row-major. Blocks touching empty texels (depth 1, the

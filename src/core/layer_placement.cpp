@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "shared/layer_placement.h"
+
 namespace penumbra {
 namespace {
 
@@ -36,19 +38,9 @@ std::vector<SplitSample> secondOccluderSamples(const Image& depth) {
   samples.reserve(size_t(std::max(0, depth.width() - 1)) * size_t(std::max(0, depth.height() - 1)));
   for (int y = 0; y + 1 < depth.height(); ++y) {
     for (int x = 0; x + 1 < depth.width(); ++x) {
-      float m1 = 0.0f, m2 = 0.0f;
-      bool empty = false;
-      for (int j = 0; j < 2; ++j) {
-        for (int i = 0; i < 2; ++i) {
-          const float z = depth.at(x + i, y + j);
-          m1 += 0.25f * z;
-          m2 += 0.25f * z * z;
-          empty = empty || z >= 1.0f;
-        }
-      }
-      const float variance = std::max(m2 - m1 * m1, 0.0f);
-      const float weight = variance > kMinSplitWeight && !empty ? variance : 0.0f;
-      samples.push_back({m1 + std::sqrt(variance), weight});
+      const shaders::SecondOccluderSample s = shaders::secondOccluderSample(
+          {depth.at(x, y), depth.at(x + 1, y), depth.at(x, y + 1), depth.at(x + 1, y + 1)});
+      samples.push_back({s.depth, s.weight});
     }
   }
   return samples;
@@ -56,14 +48,10 @@ std::vector<SplitSample> secondOccluderSamples(const Image& depth) {
 
 LloydSums accumulateLloyd(std::span<const SplitSample> samples,
                           const shaders::LayerSplits& splits) {
-  const std::vector<float> s = interior(splits);
   LloydSums sums(splits.layerCount);
   for (const SplitSample& sample : samples) {
-    if (sample.weight <= 0.0f || s.empty()) continue;
-    size_t k = 0;  // the nearest split, the first of equals
-    for (size_t i = 1; i < s.size(); ++i) {
-      if (std::abs(s[i] - sample.depth) < std::abs(s[k] - sample.depth)) k = i;
-    }
+    if (sample.weight <= 0.0f || splits.layerCount < 2) continue;
+    const size_t k = size_t(shaders::nearestSplit(splits, sample.depth));
     sums.clusterWeight[k] += sample.weight;
     sums.clusterSum[k] += double(sample.weight) * sample.depth;
     const size_t layer = size_t(shaders::selectLayer(sample.depth, splits));

@@ -46,7 +46,6 @@ void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisam
   const Program& samples =
       s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
-  samples.set("minWeight", kMinSplitWeight);
   glBindTextureUnit(0, depthTexture);
   s.splitSamples->bindStorage(1);
   samples.dispatch(groups(size), groups(size));

@@ -1,7 +1,7 @@
 // One Lloyd step's sums for layered VSM split placement (thesis §4.1.2), one invocation per row
 // of samples: for each split (cluster) and each layer, the total weight and weighted depth of
 // the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them.
-#include "../shared/layers.h"
+#include "../shared/layer_placement.h"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 1) readonly buffer Samples {
@@ -41,12 +41,7 @@ void main() {
     float depth = entry.x;
     float weight = entry.y;
     if (weight <= 0.0f || layerCount < 2) continue;
-    int nearest = 0;  // the first of equals, as on the CPU
-    for (int k = 1; k < layerCount - 1; ++k) {
-      if (abs(layerSplit(splits, k + 1) - depth) < abs(layerSplit(splits, nearest + 1) - depth)) {
-        nearest = k;
-      }
-    }
+    int nearest = nearestSplit(splits, depth);
     clusterWeight[nearest] += weight;
     clusterSum[nearest] += weight * depth;
     int layer = selectLayer(depth, splits);
