@@ -81,6 +81,14 @@ void validateRequest(const ComparisonRequest& request, const gl::Renderer& rende
     throw Error("camera-path frames " + std::to_string(request.pathFrames) +
                 " is out of range [2, 32]");
   }
+  const int size = request.settings.shadowMapSize;
+  if (usesMips(request.settings.filter) && (size & (size - 1)) != 0) {
+    throw Error("the filtered reference of " + std::string(filterModeName(request.settings.filter)) +
+                " lookups needs a power-of-two shadow-map size (mip blocks of 2^L texels); " +
+                std::to_string(size) + " is not: use " +
+                std::to_string(1 << int(std::floor(std::log2(double(size))))) + " or " +
+                std::to_string(2 << int(std::floor(std::log2(double(size))))));
+  }
   if (!(request.tau > 0.0 && request.tau < 1.0)) {
     throw Error("leak threshold tau " + std::to_string(request.tau) + " is out of range (0, 1)");
   }

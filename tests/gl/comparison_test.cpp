@@ -85,3 +85,24 @@ TEST_F(ComparisonTest, ImpossiblePairsFailBeforeAnythingRenders) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST_F(ComparisonTest, MipMappedReferenceRefusesANonPowerOfTwoShadowMap) {
+  compare::ComparisonRequest q = request("planar", {Technique::Vsm});
+  q.settings.shadowMapSize = 500;
+  q.settings.filter = FilterMode::Trilinear;
+  try {
+    compare::validateRequest(q, *renderer);
+    FAIL() << "a 500^2 map with trilinear lookups must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("500 is not: use 256 or 512"), std::string::npos)
+        << e.what();
+  }
+  q.settings.filter = FilterMode::Bilinear;  // no mips: any size
+  EXPECT_NO_THROW(compare::validateRequest(q, *renderer));
+}
+
+}  // namespace
+}  // namespace penumbra
