@@ -1,4 +1,5 @@
-// How the camera pass reads the prefiltered shadow map (docs/renderer.md, shared/lookup_footprint.h).
+// How the camera pass reads the prefiltered shadow map (docs/renderer.md,
+// shared/lookup_footprint.h).
 #pragma once
 
 #include <string>

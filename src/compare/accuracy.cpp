@@ -111,8 +111,10 @@ std::vector<std::string> checkAccuracy(const std::vector<AccuracyEntry>& measure
   }
   for (const AccuracyCeiling& c : ceilings) {
     bool found = false;
-    for (const AccuracyEntry& e : measured) found |= e.scene == c.scene && e.technique == c.technique;
-    if (!found) problems.push_back(c.scene + " " + c.technique + ": a ceiling without a measurement");
+    for (const AccuracyEntry& e : measured)
+      found |= e.scene == c.scene && e.technique == c.technique;
+    if (!found)
+      problems.push_back(c.scene + " " + c.technique + ": a ceiling without a measurement");
   }
   return problems;
 }

@@ -83,7 +83,8 @@ void validateRequest(const ComparisonRequest& request, const gl::Renderer& rende
   }
   const int size = request.settings.shadowMapSize;
   if (usesMips(request.settings.filter) && (size & (size - 1)) != 0) {
-    throw Error("the filtered reference of " + std::string(filterModeName(request.settings.filter)) +
+    throw Error("the filtered reference of " +
+                std::string(filterModeName(request.settings.filter)) +
                 " lookups needs a power-of-two shadow-map size (mip blocks of 2^L texels); " +
                 std::to_string(size) + " is not: use " +
                 std::to_string(1 << int(std::floor(std::log2(double(size))))) + " or " +

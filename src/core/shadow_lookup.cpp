@@ -45,8 +45,8 @@ vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
   vec4 v(0.0f);
   for (int k = 0; k < 4; ++k) {
     ChannelAccumulator a = startReduction(kReduceMean, 0.0f);
-    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.level,
-                           mipLevelSize(size, levels.level), 1.0f - levels.fraction);
+    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.level, mipLevelSize(size, levels.level),
+                           1.0f - levels.fraction);
     a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.next, mipLevelSize(size, levels.next),
                            levels.fraction);
     v[k] = a.value;
@@ -126,7 +126,8 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
       encodeDepth(technique, params, depth.at(x, y), encoded);
-      for (int c = 0; c < count; ++c) channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage, rounding);
+      for (int c = 0; c < count; ++c)
+        channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage, rounding);
     }
   }
   std::vector<ChannelReduction> reductions;
@@ -178,8 +179,10 @@ float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
   const int size = settings.shadowMapSize;
   if (usesMips(config_.filter)) {
     if (!isPowerOfTwo(size)) {
-      throw Error("the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
-                  "size; " + std::to_string(size) + " is not");
+      throw Error(
+          "the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
+          "size; " +
+          std::to_string(size) + " is not");
     }
     settings.channelLevels = mipLevelCount(size, size);
   }

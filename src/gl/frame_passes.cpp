@@ -6,9 +6,9 @@
 #include "gpu_scene.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
-#include "shared/filter_weights.h"
 #include "penumbra/gl/context.h"
 #include "renderer_state.h"
+#include "shared/filter_weights.h"
 
 namespace penumbra::gl {
 namespace {

@@ -263,8 +263,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
       readTexture(s.frameLookup.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
   result.receiverPlane =
       readTexture(s.frameReceiverPlane.id(), 0, settings.width, settings.height, 1, 2, GL_RG, true);
-  result.uvDerivatives = readTexture(s.frameDerivatives.id(), 0, settings.width, settings.height,
-                                     1, 4, GL_RGBA, true);
+  result.uvDerivatives =
+      readTexture(s.frameDerivatives.id(), 0, settings.width, settings.height, 1, 4, GL_RGBA, true);
   if (settings.technique == Technique::Esm &&
       s.params.esm.classifier != shaders::kEsmClassifyNone) {
     size_t drawn = 0, failed = 0;

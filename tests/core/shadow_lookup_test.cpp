@@ -23,6 +23,15 @@ Image stepDepth(int size, int split, float left, float right) {
   return depth;
 }
 
+LookupConfig configFor(Technique technique, FilterMode filter, int blurRadius) {
+  LookupConfig config;
+  config.technique = technique;
+  config.params = defaultTechniqueParams();
+  config.filter = filter;
+  config.blur = {BlurKernel::Box, blurRadius, 1.0f};
+  return config;
+}
+
 LookupPixel flatReceiverAt(float texelX, float texelY, int size, float depth) {
   LookupPixel p;
   p.uv = {texelX / float(size), texelY / float(size)};
@@ -61,11 +70,7 @@ TEST(ShadowLookup, PowerCdfTakesMinAndMaxOverTheLookupsTaps) {
   // so beta = 1 and, for the receiver at 0.5 less the 0.001 bias, t = 0.299 / 0.4 = 0.7475:
   // (1 - t) / (1 - 1/2) = 0.505 (Gumbau eq. 4), next to the exact 0.5. Min and max averaged
   // linearly would both be 0.4, a zero range: visibility 0.
-  LookupConfig config;
-  config.technique = Technique::PowerCdf;
-  config.params = defaultTechniqueParams();
-  config.filter = FilterMode::Bilinear;
-  config.blur = {BlurKernel::Box, 0, 1.0f};
+  LookupConfig config = configFor(Technique::PowerCdf, FilterMode::Bilinear, 0);
   const CpuShadowLookup lookup(stepDepth(16, 8, 0.2f, 0.6f), config);
   const float v = lookup.lookup(flatReceiverAt(8.0f, 8.5f, 16, 0.5f)).visibility;
   EXPECT_NEAR(v, 0.505f, 1e-4f);  // fp32 through log/exp of eq. 4
@@ -77,11 +82,7 @@ TEST(ShadowLookup, EsmFallbackFromTheUnfilteredDepthUndoesThePrefilter) {
   // fails (ESM paper §3.3). The fallback PCF of the unfiltered depth with the prefilter's kernel
   // sees one lit column of five: 0.2, the filtered reference. The paper's fallback tests the
   // four nearest *prefiltered* texels, all of which hold that far column: lit (paper §3.4).
-  LookupConfig config;
-  config.technique = Technique::Esm;
-  config.params = defaultTechniqueParams();
-  config.filter = FilterMode::Bilinear;
-  config.blur = {BlurKernel::Box, 2, 1.0f};
+  LookupConfig config = configFor(Technique::Esm, FilterMode::Bilinear, 2);
   const Image depth = stepDepth(32, 16, 0.3f, 0.9f);
   const LookupPixel pixel = flatReceiverAt(14.5f, 16.5f, 32, 0.5f);
   const CpuShadowLookup pcfFallback(depth, config);
@@ -100,11 +101,7 @@ TEST(ShadowLookup, SummedAreaBoxMovesSmoothlyWithTheLookup) {
   // across it in quarter texels (review item 5). The share s of the box beyond the step grows
   // linearly, and so do the moments: M1 = 0.2 + 0.4 s, M2 = 0.04 + 0.32 s. A box snapped to the
   // texel grid would hold s for a whole texel and then jump.
-  LookupConfig config;
-  config.technique = Technique::Vsm;
-  config.params = defaultTechniqueParams();
-  config.filter = FilterMode::SummedArea;
-  config.blur = {BlurKernel::Box, 2, 1.0f};
+  LookupConfig config = configFor(Technique::Vsm, FilterMode::SummedArea, 2);
   const CpuShadowLookup lookup(stepDepth(32, 16, 0.2f, 0.6f), config);
   for (float centre = 13.75f; centre <= 16.25f; centre += 0.25f) {
     const float s = std::clamp((centre + 2.5f - 16.0f) / 5.0f, 0.0f, 1.0f);
@@ -127,11 +124,7 @@ TEST(ShadowLookup, FilteredReferenceIsExactForMipBlocksWiderThanEightTexels) {
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) depth.at(x, y) = ((x * 7 + y * 13) % 5 < 2) ? 0.3f : 0.7f;
   }
-  LookupConfig config;
-  config.technique = Technique::Vsm;
-  config.params = defaultTechniqueParams();
-  config.filter = FilterMode::Trilinear;
-  config.blur = {BlurKernel::Box, 1, 1.0f};
+  LookupConfig config = configFor(Technique::Vsm, FilterMode::Trilinear, 1);
   const CpuShadowLookup lookup(depth, config);
   LookupPixel pixel;
   pixel.uv = {0.3f, 0.6f};

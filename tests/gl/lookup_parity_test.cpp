@@ -67,8 +67,8 @@ std::vector<ParityCase> casesFor(Technique t) {
     labels.push_back(storage.empty() ? "default" : storage);
   }
   if (t == Technique::Esm) {
-    for (const char* setting : {"classifier=zmax", "fallback=paper", "filtering=log",
-                                "classifier=none"}) {
+    for (const char* setting :
+         {"classifier=zmax", "fallback=paper", "filtering=log", "classifier=none"}) {
       TechniqueParams p = defaultTechniqueParams();
       const std::string s(setting);
       setParam(t, p, s.substr(0, s.find('=')), s.substr(s.find('=') + 1));
@@ -108,7 +108,8 @@ float pixelTolerance(Technique t, StorageFormat storage) {
 
 // The hardware anisotropic filter is the driver's own kernel (llvmpipe: an elliptical weighted
 // average, not the probe model the CPU twin and the reference use); pixels may differ by up to 1
-// where the ellipse reaches texels the probes miss. Bound: the mean |GPU - CPU| (measured <= 0.011).
+// where the ellipse reaches texels the probes miss. Bound: the mean |GPU - CPU| (measured <=
+// 0.011).
 constexpr double kAnisotropicMeanTolerance = 0.015;
 constexpr double kPixelShare = 0.001;  // pixels allowed beyond the tolerance: 0.1%
 
@@ -144,9 +145,9 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         continue;  // a refused pair (summed-area tables of exponential or min/max channels)
       }
       const gl::RenderResult r = renderer.render(scene, s);
-      const CpuShadowLookup twin(renderer.readDepthMap(),
-                                 {technique, r.params, c.filter, s.blur, s.anisotropy,
-                                  renderer.halfFloatRounding()});
+      const CpuShadowLookup twin(
+          renderer.readDepthMap(),
+          {technique, r.params, c.filter, s.blur, s.anisotropy, renderer.halfFloatRounding()});
       Differences d;
       size_t diagnosticMismatches = 0;
       for (int y = 0; y < s.height; ++y) {
@@ -228,8 +229,7 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllTechniques, LookupParity,
-                         ::testing::ValuesIn(allTechniques()),
+INSTANTIATE_TEST_SUITE_P(AllTechniques, LookupParity, ::testing::ValuesIn(allTechniques()),
                          [](const ::testing::TestParamInfo<Technique>& param) {
                            return std::string(techniqueId(param.param));
                          });

@@ -57,7 +57,8 @@ void runAccuracy(const AccuracyOptions& o) {
   {
     ProgressBar bar(o.quiet);
     measured = compare::measureAccuracy(
-        renderer, [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
+        renderer,
+        [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
   std::cout << "RMSE against the filtered reference (" << renderer.deviceDescription() << "):\n"
             << matrixTable(measured);
@@ -92,7 +93,8 @@ void registerAccuracyCommand(CLI::App& app) {
                   "entry breaks its ceiling");
   cmd->add_option("--write-ceilings", o->writeCeilings,
                   "write a new table with ceilings at --factor x the measured RMSE");
-  cmd->add_option("--factor", o->factor, "ceiling over the measured RMSE, 1..4")->capture_default_str();
+  cmd->add_option("--factor", o->factor, "ceiling over the measured RMSE, 1..4")
+      ->capture_default_str();
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar");
   cmd->callback([o] { runAccuracy(*o); });
 }

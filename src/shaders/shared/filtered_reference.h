@@ -40,8 +40,8 @@ PENUMBRA_INLINE float blockBlurWeight(LookupSources s, int v, int texel, int lev
 
 // A bilinear lookup at `level` (blur radius r at level 0): the tests of every level-0 texel under
 // its four taps' blocks and blur, each weighted once by the separable kernel.
-PENUMBRA_INLINE float referenceBilinear(LookupSources s, LookupSettings ls, int blurRadius,
-                                        vec2 uv, int level, vec2 position, float receiverDepth,
+PENUMBRA_INLINE float referenceBilinear(LookupSources s, LookupSettings ls, int blurRadius, vec2 uv,
+                                        int level, vec2 position, float receiverDepth,
                                         vec2 depthPerTexel) {
   int levelSize = mipLevelSize(ls.shadowMapSize, level);
   int block = 1 << level;

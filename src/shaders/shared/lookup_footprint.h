@@ -15,14 +15,14 @@ const int kFilterSummedArea = 4;
 
 // Everything the lookup needs to know about the shadow map and its prefilter.
 struct LookupSettings {
-  int filterMode;      // kFilter*
-  int shadowMapSize;   // level-0 texels per side
-  int channelLevels;   // mip levels of the channel texture (1 without mips)
-  int anisotropy;      // most probes of the anisotropic mode, [1, 16]
-  int blurKernel;      // kKernelBox or kKernelGaussian (filter_weights.h)
-  int blurRadius;      // taps each side; also the smallest summed-area box
-  float blurSigma;     // Gaussian standard deviation in texels
-  int zmaxLevels;      // levels of ESM's Z-max pyramid (0 without it)
+  int filterMode;     // kFilter*
+  int shadowMapSize;  // level-0 texels per side
+  int channelLevels;  // mip levels of the channel texture (1 without mips)
+  int anisotropy;     // most probes of the anisotropic mode, [1, 16]
+  int blurKernel;     // kKernelBox or kKernelGaussian (filter_weights.h)
+  int blurRadius;     // taps each side; also the smallest summed-area box
+  float blurSigma;    // Gaussian standard deviation in texels
+  int zmaxLevels;     // levels of ESM's Z-max pyramid (0 without it)
 };
 
 // Clamp-to-edge addressing.
@@ -71,7 +71,8 @@ PENUMBRA_INLINE LookupProbes lookupProbes(vec2 uvDx, vec2 uvDy, LookupSettings s
   float minor = max(min(lengthX, lengthY), 1.0e-6f);
   LookupProbes p;
   p.count = 1;
-  if (s.filterMode == kFilterAnisotropic) p.count = clamp(int(ceil(major / minor)), 1, s.anisotropy);
+  if (s.filterMode == kFilterAnisotropic)
+    p.count = clamp(int(ceil(major / minor)), 1, s.anisotropy);
   p.lod = log2(major / float(p.count));
   p.axis = lengthX >= lengthY ? uvDx : uvDy;
   return p;

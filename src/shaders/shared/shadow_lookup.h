@@ -88,8 +88,7 @@ PENUMBRA_INLINE double summedAreaContinuousPrefix(LookupSources s, int channel, 
 
 // Mean of a channel over a box with sub-texel corners (summed-area VSM, thesis §3.5, with
 // bilinear corners so that a magnified box moves smoothly instead of snapping to texels).
-PENUMBRA_INLINE float summedAreaBoxMean(LookupSources s, int channel, SummedAreaBox box,
-                                        int size) {
+PENUMBRA_INLINE float summedAreaBoxMean(LookupSources s, int channel, SummedAreaBox box, int size) {
   ivec2 lo = ivec2(floor(box.lo));
   uint64_t origin = summedAreaPrefix(s, channel, lo.x - 1, lo.y - 1);
   double sum = summedAreaContinuousPrefix(s, channel, box.hi, origin, size) -
