@@ -161,6 +161,7 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   program.set("spotAxis", glm::normalize(scene.light.target - scene.light.position));
   program.set("spotCosine", std::cos(glm::radians(0.5f * scene.light.spotAngleDegrees)));
   program.set("normalOffset", settings.normalOffsetTexels * light.texelWorldSize(s.shadowMapSize));
+  program.set("texelWorldSize", light.texelWorldSize(s.shadowMapSize));
   program.set("ambient", settings.ambient);
   setChannelSampling(s);
   glBindTextureUnit(0, s.channels.id());

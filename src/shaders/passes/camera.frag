@@ -27,6 +27,7 @@ uniform vec3 lightPosition;   // spot
 uniform vec3 spotAxis;        // spot: unit direction from the light to its target
 uniform float spotCosine;     // spot: cos(half cone angle)
 uniform float normalOffset;   // world units per unit light distance (spot) or absolute
+uniform float texelWorldSize;  // one shadow-map texel in world units (per unit distance, spot)
 uniform vec3 albedo;
 uniform float ambient;
 
@@ -44,6 +45,31 @@ float linearDepth(vec3 lightView) {
   return (distance - lightNear) / (lightFar - lightNear);
 }
 
+// A world position's shadow-map position in level-0 texels and its linear depth.
+vec3 shadowMapTexelAndDepth(vec3 world) {
+  vec4 view = lightViewFromWorld * vec4(world, 1.0f);
+  vec4 clip = lightClipFromView * view;
+  return vec3((clip.xy / clip.w * 0.5f + 0.5f) * float(shadowMapSize), linearDepth(view.xyz));
+}
+
+// The receiver plane's depth gradient per shadow-map texel, from the surface's own tangent plane
+// at `world`: two tangent steps of about a texel mapped into the shadow map, then solved for g in
+// g . (texel step) = depth step. Screen derivatives would do the same only where the pixel's 2x2
+// quad lies on one surface; at minification and along silhouettes it straddles several.
+vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
+  vec3 axis = abs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+  vec3 tangent = normalize(cross(n, axis));
+  vec3 bitangent = cross(n, tangent);
+  vec3 centre = shadowMapTexelAndDepth(world);
+  vec3 a = shadowMapTexelAndDepth(world + step * tangent) - centre;
+  vec3 b = shadowMapTexelAndDepth(world + step * bitangent) - centre;
+  float determinant = a.x * b.y - a.y * b.x;
+  if (abs(determinant) <= 1e-6f * (dot(a.xy, a.xy) + dot(b.xy, b.xy))) {
+    return vec2(0.0f);  // the surface is seen edge-on from the light: no plane over the texels
+  }
+  return vec2(b.y * a.z - a.y * b.z, -b.x * a.z + a.x * b.z) / determinant;
+}
+
 void main() {
   vec3 n = normalize(worldNormal);
   vec3 toLight = lightPerspective != 0 ? normalize(lightPosition - worldPosition) : -lightDirection;
@@ -57,20 +83,10 @@ void main() {
   vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
   float receiver = linearDepth(lightView.xyz);
 
-  // Derivatives in uniform control flow: the lookup footprint and the receiver plane.
+  // Derivatives in uniform control flow: the lookup's footprint.
   vec2 uvDx = dFdx(uv);
   vec2 uvDy = dFdy(uv);
-  vec2 texelDx = uvDx * float(shadowMapSize);
-  vec2 texelDy = uvDy * float(shadowMapSize);
-  float depthDx = dFdx(receiver);
-  float depthDy = dFdy(receiver);
-  // Solve [texelDx texelDy]^T g = (depthDx, depthDy) for the depth gradient per texel g.
-  float determinant = texelDx.x * texelDy.y - texelDx.y * texelDy.x;
-  vec2 depthPerTexel = vec2(0.0f);
-  if (abs(determinant) > 1e-12f) {
-    depthPerTexel = vec2(texelDy.y * depthDx - texelDx.y * depthDy,
-                         -texelDy.x * depthDx + texelDx.x * depthDy) / determinant;
-  }
+  vec2 depthPerTexel = receiverPlaneGradient(offsetPosition, n, texelWorldSize * offsetScale);
 
   float visibility = 1.0f;
   float diagnostic = 0.0f;
