@@ -52,10 +52,11 @@ vec3 shadowMapTexelAndDepth(vec3 world) {
   return vec3((clip.xy / clip.w * 0.5f + 0.5f) * float(shadowMapSize), linearDepth(view.xyz));
 }
 
-// The receiver plane's depth gradient per shadow-map texel, from the surface's own tangent plane
-// at `world`: two tangent steps of about a texel mapped into the shadow map, then solved for g in
-// g . (texel step) = depth step. Screen derivatives would do the same only where the pixel's 2x2
-// quad lies on one surface; at minification and along silhouettes it straddles several.
+// The receiver plane's depth gradient per shadow-map texel, from the rasterised triangle's own
+// plane (normal n) at `world`: two steps of about a texel along the plane mapped into the shadow
+// map, then solved for g in g . (texel step) = depth step. Solving the screen derivatives of uv
+// and depth instead is ill-conditioned where the camera grazes a surface (the footprint's two
+// axes nearly parallel in the shadow map): the far ground then shadowed itself.
 vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
   vec3 axis = abs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
   vec3 tangent = normalize(cross(n, axis));
@@ -86,7 +87,12 @@ void main() {
   // Derivatives in uniform control flow: the lookup's footprint.
   vec2 uvDx = dFdx(uv);
   vec2 uvDy = dFdy(uv);
-  vec2 depthPerTexel = receiverPlaneGradient(offsetPosition, n, texelWorldSize * offsetScale);
+  // The triangle's geometric normal: the plane the light pass rasterised (a tessellated curved
+  // surface's shading normal is not), from derivatives that stay within the triangle.
+  vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
+  vec3 planeNormal = dot(face, face) > 1e-20f ? normalize(face) : n;
+  vec2 depthPerTexel =
+      receiverPlaneGradient(offsetPosition, planeNormal, texelWorldSize * offsetScale);
 
   float visibility = 1.0f;
   float diagnostic = 0.0f;
