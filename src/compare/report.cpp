@@ -1,8 +1,6 @@
 // The comparison report's files and index.html.
 #include "penumbra/compare/report.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -320,9 +318,12 @@ window.addEventListener('load', function () {
 }
 
 void writeContents(const ComparisonResult& r, const fs::path& dir) {
-  fs::create_directories(dir / "images");
-  fs::create_directories(dir / "crops");
-  fs::create_directories(dir / "plots");
+  // Not create_directories: a staging folder removed under us (an interrupt) must stay removed.
+  for (const char* sub : {"images", "crops", "plots"}) {
+    std::error_code ec;
+    fs::create_directory(dir / sub, ec);
+    if (ec) throw Error("cannot create " + (dir / sub).string() + ": " + ec.message());
+  }
   const double range = 0.5;
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
@@ -385,33 +386,8 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
 
 }  // namespace
 
-fs::path prepareReportFolder(const fs::path& outDir) {
-  const fs::path staging = outDir.string() + ".partial";
-  std::error_code ec;
-  fs::remove_all(staging, ec);
-  fs::create_directories(staging, ec);
-  const fs::path probe = staging / ".writable";
-  std::ofstream test(probe);
-  if (ec || !test) {
-    throw Error("cannot write the report next to " + outDir.string() +
-                (ec ? ": " + ec.message() : std::string(": not writable")));
-  }
-  test.close();
-  fs::remove(probe);
-  return staging;
-}
-
-void writeReport(const ComparisonResult& result, const fs::path& staging, const fs::path& outDir) {
-  try {
-    writeContents(result, staging);
-    std::error_code ec;
-    fs::remove_all(outDir, ec);
-    fs::rename(staging, outDir);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(staging, ec);
-    throw;
-  }
+void writeReportFiles(const ComparisonResult& result, const fs::path& dir) {
+  writeContents(result, dir);
 }
 
 }  // namespace penumbra::compare

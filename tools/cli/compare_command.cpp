@@ -6,6 +6,7 @@
 
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
+#include "penumbra/compare/report_folder.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "progress_bar.h"
@@ -24,6 +25,7 @@ struct CompareOptions {
   int frames = 4;
   double tau = 0.05;
   std::string outDir = "out/compare";
+  bool force = false;
   bool quiet = false;
 };
 
@@ -46,26 +48,22 @@ void runCompare(const CompareOptions& o) {
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
+  compare::ReportFolder folder(o.outDir, o.force);  // a bad --out fails before any GL work
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   compare::validateRequest(request, renderer);
-  const std::filesystem::path staging = compare::prepareReportFolder(o.outDir);
+  folder.createStaging();
   compare::ComparisonResult result;
   {
     ProgressBar bar(o.quiet);
-    try {
-      result = compare::runComparison(
-          request, renderer,
-          [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
-    } catch (...) {
-      std::error_code ec;
-      std::filesystem::remove_all(staging, ec);
-      throw;
-    }
+    result = compare::runComparison(
+        request, renderer,
+        [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
-  compare::writeReport(result, staging, o.outDir);
+  compare::writeReportFiles(result, folder.staging());
+  folder.commit();
   if (!o.quiet) {
-    std::cout << "wrote " << (std::filesystem::path(o.outDir) / "index.html").string() << "\n";
+    std::cout << "wrote " << (folder.target() / "index.html").string() << "\n";
   }
 }
 
@@ -86,8 +84,12 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir, "report folder (replaced when the new report is complete)")
+  cmd->add_option("-o,--out", o->outDir,
+                  "report folder; an earlier penumbra report there is replaced once the new one is "
+                  "complete, any other existing folder is refused")
       ->capture_default_str();
+  cmd->add_flag("--force", o->force,
+                "replace --out even when it is not a penumbra report (deletes everything in it)");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   cmd->callback([o] { runCompare(*o); });
 }
