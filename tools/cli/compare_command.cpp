@@ -4,6 +4,7 @@
 #include <iostream>
 #include <memory>
 
+#include "interrupt_cleanup.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
 #include "penumbra/compare/report_folder.h"
@@ -49,10 +50,14 @@ void runCompare(const CompareOptions& o) {
   request.tau = o.tau;
 
   compare::ReportFolder folder(o.outDir, o.force);  // a bad --out fails before any GL work
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   compare::validateRequest(request, renderer);
-  folder.createStaging();
+  interrupt.uninterrupted([&] {
+    folder.createStaging();
+    interrupt.setCleanup([staging = folder.staging()] { compare::removeReportStaging(staging); });
+  });
   compare::ComparisonResult result;
   {
     ProgressBar bar(o.quiet);
@@ -61,7 +66,10 @@ void runCompare(const CompareOptions& o) {
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
   compare::writeReportFiles(result, folder.staging());
-  folder.commit();
+  interrupt.uninterrupted([&] {
+    folder.commit();
+    interrupt.setCleanup({});
+  });
   if (!o.quiet) {
     std::cout << "wrote " << (folder.target() / "index.html").string() << "\n";
   }
