@@ -248,8 +248,15 @@ double parseNumber(Technique technique, std::string_view name, std::string_view 
   return value;
 }
 
+// Real parameters are stored as float, so they are compared in float with the bounds rounded to
+// float: a documented bound such as 0.1 is itself accepted (as 0.100000001f, which a double
+// comparison with 0.1 rejects), and one float step beyond it is not.
 void checkRange(const ParamSpec& spec, Technique technique, double value) {
-  if (value < spec.min || value > spec.max) {
+  const bool real = spec.kind == ParamKind::Real;
+  const double v = real ? double(float(value)) : value;
+  const double lo = real ? double(float(spec.min)) : spec.min;
+  const double hi = real ? double(float(spec.max)) : spec.max;
+  if (v < lo || v > hi) {
     throw Error(context(technique, spec.name) + ": " + formatNumber(value) + " is out of range [" +
                 formatNumber(spec.min) + ", " + formatNumber(spec.max) + "]");
   }

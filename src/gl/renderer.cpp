@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
 
 #include "gl_formats.h"
 #include "gpu_scene.h"
@@ -25,10 +26,18 @@ constexpr std::array<std::pair<FilterMode, std::string_view>, 5> kFilterModes{{
     {FilterMode::SummedArea, "sat"},
 }};
 
-void checkRange(std::string_view what, double value, double lo, double hi) {
+std::string formatNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// Settings hold floats: compared in float, a documented bound (0.01 is 0.00999999978f) is itself
+// accepted and one float step beyond it is not.
+void checkRange(std::string_view what, float value, float lo, float hi) {
   if (!(value >= lo && value <= hi)) {
-    throw Error(std::string(what) + " " + std::to_string(value) + " is out of range [" +
-                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw Error(std::string(what) + " " + formatNumber(value) + " is out of range [" +
+                formatNumber(lo) + ", " + formatNumber(hi) + "]");
   }
 }
 
@@ -188,10 +197,10 @@ void Renderer::validate(const RenderSettings& settings) const {
                 ") supports at most " + std::to_string(s.maxSamples));
   }
   checkRange("blur radius", settings.blur.radius, 0, 64);
-  checkRange("blur sigma", double(settings.blur.sigma), 0.01, 64.0);
+  checkRange("blur sigma", settings.blur.sigma, 0.01f, 64.0f);
   checkRange("anisotropy", settings.anisotropy, 1, std::min(16, int(s.maxAnisotropy)));
-  checkRange("normal offset (texels)", double(settings.normalOffsetTexels), 0.0, 10.0);
-  checkRange("ambient", double(settings.ambient), 0.0, 1.0);
+  checkRange("normal offset (texels)", settings.normalOffsetTexels, 0.0f, 10.0f);
+  checkRange("ambient", settings.ambient, 0.0f, 1.0f);
   validateParams(settings.technique, settings.params);
   if (settings.filter == FilterMode::SummedArea &&
       (settings.technique == Technique::Evsm2 || settings.technique == Technique::Evsm4 ||

@@ -263,6 +263,26 @@ TEST_F(RendererTest, MsaaSamplesAreEncodedBeforeTheyAreAveraged) {
   EXPECT_GT(silhouetteTexels(4), 100);
 }
 
+TEST_F(RendererTest, DocumentedBoundsOfFloatSettingsAreAcceptedAndOneStepBeyondIsNot) {
+  // Settings hold floats; --blur-sigma 0.01 arrives as 0.00999999978f.
+  auto check = [&](auto set, float lo, float hi, const char* what) {
+    for (float v : {lo, hi}) {
+      gl::RenderSettings s = small(Technique::Vsm);
+      set(s, v);
+      EXPECT_NO_THROW(renderer->validate(s)) << what << " " << v;
+    }
+    for (float v : {std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY)}) {
+      gl::RenderSettings s = small(Technique::Vsm);
+      set(s, v);
+      EXPECT_THROW(renderer->validate(s), Error) << what << " " << v;
+    }
+  };
+  check([](gl::RenderSettings& s, float v) { s.blur.sigma = v; }, 0.01f, 64.0f, "blur sigma");
+  check([](gl::RenderSettings& s, float v) { s.normalOffsetTexels = v; }, 0.0f, 10.0f,
+        "normal offset");
+  check([](gl::RenderSettings& s, float v) { s.ambient = v; }, 0.0f, 1.0f, "ambient");
+}
+
 TEST_F(RendererTest, BadSettingsAreRejectedWithTheRange) {
   gl::RenderSettings s = small(Technique::Vsm);
   s.shadowMapSize = 0;
