@@ -170,8 +170,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                   shaders::kCsmMaxTerms, [](TechniqueParams& p) { return &p.csm.termCount; }),
           real("alpha", "ringing attenuation exp(-alpha (k/M)^2) (CSM §3.2.1); 0 = off", 0.0, 20.0,
                [](TechniqueParams& p) { return &p.csm.attenuation; }),
-          real("offset", "receiver offset in units of 1/(2M) (CSM §3.2.2); 0 = off", 0.0, 4.0,
-               [](TechniqueParams& p) { return &p.csm.offsetScale; }),
+          real("offset", "receiver offset in units of 1/(2M) (CSM §3.2.2), at most M - 1; 0 = off",
+               0.0, 4.0, [](TechniqueParams& p) { return &p.csm.offsetScale; }),
           real("scale", "reconstruction scale (CSM §3.2.2 uses 2); 1 = off", 1.0, 4.0,
                [](TechniqueParams& p) { return &p.csm.scale; }),
           choice("storage", "basis storage (paper: unorm8)", {kUnorm8, kFloat16, kFloat32},
@@ -449,6 +449,15 @@ void validateParams(Technique technique, const TechniqueParams& params) {
     throw Error("lvsm parameter 'transition' (" + formatNumber(params.lvsm.transition) +
                 ") must not exceed 'overlap' (" + formatNumber(params.lvsm.overlap) +
                 "): the blend reads the next layer inside its overlap (thesis §4.1.1)");
+  }
+  if (technique == Technique::Csm && params.csm.offsetScale > float(params.csm.termCount - 1)) {
+    // The depth scale kappa = 1 - (1 + offset) / (2M) keeps every depth pair clear of the series'
+    // wrap at t = 1 only while it is at least 1/2 (docs/techniques.md, CSM depth scale).
+    throw Error("csm parameter 'offset' (" + formatNumber(params.csm.offsetScale) +
+                ") must not exceed M - 1 (" + std::to_string(params.csm.termCount - 1) +
+                " for M = " + std::to_string(params.csm.termCount) +
+                "): a larger offset wraps lit receivers in front of far occluders onto the "
+                "shadowed half of the Fourier series");
   }
   if (technique == Technique::Esm && params.esm.filterSpace == shaders::kEsmFilterLinear &&
       params.esm.exponent > shaders::kEsmMaxLinearExponent) {

@@ -117,6 +117,7 @@ TechniqueParams partnersFor(Technique t, std::string_view name) {
   if (t == Technique::Lvsm && name == "transition") p.lvsm.overlap = 0.1f;
   if (t == Technique::Lvsm && name == "overlap") p.lvsm.transition = 0.0f;
   if (t == Technique::Esm && name == "c") p.esm.filterSpace = shaders::kEsmFilterLog;  // c > 88
+  if (t == Technique::Csm && name == "M") p.csm.offsetScale = 0.0f;  // offset <= M - 1
   return p;
 }
 
