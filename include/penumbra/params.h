@@ -38,6 +38,9 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
 // parameter (only the named one when qualified); throws Error when none has it.
 void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
                           std::string_view assignment);
+// The techniques that applyParamAssignment would set; throws the same errors.
+std::vector<Technique> assignmentTargets(std::span<const Technique> techniques,
+                                         std::string_view assignment);
 
 // The current value as text, in the syntax setParam accepts.
 std::string formatParam(Technique technique, const TechniqueParams& params, std::string_view name);

@@ -181,6 +181,22 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   writeText(dir / "metrics.csv", csv.str());
 }
 
+// How PCF ran: matched to the prefilter (the reference itself where the lookup allows) or with
+// the user's own parameters.
+std::string pcfNote(const ComparisonResult& r) {
+  const bool hasPcf =
+      std::any_of(r.techniques.begin(), r.techniques.end(),
+                  [](const TechniqueResult& t) { return t.technique == Technique::Pcf; });
+  if (!hasPcf) return {};
+  if (r.request.matchPcfKernel) {
+    return "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
+           "receiver-plane test: it is the filtered reference itself for point and bilinear "
+           "lookups.</p>\n";
+  }
+  return "<p><b>PCF is not matched to the prefilter</b>: it runs with the parameters given on the "
+         "command line, so it is measured like any other technique, not as the reference.</p>\n";
+}
+
 void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
   const auto& spots = r.scene.troubleSpots;
   std::ostringstream h;
@@ -213,6 +229,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "columns are "
        "against the filtered reference unless marked <i>GT</i>; see "
        "<code>metrics.json</code>.</p>\n"
+    << pcfNote(r)
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
     << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the filtered reference; click a column to "
        "sort.</p>\n<table id=\"metrics\"><thead><tr>"

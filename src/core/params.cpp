@@ -81,9 +81,9 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                   {"gaussian", shaders::kKernelGaussian},
                   {"bilinear", shaders::kKernelBilinear}},
                  [](TechniqueParams& p) { return &p.pcf.kernel; }),
-          integer("radius", "taps each side of the centre: (2r+1)^2 taps", 0, 15,
+          integer("radius", "taps each side of the centre: (2r+1)^2 taps (the blur's range)", 0, 64,
                   [](TechniqueParams& p) { return &p.pcf.radius; }),
-          real("sigma", "Gaussian kernel standard deviation, texels", 0.25, 16.0,
+          real("sigma", "Gaussian kernel standard deviation, texels (the blur's range)", 0.01, 64.0,
                [](TechniqueParams& p) { return &p.pcf.sigma; }),
           choice("receiverPlane", "receiver-plane depth bias: each tap follows the receiver plane",
                  {{"off", 0}, {"on", 1}}, [](TechniqueParams& p) { return &p.pcf.receiverPlane; }),
@@ -367,44 +367,60 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
   }
 }
 
-void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
-                          std::string_view assignment) {
+namespace {
+
+struct ParsedAssignment {
+  std::string_view name, value;
+  std::vector<Technique> targets;
+};
+
+ParsedAssignment parseAssignment(std::span<const Technique> techniques,
+                                 std::string_view assignment) {
   size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0) {
     throw Error("parameter '" + std::string(assignment) +
                 "' must be NAME=VALUE or TECHNIQUE.NAME=VALUE");
   }
-  std::string_view name = assignment.substr(0, eq);
-  std::string_view value = assignment.substr(eq + 1);
-  size_t dot = name.find('.');
+  ParsedAssignment parsed{assignment.substr(0, eq), assignment.substr(eq + 1), {}};
+  size_t dot = parsed.name.find('.');
   if (dot != std::string_view::npos) {
-    Technique t = parseTechnique(name.substr(0, dot));
-    setParam(t, params, name.substr(dot + 1), value);
-    return;
+    parsed.targets.push_back(parseTechnique(parsed.name.substr(0, dot)));
+    parsed.name = parsed.name.substr(dot + 1);
+    findBinding(parsed.targets[0], parsed.name);  // throws for an unknown name
+    return parsed;
   }
-  bool applied = false;
-  std::string owners;
-  for (Technique t : techniques) {
+  auto has = [&](Technique t) {
     const auto& b = bindings(t);
-    bool has =
-        std::any_of(b.begin(), b.end(), [&](const ParamBinding& x) { return x.spec.name == name; });
-    if (has) {
-      setParam(t, params, name, value);
-      applied = true;
-    }
+    return std::any_of(b.begin(), b.end(),
+                       [&](const ParamBinding& x) { return x.spec.name == parsed.name; });
+  };
+  for (Technique t : techniques) {
+    if (has(t)) parsed.targets.push_back(t);
   }
-  if (!applied) {
+  if (parsed.targets.empty()) {
+    std::string owners;
     for (Technique t : allTechniques()) {
-      const auto& b = bindings(t);
-      if (std::any_of(b.begin(), b.end(),
-                      [&](const ParamBinding& x) { return x.spec.name == name; })) {
-        owners += (owners.empty() ? "" : ", ") + std::string(techniqueId(t));
-      }
+      if (has(t)) owners += (owners.empty() ? "" : ", ") + std::string(techniqueId(t));
     }
-    throw Error("parameter '" + std::string(name) + "' belongs to none of the selected techniques" +
+    throw Error("parameter '" + std::string(parsed.name) +
+                "' belongs to none of the selected techniques" +
                 (owners.empty() ? std::string(" nor to any other")
                                 : "; techniques that have it: " + owners));
   }
+  return parsed;
+}
+
+}  // namespace
+
+std::vector<Technique> assignmentTargets(std::span<const Technique> techniques,
+                                         std::string_view assignment) {
+  return parseAssignment(techniques, assignment).targets;
+}
+
+void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
+                          std::string_view assignment) {
+  const ParsedAssignment parsed = parseAssignment(techniques, assignment);
+  for (Technique t : parsed.targets) setParam(t, params, parsed.name, parsed.value);
 }
 
 std::string formatParam(Technique technique, const TechniqueParams& params, std::string_view name) {

@@ -159,6 +159,17 @@ TEST(Params, RelationsBetweenParametersAreChecked) {
             std::string::npos);
 }
 
+TEST(Params, AssignmentTargetsAreTheTechniquesAnAssignmentSets) {
+  const std::vector<Technique> selected{Technique::Hard, Technique::Pcf, Technique::Vsm};
+  EXPECT_EQ(assignmentTargets(selected, "constantBias=0.01"),
+            (std::vector<Technique>{Technique::Hard, Technique::Pcf}));
+  EXPECT_EQ(assignmentTargets(selected, "pcf.sigma=2"), std::vector<Technique>{Technique::Pcf});
+  EXPECT_EQ(assignmentTargets(selected, "bleedReduction=0.2"),
+            std::vector<Technique>{Technique::Vsm});
+  EXPECT_THROW(assignmentTargets(selected, "pcf.sigmaa=2"), Error);
+  EXPECT_THROW(assignmentTargets(selected, "c=3"), Error);  // ESM's, not selected
+}
+
 TEST(Params, AssignmentsReachEveryTechniqueThatHasTheName) {
   TechniqueParams p = defaultTechniqueParams();
   const std::vector<Technique> selected{Technique::Vsm, Technique::Lvsm, Technique::Esm};

@@ -348,6 +348,36 @@ TEST_F(RendererTest, TexturesTheGlCannotCreateAreRefusedBeforeAllocation) {
   EXPECT_THROW(renderer->validate(s), Error);
 }
 
+TEST_F(RendererTest, GaussianPcfIsTheFilteredReferenceForEveryBlurRadius) {
+  // With point lookups the reference is PCF under the blur's kernel (docs/reference.md), for
+  // every radius the blur takes (up to 64) and sigmas at both ends of its range. Radius 16 and
+  // above once broke on llvmpipe: per-tap kernel normalisation ran past its 65535-iteration loop
+  // limit. The tolerance is fp32 summation: the reference's weights come from the CPU.
+  const Scene scene = makeBuiltinScene("planar");
+  for (int radius : {15, 16, 64}) {
+    for (float sigma : {0.01f, 0.5f, 20.0f, 64.0f}) {
+      gl::RenderSettings s = small(Technique::Pcf);
+      s.shadowMapSize = 128;
+      s.width = 64;
+      s.height = 36;
+      s.filter = gl::FilterMode::Point;
+      s.blur = {BlurKernel::Gaussian, radius, sigma};
+      s.params.pcf.kernel = shaders::kKernelGaussian;
+      s.params.pcf.radius = radius;
+      s.params.pcf.sigma = sigma;
+      s.params.pcf.bias.constantBias = 2e-5f;  // the reference's tie
+      s.params.pcf.bias.slopeScaledBias = 0.0f;
+      const Image pcf = renderer->render(scene, s).visibility;
+      const Image reference = renderer->renderReference(scene, s, 1).visibility;
+      float worst = 0.0f;
+      for (size_t i = 0; i < pcf.data().size(); ++i) {
+        worst = std::max(worst, std::abs(pcf.data()[i] - reference.data()[i]));
+      }
+      EXPECT_LT(worst, 1e-5f) << "radius " << radius << " sigma " << sigma;
+    }
+  }
+}
+
 TEST_F(RendererTest, MsaaSamplesAreEncodedBeforeTheyAreAveraged) {
   // Averaging depths first would leave one depth per texel, and zero variance; encoding each
   // sample first gives silhouette texels the variance of their partial coverage.

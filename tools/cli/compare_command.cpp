@@ -1,6 +1,7 @@
 // `penumbra compare`: parses options, runs penumbra::compare, writes the report.
 #include "compare_command.h"
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
@@ -10,6 +11,7 @@
 #include "penumbra/compare/report_folder.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/params.h"
 #include "progress_bar.h"
 #include "render_options.h"
 #include "technique_options.h"
@@ -37,8 +39,11 @@ void runCompare(const CompareOptions& o) {
   makeBuiltinScene(o.scene);  // unknown scenes fail before anything else
   request.techniques = selectedTechniques(o.technique);
   request.settings.params = selectedParams(o.technique, request.techniques);
-  for (const std::string& p : o.technique.params) {
-    if (p.rfind("pcf.", 0) == 0 || p.rfind("kernel=", 0) == 0 || p.rfind("radius=", 0) == 0) {
+  // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
+  // no longer matched to the prefilter (the report says so).
+  for (const std::string& assignment : o.technique.params) {
+    const std::vector<Technique> targets = assignmentTargets(request.techniques, assignment);
+    if (std::find(targets.begin(), targets.end(), Technique::Pcf) != targets.end()) {
       request.matchPcfKernel = false;
     }
   }

@@ -178,9 +178,10 @@ float pcfLookup(vec2 uv, float receiverDepth, vec2 depthPerTexel, PcfParams pcf)
   vec2 fraction = bilinear ? position - 0.5f - origin : vec2(0.0f);
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
   float lit = 0.0f;
+  float kernelSum = pcfKernelSum(pcf);  // once per lookup (pcf.h)
   for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); ++j) {
     for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); ++i) {
-      float w = pcfTapWeight(i, j, fraction, pcf);
+      float w = pcfTapWeightWithSum(i, j, fraction, pcf, kernelSum);
       if (w <= 0.0f) continue;
       vec2 tap = origin + vec2(i, j);
       float z = texelFetch(channelMap, ivec3(clamp(ivec2(tap), ivec2(0), ivec2(shadowMapSize - 1)), 0), 0).x;
