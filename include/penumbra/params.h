@@ -25,6 +25,9 @@ struct ParamSpec {
   double min = 0.0;              // inclusive range for Real and Integer
   double max = 0.0;
   std::vector<ParamChoice> choices;  // for Choice
+  // Real: also takes "auto", a default that follows other parameters (stored as a negative
+  // sentinel the shared code resolves, e.g. MSM's moment bias by storage format).
+  bool acceptsAuto = false;
 };
 
 // The parameters of one technique.

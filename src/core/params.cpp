@@ -20,12 +20,20 @@ struct ParamBinding {
   float* (*real)(TechniqueParams&) = nullptr;
   int* (*integer)(TechniqueParams&) = nullptr;
   LayerSplits* (*splits)(TechniqueParams&) = nullptr;
+  float autoSentinel = 0.0f;  // the stored value of "auto" when spec.acceptsAuto
 };
 
 ParamBinding real(std::string_view name, std::string_view doc, double lo, double hi,
                   float* (*field)(TechniqueParams&)) {
   ParamBinding b{ParamSpec{name, ParamKind::Real, doc, lo, hi, {}}};
   b.real = field;
+  return b;
+}
+
+// A Real parameter that also takes "auto", stored as `sentinel` (below its range).
+ParamBinding automatic(ParamBinding b, float sentinel) {
+  b.spec.acceptsAuto = true;
+  b.autoSentinel = sentinel;
   return b;
 }
 
@@ -189,8 +197,11 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
       };
     case Technique::Msm:
       return {
-          real("momentBias", "moment bias alpha: 3e-5 for unorm16, 3e-6 for float32", 0.0, 0.01,
-               [](TechniqueParams& p) { return &p.msm.momentBias; }),
+          automatic(real("momentBias",
+                         "moment bias alpha; auto: the storage's, 3e-5 for unorm16 and 3e-6 for "
+                         "float32 (msm notes)",
+                         0.0, 0.01, [](TechniqueParams& p) { return &p.msm.momentBias; }),
+                    shaders::kMsmMomentBiasAuto),
           real("depthBias", "subtracted from the receiver depth, linear depth units", 0.0, 0.1,
                [](TechniqueParams& p) { return &p.msm.depthBias; }),
           real("bleedReduction", kBleedDoc, 0.0, 0.99,
@@ -324,6 +335,10 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
   const ParamBinding& b = findBinding(technique, name);
   switch (b.spec.kind) {
     case ParamKind::Real: {
+      if (b.spec.acceptsAuto && value == "auto") {
+        *b.real(params) = b.autoSentinel;
+        break;
+      }
       double v = parseNumber(technique, name, value);
       checkRange(b.spec, technique, v);
       *b.real(params) = float(v);
@@ -427,7 +442,9 @@ std::string formatParam(Technique technique, const TechniqueParams& params, std:
   const ParamBinding& b = findBinding(technique, name);
   TechniqueParams p = params;  // the accessors take a mutable block; read a copy
   switch (b.spec.kind) {
-    case ParamKind::Real: return formatNumber(*b.real(p));
+    case ParamKind::Real:
+      if (b.spec.acceptsAuto && *b.real(p) == b.autoSentinel) return "auto";
+      return formatNumber(*b.real(p));
     case ParamKind::Integer: return std::to_string(*b.integer(p));
     case ParamKind::Choice:
       for (const ParamChoice& c : b.spec.choices) {
@@ -446,7 +463,7 @@ void validateParams(Technique technique, const TechniqueParams& params) {
       case ParamKind::Real: {
         float v = *b.real(p);
         if (!std::isfinite(v)) throw Error(context(technique, b.spec.name) + ": not finite");
-        checkRange(b.spec, technique, v);
+        if (!(b.spec.acceptsAuto && v == b.autoSentinel)) checkRange(b.spec, technique, v);
         break;
       }
       case ParamKind::Integer: checkRange(b.spec, technique, *b.integer(p)); break;
@@ -491,6 +508,7 @@ std::string describeParams(Technique technique) {
       case ParamKind::Real:
       case ParamKind::Integer:
         out << "[" << formatNumber(b.spec.min) << ", " << formatNumber(b.spec.max) << "]";
+        if (b.spec.acceptsAuto) out << " or auto";
         break;
       case ParamKind::Choice: {
         std::string list;
