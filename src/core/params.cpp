@@ -214,6 +214,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
 }
 
 const std::vector<ParamBinding>& bindings(Technique technique) {
+  checkTechnique(technique);
   static const std::vector<std::vector<ParamBinding>> all = [] {
     std::vector<std::vector<ParamBinding>> table;
     for (Technique t : allTechniques()) table.push_back(bindingsFor(t));
@@ -318,6 +319,7 @@ std::string formatSplits(const LayerSplits& splits) {
 }  // namespace
 
 std::span<const ParamSpec> techniqueParamSpecs(Technique technique) {
+  checkTechnique(technique);
   static const std::vector<std::vector<ParamSpec>> all = [] {
     std::vector<std::vector<ParamSpec>> table;
     for (Technique t : allTechniques()) {
