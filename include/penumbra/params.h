@@ -25,6 +25,9 @@ struct ParamSpec {
   double min = 0.0;              // inclusive range for Real and Integer
   double max = 0.0;
   std::vector<ParamChoice> choices;  // for Choice
+  // Real: also takes "auto", a default that follows other parameters (stored as a negative
+  // sentinel the shared code resolves, e.g. MSM's moment bias by storage format).
+  bool acceptsAuto = false;
 };
 
 // The parameters of one technique.
@@ -38,6 +41,9 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
 // parameter (only the named one when qualified); throws Error when none has it.
 void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
                           std::string_view assignment);
+// The techniques that applyParamAssignment would set; throws the same errors.
+std::vector<Technique> assignmentTargets(std::span<const Technique> techniques,
+                                         std::string_view assignment);
 
 // The current value as text, in the syntax setParam accepts.
 std::string formatParam(Technique technique, const TechniqueParams& params, std::string_view name);

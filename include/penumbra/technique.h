@@ -22,6 +22,10 @@ using TechniqueParams = shaders::TechniqueParams;
 // All techniques, in the order reports list them.
 std::span<const Technique> allTechniques();
 
+// Throws Error for a value outside the enumeration (an integer cast to Technique, e.g. from a
+// stored id); every function here and in params.h checks its technique this way.
+void checkTechnique(Technique technique);
+
 // The id used on the command line, in JSON, CSV and file names: "hard", "pcf", "vsm", "lvsm",
 // "evsm2", "evsm4", "esm", "csm", "powercdf", "msm".
 std::string_view techniqueId(Technique technique);

@@ -20,8 +20,10 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
     const bool point = s.filter == gl::FilterMode::Point;
     s.params.pcf.kernel =
         !box ? shaders::kKernelGaussian : (point ? shaders::kKernelBox : shaders::kKernelBilinear);
-    s.params.pcf.radius = std::min(s.blur.radius, 15);
-    s.params.pcf.sigma = std::max(0.25f, s.blur.sigma);
+    // PCF's ranges cover the blur's (radius 64, sigma [0.01, 64]): nothing is clamped, so PCF
+    // stays the reference for every prefilter.
+    s.params.pcf.radius = s.blur.radius;
+    s.params.pcf.sigma = s.blur.sigma;
     // The reference's own depth test: the receiver plane, ties within its tolerance, no bias.
     s.params.pcf.receiverPlane = 1;
     s.params.pcf.bias.constantBias = 2e-5f;
@@ -164,7 +166,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         out.error = errorImage(r.visibility, reference.visibility, result.coverage);
         visibilities[k].push_back(r.visibility);
         masks[k].push_back(litSurfaceMask(r.lookup));
-        if (t != Technique::Pcf && out.filtered.maxAbsolute > worst && out.filtered.worstX >= 0) {
+        const bool pcfIsReference = t == Technique::Pcf && request.matchPcfKernel;
+        if (!pcfIsReference && out.filtered.maxAbsolute > worst && out.filtered.worstX >= 0) {
           worst = out.filtered.maxAbsolute;
           result.worstTechnique = std::string(techniqueId(t));
           result.worstX = out.filtered.worstX;

@@ -1,8 +1,6 @@
 // The comparison report's files and index.html.
 #include "penumbra/compare/report.h"
 
-#include <unistd.h>
-
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -183,6 +181,22 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   writeText(dir / "metrics.csv", csv.str());
 }
 
+// How PCF ran: matched to the prefilter (the reference itself where the lookup allows) or with
+// the user's own parameters.
+std::string pcfNote(const ComparisonResult& r) {
+  const bool hasPcf =
+      std::any_of(r.techniques.begin(), r.techniques.end(),
+                  [](const TechniqueResult& t) { return t.technique == Technique::Pcf; });
+  if (!hasPcf) return {};
+  if (r.request.matchPcfKernel) {
+    return "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
+           "receiver-plane test: it is the filtered reference itself for point and bilinear "
+           "lookups.</p>\n";
+  }
+  return "<p><b>PCF is not matched to the prefilter</b>: it runs with the parameters given on the "
+         "command line, so it is measured like any other technique, not as the reference.</p>\n";
+}
+
 void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
   const auto& spots = r.scene.troubleSpots;
   std::ostringstream h;
@@ -215,6 +229,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "columns are "
        "against the filtered reference unless marked <i>GT</i>; see "
        "<code>metrics.json</code>.</p>\n"
+    << pcfNote(r)
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
     << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the filtered reference; click a column to "
        "sort.</p>\n<table id=\"metrics\"><thead><tr>"
@@ -320,9 +335,12 @@ window.addEventListener('load', function () {
 }
 
 void writeContents(const ComparisonResult& r, const fs::path& dir) {
-  fs::create_directories(dir / "images");
-  fs::create_directories(dir / "crops");
-  fs::create_directories(dir / "plots");
+  // Not create_directories: a staging folder removed under us (an interrupt) must stay removed.
+  for (const char* sub : {"images", "crops", "plots"}) {
+    std::error_code ec;
+    fs::create_directory(dir / sub, ec);
+    if (ec) throw Error("cannot create " + (dir / sub).string() + ": " + ec.message());
+  }
   const double range = 0.5;
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
@@ -385,33 +403,8 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
 
 }  // namespace
 
-fs::path prepareReportFolder(const fs::path& outDir) {
-  const fs::path staging = outDir.string() + ".partial";
-  std::error_code ec;
-  fs::remove_all(staging, ec);
-  fs::create_directories(staging, ec);
-  const fs::path probe = staging / ".writable";
-  std::ofstream test(probe);
-  if (ec || !test) {
-    throw Error("cannot write the report next to " + outDir.string() +
-                (ec ? ": " + ec.message() : std::string(": not writable")));
-  }
-  test.close();
-  fs::remove(probe);
-  return staging;
-}
-
-void writeReport(const ComparisonResult& result, const fs::path& staging, const fs::path& outDir) {
-  try {
-    writeContents(result, staging);
-    std::error_code ec;
-    fs::remove_all(outDir, ec);
-    fs::rename(staging, outDir);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove_all(staging, ec);
-    throw;
-  }
+void writeReportFiles(const ComparisonResult& result, const fs::path& dir) {
+  writeContents(result, dir);
 }
 
 }  // namespace penumbra::compare

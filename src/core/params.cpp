@@ -20,12 +20,20 @@ struct ParamBinding {
   float* (*real)(TechniqueParams&) = nullptr;
   int* (*integer)(TechniqueParams&) = nullptr;
   LayerSplits* (*splits)(TechniqueParams&) = nullptr;
+  float autoSentinel = 0.0f;  // the stored value of "auto" when spec.acceptsAuto
 };
 
 ParamBinding real(std::string_view name, std::string_view doc, double lo, double hi,
                   float* (*field)(TechniqueParams&)) {
   ParamBinding b{ParamSpec{name, ParamKind::Real, doc, lo, hi, {}}};
   b.real = field;
+  return b;
+}
+
+// A Real parameter that also takes "auto", stored as `sentinel` (below its range).
+ParamBinding automatic(ParamBinding b, float sentinel) {
+  b.spec.acceptsAuto = true;
+  b.autoSentinel = sentinel;
   return b;
 }
 
@@ -81,9 +89,9 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                   {"gaussian", shaders::kKernelGaussian},
                   {"bilinear", shaders::kKernelBilinear}},
                  [](TechniqueParams& p) { return &p.pcf.kernel; }),
-          integer("radius", "taps each side of the centre: (2r+1)^2 taps", 0, 15,
+          integer("radius", "taps each side of the centre: (2r+1)^2 taps (the blur's range)", 0, 64,
                   [](TechniqueParams& p) { return &p.pcf.radius; }),
-          real("sigma", "Gaussian kernel standard deviation, texels", 0.25, 16.0,
+          real("sigma", "Gaussian kernel standard deviation, texels (the blur's range)", 0.01, 64.0,
                [](TechniqueParams& p) { return &p.pcf.sigma; }),
           choice("receiverPlane", "receiver-plane depth bias: each tap follows the receiver plane",
                  {{"off", 0}, {"on", 1}}, [](TechniqueParams& p) { return &p.pcf.receiverPlane; }),
@@ -175,8 +183,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                   shaders::kCsmMaxTerms, [](TechniqueParams& p) { return &p.csm.termCount; }),
           real("alpha", "ringing attenuation exp(-alpha (k/M)^2) (CSM §3.2.1); 0 = off", 0.0, 20.0,
                [](TechniqueParams& p) { return &p.csm.attenuation; }),
-          real("offset", "receiver offset in units of 1/(2M) (CSM §3.2.2); 0 = off", 0.0, 4.0,
-               [](TechniqueParams& p) { return &p.csm.offsetScale; }),
+          real("offset", "receiver offset in units of 1/(2M) (CSM §3.2.2), at most M - 1; 0 = off",
+               0.0, 4.0, [](TechniqueParams& p) { return &p.csm.offsetScale; }),
           real("scale", "reconstruction scale (CSM §3.2.2 uses 2); 1 = off", 1.0, 4.0,
                [](TechniqueParams& p) { return &p.csm.scale; }),
           choice("storage", "basis storage (paper: unorm8)", {kUnorm8, kFloat16, kFloat32},
@@ -196,8 +204,11 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
       };
     case Technique::Msm:
       return {
-          real("momentBias", "moment bias alpha: 3e-5 for unorm16, 3e-6 for float32", 0.0, 0.01,
-               [](TechniqueParams& p) { return &p.msm.momentBias; }),
+          automatic(real("momentBias",
+                         "moment bias alpha; auto: the storage's, 3e-5 for unorm16 and 3e-6 for "
+                         "float32 (msm notes)",
+                         0.0, 0.01, [](TechniqueParams& p) { return &p.msm.momentBias; }),
+                    shaders::kMsmMomentBiasAuto),
           real("depthBias", "subtracted from the receiver depth, linear depth units", 0.0, 0.1,
                [](TechniqueParams& p) { return &p.msm.depthBias; }),
           real("bleedReduction", kBleedDoc, 0.0, 0.99,
@@ -210,6 +221,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
 }
 
 const std::vector<ParamBinding>& bindings(Technique technique) {
+  checkTechnique(technique);
   static const std::vector<std::vector<ParamBinding>> all = [] {
     std::vector<std::vector<ParamBinding>> table;
     for (Technique t : allTechniques()) table.push_back(bindingsFor(t));
@@ -255,8 +267,15 @@ double parseNumber(Technique technique, std::string_view name, std::string_view 
   return value;
 }
 
+// Real parameters are stored as float, so they are compared in float with the bounds rounded to
+// float: a documented bound such as 0.1 is itself accepted (as 0.100000001f, which a double
+// comparison with 0.1 rejects), and one float step beyond it is not.
 void checkRange(const ParamSpec& spec, Technique technique, double value) {
-  if (value < spec.min || value > spec.max) {
+  const bool real = spec.kind == ParamKind::Real;
+  const double v = real ? double(float(value)) : value;
+  const double lo = real ? double(float(spec.min)) : spec.min;
+  const double hi = real ? double(float(spec.max)) : spec.max;
+  if (v < lo || v > hi) {
     throw Error(context(technique, spec.name) + ": " + formatNumber(value) + " is out of range [" +
                 formatNumber(spec.min) + ", " + formatNumber(spec.max) + "]");
   }
@@ -307,6 +326,7 @@ std::string formatSplits(const LayerSplits& splits) {
 }  // namespace
 
 std::span<const ParamSpec> techniqueParamSpecs(Technique technique) {
+  checkTechnique(technique);
   static const std::vector<std::vector<ParamSpec>> all = [] {
     std::vector<std::vector<ParamSpec>> table;
     for (Technique t : allTechniques()) {
@@ -324,6 +344,10 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
   const ParamBinding& b = findBinding(technique, name);
   switch (b.spec.kind) {
     case ParamKind::Real: {
+      if (b.spec.acceptsAuto && value == "auto") {
+        *b.real(params) = b.autoSentinel;
+        break;
+      }
       double v = parseNumber(technique, name, value);
       checkRange(b.spec, technique, v);
       *b.real(params) = float(v);
@@ -367,51 +391,69 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
   }
 }
 
-void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
-                          std::string_view assignment) {
+namespace {
+
+struct ParsedAssignment {
+  std::string_view name, value;
+  std::vector<Technique> targets;
+};
+
+ParsedAssignment parseAssignment(std::span<const Technique> techniques,
+                                 std::string_view assignment) {
   size_t eq = assignment.find('=');
   if (eq == std::string_view::npos || eq == 0) {
     throw Error("parameter '" + std::string(assignment) +
                 "' must be NAME=VALUE or TECHNIQUE.NAME=VALUE");
   }
-  std::string_view name = assignment.substr(0, eq);
-  std::string_view value = assignment.substr(eq + 1);
-  size_t dot = name.find('.');
+  ParsedAssignment parsed{assignment.substr(0, eq), assignment.substr(eq + 1), {}};
+  size_t dot = parsed.name.find('.');
   if (dot != std::string_view::npos) {
-    Technique t = parseTechnique(name.substr(0, dot));
-    setParam(t, params, name.substr(dot + 1), value);
-    return;
+    parsed.targets.push_back(parseTechnique(parsed.name.substr(0, dot)));
+    parsed.name = parsed.name.substr(dot + 1);
+    findBinding(parsed.targets[0], parsed.name);  // throws for an unknown name
+    return parsed;
   }
-  bool applied = false;
-  std::string owners;
-  for (Technique t : techniques) {
+  auto has = [&](Technique t) {
     const auto& b = bindings(t);
-    bool has =
-        std::any_of(b.begin(), b.end(), [&](const ParamBinding& x) { return x.spec.name == name; });
-    if (has) {
-      setParam(t, params, name, value);
-      applied = true;
-    }
+    return std::any_of(b.begin(), b.end(),
+                       [&](const ParamBinding& x) { return x.spec.name == parsed.name; });
+  };
+  for (Technique t : techniques) {
+    if (has(t)) parsed.targets.push_back(t);
   }
-  if (!applied) {
+  if (parsed.targets.empty()) {
+    std::string owners;
     for (Technique t : allTechniques()) {
-      const auto& b = bindings(t);
-      if (std::any_of(b.begin(), b.end(),
-                      [&](const ParamBinding& x) { return x.spec.name == name; })) {
-        owners += (owners.empty() ? "" : ", ") + std::string(techniqueId(t));
-      }
+      if (has(t)) owners += (owners.empty() ? "" : ", ") + std::string(techniqueId(t));
     }
-    throw Error("parameter '" + std::string(name) + "' belongs to none of the selected techniques" +
+    throw Error("parameter '" + std::string(parsed.name) +
+                "' belongs to none of the selected techniques" +
                 (owners.empty() ? std::string(" nor to any other")
                                 : "; techniques that have it: " + owners));
   }
+  return parsed;
+}
+
+}  // namespace
+
+std::vector<Technique> assignmentTargets(std::span<const Technique> techniques,
+                                         std::string_view assignment) {
+  return parseAssignment(techniques, assignment).targets;
+}
+
+void applyParamAssignment(std::span<const Technique> techniques, TechniqueParams& params,
+                          std::string_view assignment) {
+  const ParsedAssignment parsed = parseAssignment(techniques, assignment);
+  for (Technique t : parsed.targets) setParam(t, params, parsed.name, parsed.value);
 }
 
 std::string formatParam(Technique technique, const TechniqueParams& params, std::string_view name) {
   const ParamBinding& b = findBinding(technique, name);
   TechniqueParams p = params;  // the accessors take a mutable block; read a copy
   switch (b.spec.kind) {
-    case ParamKind::Real: return formatNumber(*b.real(p));
+    case ParamKind::Real:
+      if (b.spec.acceptsAuto && *b.real(p) == b.autoSentinel) return "auto";
+      return formatNumber(*b.real(p));
     case ParamKind::Integer: return std::to_string(*b.integer(p));
     case ParamKind::Choice:
       for (const ParamChoice& c : b.spec.choices) {
@@ -430,7 +472,7 @@ void validateParams(Technique technique, const TechniqueParams& params) {
       case ParamKind::Real: {
         float v = *b.real(p);
         if (!std::isfinite(v)) throw Error(context(technique, b.spec.name) + ": not finite");
-        checkRange(b.spec, technique, v);
+        if (!(b.spec.acceptsAuto && v == b.autoSentinel)) checkRange(b.spec, technique, v);
         break;
       }
       case ParamKind::Integer: checkRange(b.spec, technique, *b.integer(p)); break;
@@ -450,6 +492,15 @@ void validateParams(Technique technique, const TechniqueParams& params) {
                 ") must not exceed 'overlap' (" + formatNumber(params.lvsm.overlap) +
                 "): the blend reads the next layer inside its overlap (thesis §4.1.1)");
   }
+  if (technique == Technique::Csm && params.csm.offsetScale > float(params.csm.termCount - 1)) {
+    // The depth scale kappa = 1 - (1 + offset) / (2M) keeps every depth pair clear of the series'
+    // wrap at t = 1 only while it is at least 1/2 (docs/techniques.md, CSM depth scale).
+    throw Error("csm parameter 'offset' (" + formatNumber(params.csm.offsetScale) +
+                ") must not exceed M - 1 (" + std::to_string(params.csm.termCount - 1) +
+                " for M = " + std::to_string(params.csm.termCount) +
+                "): a larger offset wraps lit receivers in front of far occluders onto the "
+                "shadowed half of the Fourier series");
+  }
   if (technique == Technique::Esm && params.esm.filterSpace == shaders::kEsmFilterLinear &&
       params.esm.exponent > shaders::kEsmMaxLinearExponent) {
     throw Error("esm parameter 'c' (" + formatNumber(params.esm.exponent) +
@@ -466,6 +517,7 @@ std::string describeParams(Technique technique) {
       case ParamKind::Real:
       case ParamKind::Integer:
         out << "[" << formatNumber(b.spec.min) << ", " << formatNumber(b.spec.max) << "]";
+        if (b.spec.acceptsAuto) out << " or auto";
         break;
       case ParamKind::Choice: {
         std::string list;

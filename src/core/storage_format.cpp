@@ -33,6 +33,7 @@ int bytesPerChannel(StorageFormat format) {
 }
 
 StorageFormat techniqueStorage(Technique technique, const TechniqueParams& params) {
+  checkTechnique(technique);
   switch (technique) {
     case Technique::Vsm: return StorageFormat(params.vsm.storage);
     case Technique::Lvsm: return StorageFormat(params.lvsm.storage);

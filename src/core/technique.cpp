@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <type_traits>
 
 #include "penumbra/error.h"
 #include "shared/technique_dispatch.h"
@@ -41,6 +42,7 @@ constexpr std::array<Technique, 10> kAll{
     Technique::Evsm4, Technique::Esm, Technique::Csm, Technique::PowerCdf, Technique::Msm};
 
 const TechniqueInfo& info(Technique technique) {
+  checkTechnique(technique);
   const TechniqueInfo& i = kTechniques[static_cast<size_t>(technique)];
   assert(i.technique == technique);
   return i;
@@ -63,6 +65,15 @@ static_assert(sizeof(TechniqueParams) % 16 == 0);
 
 std::span<const Technique> allTechniques() {
   return kAll;
+}
+
+void checkTechnique(Technique technique) {
+  const auto id = static_cast<std::underlying_type_t<Technique>>(technique);
+  if (id < 0 || size_t(id) >= kTechniques.size()) {
+    throw Error("technique id " + std::to_string(id) + " is out of range [0, " +
+                std::to_string(kTechniques.size() - 1) +
+                "]; valid techniques: " + techniqueIdList());
+  }
 }
 
 std::string_view techniqueId(Technique technique) {

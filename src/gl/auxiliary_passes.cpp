@@ -2,6 +2,7 @@
 // and LVSM's Lloyd split placement (thesis §4.1.2).
 #include <epoxy/gl.h>
 
+#include "memory_plan.h"
 #include "penumbra/gl/context.h"
 #include "renderer_state.h"
 #include "shared/constants.h"
@@ -42,7 +43,7 @@ std::vector<SplitSample> readSplitSamplesBuffer(const Renderer::State& s) {
 
 void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisampled) {
   const int size = s.shadowMapSize;
-  s.splitSamples.emplace(size_t(size - 1) * size_t(size - 1) * sizeof(SplitSample));
+  s.splitSamples.emplace(lloydSampleBytes(size));
   const Program& samples =
       s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);

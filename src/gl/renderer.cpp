@@ -2,13 +2,17 @@
 #include "penumbra/gl/renderer.h"
 
 #include <epoxy/gl.h>
+#include <unistd.h>
 
 #include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <iomanip>
+#include <sstream>
 
 #include "gl_formats.h"
 #include "gpu_scene.h"
+#include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/params.h"
@@ -18,10 +22,18 @@
 namespace penumbra::gl {
 namespace {
 
-void checkRange(std::string_view what, double value, double lo, double hi) {
+std::string formatNumber(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+
+// Settings hold floats: compared in float, a documented bound (0.01 is 0.00999999978f) is itself
+// accepted and one float step beyond it is not.
+void checkRange(std::string_view what, float value, float lo, float hi) {
   if (!(value >= lo && value <= hi)) {
-    throw Error(std::string(what) + " " + std::to_string(value) + " is out of range [" +
-                std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    throw Error(std::string(what) + " " + formatNumber(value) + " is out of range [" +
+                formatNumber(lo) + ", " + formatNumber(hi) + "]");
   }
 }
 
@@ -72,11 +84,11 @@ HalfRounding probeHalfRounding(Renderer::State& s) {
   return stored[0] < value ? HalfRounding::TowardZero : HalfRounding::Nearest;
 }
 
+// The bytes actually allocated now, from the live objects' sizes.
 MemoryReport memoryReport(const Renderer::State& s) {
   const RenderSettings& settings = s.settings;
-  const uint64_t texels = uint64_t(s.shadowMapSize) * uint64_t(s.shadowMapSize);
   MemoryReport m;
-  m.lightPass = texels * (4 + 4) * uint64_t(s.msaaSamples);
+  m.lightPass = lightPassBytes(s.shadowMapSize, s.msaaSamples);
   m.technique =
       channelTextureBytes(s.layout, s.shadowMapSize, s.shadowMapSize, s.channelLevels > 1);
   if (s.satSums) m.summedArea = s.satSums->size() + s.satStats->size() + s.satRows->size();
@@ -87,9 +99,82 @@ MemoryReport memoryReport(const Renderer::State& s) {
     m.auxiliary += channelTextureBytes(r32f, s.shadowMapSize, s.shadowMapSize, true);
   }
   if (s.splitSamples) m.auxiliary += s.splitSamples->size();
-  // Colour, visibility, diagnostic, lookup, receiver plane, uv derivatives, depth.
-  m.frame = uint64_t(settings.width) * uint64_t(settings.height) * (4 + 4 + 4 + 16 + 8 + 16 + 4);
+  m.frame = frameBytes(settings.width, settings.height);
   return m;
+}
+
+std::string gib(uint64_t bytes) {
+  std::ostringstream out;
+  out << std::setprecision(3) << double(bytes) / double(uint64_t(1) << 30) << " GiB";
+  return out.str();
+}
+
+// What the GL can give one render, and where that figure comes from.
+struct MemoryBudget {
+  uint64_t bytes = 0;
+  std::string source;
+};
+
+MemoryBudget glMemoryBudget(const Renderer::State& s) {
+  // The vendor queries report free memory, which excludes what this renderer holds now and
+  // frees or reuses for the next render.
+  const uint64_t held = s.lightFramebuffer != 0 ? memoryReport(s).total() : 0;
+  if (epoxy_has_gl_extension("GL_NVX_gpu_memory_info")) {
+    GLint kib = 0;
+    glGetIntegerv(GL_GPU_MEMORY_INFO_CURRENT_AVAILABLE_VIDMEM_NVX, &kib);
+    const uint64_t free = uint64_t(kib) * 1024 + held;
+    return {free, "the " + gib(free) + " of GPU memory free (GL_NVX_gpu_memory_info)"};
+  }
+  if (epoxy_has_gl_extension("GL_ATI_meminfo")) {
+    GLint kib[4] = {};
+    glGetIntegerv(GL_TEXTURE_FREE_MEMORY_ATI, kib);
+    const uint64_t free = uint64_t(kib[0]) * 1024 + held;
+    return {free, "the " + gib(free) + " of texture memory free (GL_ATI_meminfo)"};
+  }
+  // llvmpipe and GLs that do not say: textures live in RAM beside the read-backs and reports.
+  const uint64_t ram = uint64_t(sysconf(_SC_PHYS_PAGES)) * uint64_t(sysconf(_SC_PAGE_SIZE));
+  return {ram / 2, "the budget of " + gib(ram / 2) + ", half of this machine's " + gib(ram) +
+                       " of RAM (this GL does not report its memory)"};
+}
+
+MemoryBudget memoryBudget(const Renderer::State& s) {
+  const MemoryBudget offered = glMemoryBudget(s);
+  if (s.memoryLimit == 0 || s.memoryLimit >= offered.bytes) return offered;
+  return {s.memoryLimit, "the limit of " + gib(s.memoryLimit) + " (" +
+                             std::to_string(s.memoryLimit) + " bytes) set on the renderer"};
+}
+
+// The GL's own answer to "could this texture be created?" (proxy targets, GL 4.5 §8.22).
+bool proxyAccepts(const PlannedTexture& t) {
+  if (t.proxyTarget == GL_PROXY_TEXTURE_2D_MULTISAMPLE) {
+    // Mesa takes multisample proxies only through TexImage (TexStorage wants a bound object).
+    glTexImage2DMultisample(t.proxyTarget, t.samples, t.internalFormat, t.width, t.height, GL_TRUE);
+  } else if (t.proxyTarget == GL_PROXY_TEXTURE_2D_ARRAY) {
+    glTexStorage3D(t.proxyTarget, t.levels, t.internalFormat, t.width, t.height, t.layers);
+  } else {
+    glTexStorage2D(t.proxyTarget, t.levels, t.internalFormat, t.width, t.height);
+  }
+  GLint width = 0;
+  glGetTexLevelParameteriv(t.proxyTarget, 0, GL_TEXTURE_WIDTH, &width);
+  return width != 0;
+}
+
+// Why these settings do not fit, or nothing when they do.
+std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& budget,
+                            int maxArrayLayers) {
+  for (const PlannedTexture& t : plannedTextures(settings)) {
+    if (t.layers > maxArrayLayers) {
+      return "its " + std::string(t.what) + " needs " + std::to_string(t.layers) +
+             " array layers, more than this GL's " + std::to_string(maxArrayLayers);
+    }
+    if (!proxyAccepts(t)) {
+      return "this GL cannot create its " + std::to_string(t.width) + "x" +
+             std::to_string(t.height) + " " + std::string(t.what) + " of " + gib(t.bytes) +
+             " (GL proxy test)";
+    }
+  }
+  if (estimateMemory(settings).total() > budget.bytes) return "that is more than " + budget.source;
+  return {};
 }
 
 }  // namespace
@@ -148,6 +233,7 @@ void Renderer::State::uploadParameters() {
 Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<State>()) {
   state_->device = context.description();
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &state_->maxTextureSize);
+  glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &state_->maxArrayLayers);
   GLint colorSamples = 0, depthSamples = 0;
   glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colorSamples);
   glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depthSamples);
@@ -163,6 +249,10 @@ HalfRounding Renderer::halfFloatRounding() const {
 }
 
 Renderer::~Renderer() = default;
+
+void Renderer::limitMemory(uint64_t bytes) {
+  state_->memoryLimit = bytes;
+}
 
 std::string Renderer::deviceDescription() const {
   return state_->device;
@@ -183,10 +273,10 @@ void Renderer::validate(const RenderSettings& settings) const {
                 ") supports at most " + std::to_string(s.maxSamples));
   }
   checkRange("blur radius", settings.blur.radius, 0, 64);
-  checkRange("blur sigma", double(settings.blur.sigma), 0.01, 64.0);
+  checkRange("blur sigma", settings.blur.sigma, 0.01f, 64.0f);
   checkRange("anisotropy", settings.anisotropy, 1, std::min(16, int(s.maxAnisotropy)));
-  checkRange("normal offset (texels)", double(settings.normalOffsetTexels), 0.0, 10.0);
-  checkRange("ambient", double(settings.ambient), 0.0, 1.0);
+  checkRange("normal offset (texels)", settings.normalOffsetTexels, 0.0f, 10.0f);
+  checkRange("ambient", settings.ambient, 0.0f, 1.0f);
   validateParams(settings.technique, settings.params);
   if (settings.filter == FilterMode::SummedArea &&
       (settings.technique == Technique::Evsm2 || settings.technique == Technique::Evsm4 ||
@@ -209,6 +299,38 @@ void Renderer::validate(const RenderSettings& settings) const {
       }
     }
   }
+  checkMemory(settings);
+}
+
+void Renderer::checkMemory(const RenderSettings& settings) const {
+  const State& s = *state_;
+  const MemoryBudget budget = memoryBudget(s);
+  const std::string shortfall = memoryShortfall(settings, budget, s.maxArrayLayers);
+  if (shortfall.empty()) return;
+  // The largest shadow-map size that fits with everything else unchanged (all allocations grow
+  // with it, so the search is monotone).
+  auto fits = [&](int size) {
+    RenderSettings smaller = settings;
+    smaller.shadowMapSize = size;
+    return memoryShortfall(smaller, budget, s.maxArrayLayers).empty();
+  };
+  std::string advice = "no shadow-map size fits with this frame size";
+  if (fits(16)) {
+    int lo = 16, hi = settings.shadowMapSize;  // fits(lo), !fits(hi)
+    while (hi - lo > 1) {
+      const int mid = lo + (hi - lo) / 2;
+      (fits(mid) ? lo : hi) = mid;
+    }
+    advice = "the largest shadow-map size that fits is " + std::to_string(lo);
+  }
+  const uint64_t need = estimateMemory(settings).total();
+  throw Error(std::string(techniqueId(settings.technique)) + " at shadow-map size " +
+              std::to_string(settings.shadowMapSize) + " (frame " + std::to_string(settings.width) +
+              "x" + std::to_string(settings.height) +
+              (settings.msaaSamples > 1 ? ", " + std::to_string(settings.msaaSamples) + "x MSAA"
+                                        : std::string()) +
+              ") needs " + gib(need) + " (" + std::to_string(need) + " bytes), and " + shortfall +
+              "; " + advice);
 }
 
 RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
@@ -237,12 +359,8 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 
   renderLightPass(s, gpuScene, light);
   s.auxiliaryTimer.begin();
-  if (settings.technique == Technique::Esm &&
-      s.params.esm.classifier == shaders::kEsmClassifyZmax) {
-    buildZmaxPyramid(s, s.lightDepth.id(), s.msaaSamples > 1);
-  }
-  if (settings.technique == Technique::Lvsm &&
-      s.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
+  if (buildsZmaxPyramid(settings)) buildZmaxPyramid(s, s.lightDepth.id(), s.msaaSamples > 1);
+  if (placesLayersByLloyd(settings)) {
     placeLayersByLloyd(s, s.lightDepth.id(), s.msaaSamples > 1);
     s.uploadParameters();
   }

@@ -22,6 +22,8 @@ struct Renderer::State {
   std::map<std::string, Program> programs;
   std::string device;
   int maxTextureSize = 0;
+  int maxArrayLayers = 0;
+  uint64_t memoryLimit = 0;  // Renderer::limitMemory; 0: none
   int maxSamples = 0;
   float maxAnisotropy = 1.0f;
   HalfRounding halfRounding = HalfRounding::Nearest;  // how image stores round to fp16

@@ -3,6 +3,7 @@
 #include <epoxy/gl.h>
 
 #include "gl_formats.h"
+#include "memory_plan.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
 #include "renderer_state.h"
@@ -63,9 +64,10 @@ void buildMipChain(Renderer::State& s) {
 void buildSummedAreaTable(Renderer::State& s) {
   const int size = s.shadowMapSize;
   const int channels = s.layout.channels;
-  s.satRows.emplace(size_t(channels) * size_t(size) * 16);
-  s.satStats.emplace(size_t(channels) * 16);
-  s.satSums.emplace(size_t(channels) * size_t(size) * size_t(size) * 8);
+  const SummedAreaSizes bytes = summedAreaSizes(channels, size);
+  s.satRows.emplace(bytes.rows);
+  s.satStats.emplace(bytes.stats);
+  s.satSums.emplace(bytes.sums);
   s.satRows->bindStorage(1);
   s.satStats->bindStorage(2);
   s.satSums->bindStorage(3);
@@ -91,20 +93,14 @@ void buildSummedAreaTable(Renderer::State& s) {
 }  // namespace
 
 void allocateChannels(Renderer::State& s, const RenderSettings& settings) {
-  // PCF and the hard test read raw depth: no prefilter, no mips, no scratch.
-  const bool prefiltered =
-      !filtersAfterTest(settings.technique) && settings.technique != Technique::Hard;
+  // PCF and the hard test read raw depth: no prefilter, no mips, no scratch (memory_plan.h).
   s.layout = channelLayout(settings.technique, settings.params);
-  s.channelLevels = prefiltered && usesMips(settings.filter)
-                        ? mipLevelCount(s.shadowMapSize, s.shadowMapSize)
-                        : 1;
+  s.channelLevels = channelLevelsFor(settings);
   s.channels = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.channels.id(), s.channelLevels, internalFormat(s.layout), s.shadowMapSize,
                      s.shadowMapSize, s.layout.layers);
-  const bool blurred =
-      prefiltered && settings.blur.radius > 0 && settings.filter != FilterMode::SummedArea;
   s.scratch = Texture();
-  if (blurred) {
+  if (blursIntoScratch(settings)) {
     s.scratch = Texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(s.scratch.id(), 1, internalFormat(s.layout), s.shadowMapSize,
                        s.shadowMapSize, s.layout.layers);

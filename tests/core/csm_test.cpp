@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "penumbra/depth_distribution.h"
+#include "penumbra/error.h"
+#include "penumbra/params.h"
 #include "region_helpers.h"
 #include "shared/csm.h"
 
@@ -102,6 +104,61 @@ TEST(Csm, NoDepthPairWrapsAroundThePeriod) {
     EXPECT_GT(series(1.0f, 0.0f, p), 0.95f) << "M = " << terms;
     EXPECT_LT(series(0.0f, 1.0f, p), 0.05f) << "M = " << terms;
   }
+}
+
+TEST(Csm, NoAcceptedTermCountAndOffsetWrapsALitReceiver) {
+  // Sweeps every (M, offset) the registry accepts, through encode and reconstruct. A receiver in
+  // front of (or at) its occluder sits on the lit half of the truncated step, t in [0, 1): the
+  // series is >= 1/2 there (its partial sums are positive on (0, 1), and attenuation only weights
+  // them down monotonically); a wrap past t = 1 reads below 1/2. Float32 storage keeps storage
+  // rounding out (EightBitStorageStaysCloseToFloat covers it); 1e-4 is fp32 rounding of at most
+  // 16 terms at t = 0 (offset 0, z = d), where the series is exactly 1/2.
+  // Receivers at least one ringing width 1/(2M) in front read >= 0.73 for alpha <= 1: the
+  // lowest plateau is M = 1, alpha = 1: 1/2 + (2/pi) e^-1 = 0.734.
+  int accepted = 0;
+  for (int terms = 1; terms <= shaders::kCsmMaxTerms; ++terms) {
+    for (int quarter = 0; quarter <= 16; ++quarter) {
+      const float offset = float(quarter) / 4.0f;
+      TechniqueParams p = float32Params();
+      setParam(Technique::Csm, p, "M", std::to_string(terms));
+      setParam(Technique::Csm, p, "offset", std::to_string(offset));
+      try {
+        validateParams(Technique::Csm, p);
+      } catch (const Error& e) {
+        EXPECT_GT(offset, float(terms - 1)) << "M = " << terms << " offset " << offset;
+        EXPECT_NE(std::string(e.what()).find("must not exceed M - 1"), std::string::npos);
+        continue;
+      }
+      ++accepted;
+      const float kappa = shaders::csmDepthScale(p.csm);
+      for (float alpha : {0.0f, 1.0f, 20.0f}) {
+        p.csm.attenuation = alpha;
+        float lowest = 1.0f, lowestClear = 1.0f;
+        for (int i = 0; i <= 64; ++i) {
+          const float occluder = float(i) / 64.0f;
+          float channels[2 * shaders::kCsmMaxTerms];
+          encodeDepth(Technique::Csm, p, occluder, channels);
+          for (int j = 0; j <= i; ++j) {
+            const float receiver = float(j) / 64.0f;
+            const float v = reconstructVisibility(Technique::Csm, p,
+                                                  std::span(channels, size_t(2 * terms)), receiver);
+            lowest = std::min(lowest, v);
+            if (kappa * (occluder - receiver) >= 0.5f / float(terms)) {
+              lowestClear = std::min(lowestClear, v);
+            }
+          }
+        }
+        const std::string where = "M = " + std::to_string(terms) +
+                                  " offset = " + std::to_string(offset) +
+                                  " alpha = " + std::to_string(alpha);
+        EXPECT_GE(lowest, 0.5f - 1e-4f) << where;
+        if (alpha <= 1.0f) {
+          EXPECT_GE(lowestClear, 0.73f) << where;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(accepted, 1 + 5 + 9 + 13 + 12 * 17);  // M = 1..4 take offsets up to M - 1 only
 }
 
 TEST(Csm, ScalingByTwoLightsLitSurfacesAndSharpensTheStep) {

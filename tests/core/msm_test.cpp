@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "penumbra/depth_distribution.h"
+#include "penumbra/error.h"
+#include "penumbra/params.h"
 #include "region_helpers.h"
 #include "shared/msm.h"
 
@@ -41,6 +43,43 @@ TEST(Msm, TwoAtomDistributionMatchesTheHandComputedIntensity) {
   EXPECT_NEAR(evaluateOnRegion(Technique::Msm, params, region, 0.4f), 0.7f, 2e-3f);
   EXPECT_NEAR(evaluateOnRegion(Technique::Msm, params, region, 0.8f), 0.0f, 2e-3f);
   EXPECT_NEAR(evaluateOnRegion(Technique::Msm, params, region, 0.1f), 1.0f, 1e-6f);
+}
+
+TEST(Msm, MomentBiasFollowsTheStorageUnlessSetExplicitly) {
+  // The notes' alpha: 3e-5 for 16-bit storage, 3e-6 for 32-bit; a value the user gives is kept,
+  // whatever the order of the assignments.
+  const TechniqueParams defaults = defaultTechniqueParams();
+  EXPECT_EQ(formatParam(Technique::Msm, defaults, "momentBias"), "auto");
+  EXPECT_EQ(shaders::msmMomentBias(defaults.msm), 3e-5f);
+  TechniqueParams p = defaults;
+  setParam(Technique::Msm, p, "storage", "float32");
+  EXPECT_EQ(shaders::msmMomentBias(p.msm), 3e-6f);
+  EXPECT_NO_THROW(validateParams(Technique::Msm, p));
+  for (bool biasFirst : {true, false}) {
+    TechniqueParams q = defaults;
+    if (biasFirst) setParam(Technique::Msm, q, "momentBias", "1e-4");
+    setParam(Technique::Msm, q, "storage", "float32");
+    if (!biasFirst) setParam(Technique::Msm, q, "momentBias", "1e-4");
+    EXPECT_EQ(shaders::msmMomentBias(q.msm), 1e-4f) << biasFirst;
+    setParam(Technique::Msm, q, "momentBias", "auto");
+    EXPECT_EQ(shaders::msmMomentBias(q.msm), 3e-6f);
+  }
+  EXPECT_THROW(setParam(Technique::Msm, p, "momentBias", "-1"),
+               Error);  // the sentinel is not input
+
+  // The reconstruction uses it: float32 storage by default reconstructs as with 3e-6, not 3e-5.
+  TechniqueParams small = p, large = p;
+  small.msm.momentBias = 3e-6f;
+  large.msm.momentBias = 3e-5f;
+  const std::vector<DepthSample> region{{0.2f, 0.3f}, {0.6f, 0.7f}};
+  float largestDifference = 0.0f;
+  for (float receiver : {0.3f, 0.5f, 0.61f, 0.7f}) {
+    const float v = evaluateOnRegion(Technique::Msm, p, region, receiver);
+    EXPECT_EQ(v, evaluateOnRegion(Technique::Msm, small, region, receiver)) << receiver;
+    largestDifference = std::max(
+        largestDifference, std::abs(v - evaluateOnRegion(Technique::Msm, large, region, receiver)));
+  }
+  EXPECT_GT(largestDifference, 1e-4f);
 }
 
 TEST(Msm, SixteenBitOptimisedQuantisationStaysCloseToFloat) {

@@ -2,6 +2,10 @@
 // is valid.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <iomanip>
+#include <sstream>
+
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 
@@ -92,12 +96,78 @@ TEST(Params, SplitsMustIncreaseInsideTheUnitInterval) {
   EXPECT_THROW(setParam(Technique::PowerCdf, p, "splits", "0.5,,0.7"), Error);
 }
 
+// The text the documentation shows for a bound (describeParams' formatting), and a float with
+// every digit (9 significant digits round-trip any float).
+std::string documented(double v) {
+  std::ostringstream out;
+  out << v;
+  return out.str();
+}
+std::string exact(float v) {
+  std::ostringstream out;
+  out << std::setprecision(9) << v;
+  return out.str();
+}
+
+// Parameters whose extreme values need a partner so that the relations between parameters hold
+// (validateParams checks those separately).
+TechniqueParams partnersFor(Technique t, std::string_view name) {
+  TechniqueParams p = defaultTechniqueParams();
+  // transition <= overlap
+  if (t == Technique::Lvsm && name == "transition") p.lvsm.overlap = 0.1f;
+  if (t == Technique::Lvsm && name == "overlap") p.lvsm.transition = 0.0f;
+  if (t == Technique::Esm && name == "c") p.esm.filterSpace = shaders::kEsmFilterLog;  // c > 88
+  if (t == Technique::Csm && name == "M") p.csm.offsetScale = 0.0f;  // offset <= M - 1
+  return p;
+}
+
+TEST(Params, EveryDocumentedBoundIsAcceptedAndOneStepBeyondIsNot) {
+  for (Technique t : allTechniques()) {
+    for (const ParamSpec& spec : techniqueParamSpecs(t)) {
+      if (spec.kind != ParamKind::Real && spec.kind != ParamKind::Integer) continue;
+      const std::string where = std::string(techniqueId(t)) + "." + std::string(spec.name);
+      for (double bound : {spec.min, spec.max}) {
+        TechniqueParams p = partnersFor(t, spec.name);
+        EXPECT_NO_THROW(setParam(t, p, spec.name, documented(bound))) << where << "=" << bound;
+        // The stored value must pass the registry's own validation too (it is re-checked before
+        // every render): a float 0.1 is 0.100000001.
+        EXPECT_NO_THROW(validateParams(t, p)) << where << "=" << bound;
+      }
+      std::string below, above;
+      if (spec.kind == ParamKind::Real) {
+        below = exact(std::nextafter(float(spec.min), -INFINITY));
+        above = exact(std::nextafter(float(spec.max), INFINITY));
+      } else {
+        below = documented(spec.min - 1);
+        above = documented(spec.max + 1);
+      }
+      for (const std::string& outside : {below, above}) {
+        TechniqueParams p = partnersFor(t, spec.name);
+        EXPECT_NE(errorOf([&] { setParam(t, p, spec.name, outside); }).find("is out of range"),
+                  std::string::npos)
+            << where << "=" << outside;
+      }
+    }
+  }
+}
+
 TEST(Params, RelationsBetweenParametersAreChecked) {
   TechniqueParams p = defaultTechniqueParams();
   p.lvsm.overlap = 0.01f;
   p.lvsm.transition = 0.02f;
   EXPECT_NE(errorOf([&] { validateParams(Technique::Lvsm, p); }).find("must not exceed 'overlap'"),
             std::string::npos);
+}
+
+TEST(Params, AssignmentTargetsAreTheTechniquesAnAssignmentSets) {
+  const std::vector<Technique> selected{Technique::Hard, Technique::Pcf, Technique::Vsm};
+  EXPECT_EQ(assignmentTargets(selected, "constantBias=0.01"),
+            (std::vector<Technique>{Technique::Hard, Technique::Pcf}));
+  EXPECT_EQ(assignmentTargets(selected, "pcf.sigma=2"), std::vector<Technique>{Technique::Pcf});
+  EXPECT_EQ(assignmentTargets(selected, "bleedReduction=0.2"),
+            std::vector<Technique>{Technique::Vsm});
+  EXPECT_THROW(assignmentTargets(selected, "pcf.sigmaa=2"), Error);
+  EXPECT_THROW(assignmentTargets(selected, "c=3"), Error);  // ESM's, not selected
 }
 
 TEST(Params, AssignmentsReachEveryTechniqueThatHasTheName) {

@@ -6,8 +6,12 @@
 #include <random>
 
 #include "penumbra/depth_distribution.h"
+#include "penumbra/error.h"
+#include "penumbra/params.h"
+#include "penumbra/storage_format.h"
 #include "region_helpers.h"
 #include "shared/layers.h"
+#include "shared/technique_dispatch.h"
 
 namespace penumbra {
 namespace {
@@ -142,6 +146,46 @@ INSTANTIATE_TEST_SUITE_P(AllTechniques, TechniqueInvariants,
                          [](const ::testing::TestParamInfo<Technique>& test) {
                            return std::string(techniqueId(test.param));
                          });
+
+TEST(TechniqueDispatch, MsmIsItsOwnBranchAndAnUnknownIdReadsLit) {
+  // Moments of one depth 0.2 and a receiver far behind it: MSM says shadowed; an id past the last
+  // technique must not fall through to MSM (or anything else) but read a defined value, lit.
+  float channels[shaders::kMaxChannels] = {};
+  TechniqueParams p = defaultTechniqueParams();
+  p.msm.storage = shaders::kStorageFloat32;
+  for (int c = 0; c < 4; ++c) channels[c] = shaders::msmEncode(0.2f, p.msm)[c];
+  EXPECT_LT(shaders::reconstructVisibility(shaders::kTechniqueMsm, channels, 0.8f, p), 0.01f);
+  for (int unknown : {shaders::kTechniqueCount, shaders::kTechniqueCount + 7, -1}) {
+    EXPECT_EQ(shaders::reconstructVisibility(unknown, channels, 0.8f, p), 1.0f) << unknown;
+  }
+}
+
+TEST(TechniqueIds, AnIdOutsideTheEnumerationIsRejectedWithTheValidIds) {
+  const TechniqueParams p = defaultTechniqueParams();
+  float channels[shaders::kMaxChannels] = {};
+  for (int id : {10, 42, -1}) {
+    const Technique t = static_cast<Technique>(id);
+    std::string message;
+    try {
+      techniqueId(t);
+    } catch (const Error& e) {
+      message = e.what();
+    }
+    EXPECT_NE(message.find("technique id " + std::to_string(id) + " is out of range [0, 9]"),
+              std::string::npos)
+        << message;
+    EXPECT_NE(message.find("hard, pcf"), std::string::npos) << message;
+    EXPECT_THROW(techniqueTitle(t), Error);
+    EXPECT_THROW(channelCount(t, p), Error);
+    EXPECT_THROW(encodeDepth(t, p, 0.5f, channels), Error);
+    EXPECT_THROW(channelReduction(t, p, 0), Error);
+    EXPECT_THROW(reconstructVisibility(t, p, channels, 0.5f), Error);
+    EXPECT_THROW(filtersAfterTest(t), Error);
+    EXPECT_THROW(techniqueStorage(t, p), Error);
+    EXPECT_THROW(techniqueParamSpecs(t), Error);
+    EXPECT_THROW(validateParams(t, p), Error);
+  }
+}
 
 }  // namespace
 }  // namespace penumbra

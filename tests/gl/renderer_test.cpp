@@ -239,6 +239,145 @@ TEST_F(RendererTest, MemoryEqualsTheFormulaAndTheGlObjects) {
   EXPECT_EQ(channelTextureBytes(channelLayout(Technique::Vsm, p), 2048, 2048, true), 44739240u);
 }
 
+void expectSameMemory(const gl::MemoryReport& estimated, const gl::MemoryReport& allocated,
+                      const std::string& where) {
+  EXPECT_EQ(estimated.lightPass, allocated.lightPass) << where;
+  EXPECT_EQ(estimated.technique, allocated.technique) << where;
+  EXPECT_EQ(estimated.summedArea, allocated.summedArea) << where;
+  EXPECT_EQ(estimated.scratch, allocated.scratch) << where;
+  EXPECT_EQ(estimated.auxiliary, allocated.auxiliary) << where;
+  EXPECT_EQ(estimated.frame, allocated.frame) << where;
+}
+
+TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
+  // The up-front estimate that validate() checks is exact, for every technique, filter, MSAA,
+  // blur and auxiliary pass.
+  const Scene scene = makeBuiltinScene("planar");
+  std::vector<gl::RenderSettings> cases;
+  for (Technique t : allTechniques()) {
+    for (gl::FilterMode filter :
+         {gl::FilterMode::Point, gl::FilterMode::Trilinear, gl::FilterMode::SummedArea}) {
+      for (int msaa : {1, 4}) {
+        gl::RenderSettings s = small(t);
+        s.shadowMapSize = 64;
+        s.width = 40;
+        s.height = 24;
+        s.filter = filter;
+        s.msaaSamples = msaa;
+        cases.push_back(s);
+      }
+    }
+  }
+  gl::RenderSettings s = small(Technique::Esm);
+  s.params.esm.classifier = shaders::kEsmClassifyZmax;
+  cases.push_back(s);
+  s = small(Technique::Lvsm);
+  s.params.lvsm.placement = shaders::kLayerPlacementUniform;
+  cases.push_back(s);
+  s = small(Technique::Vsm);
+  s.blur.radius = 0;
+  cases.push_back(s);
+  int rendered = 0;
+  for (const gl::RenderSettings& c : cases) {
+    const std::string where = std::string(techniqueId(c.technique)) + " " +
+                              std::string(filterModeName(c.filter)) + " msaa " +
+                              std::to_string(c.msaaSamples);
+    try {
+      renderer->validate(c);
+    } catch (const Error&) {
+      continue;  // e.g. the summed-area filter with exponential channels
+    }
+    expectSameMemory(gl::estimateMemory(c), renderer->render(scene, c).memory, where);
+    ++rendered;
+  }
+  EXPECT_GT(rendered, 50);
+}
+
+TEST_F(RendererTest, SettingsBeyondTheMemoryBudgetAreRefusedWithTheLargestSizeThatFits) {
+  gl::RenderSettings s = small(Technique::Evsm4);
+  s.shadowMapSize = 1024;
+  const uint64_t need = gl::estimateMemory(s).total();
+  renderer->limitMemory(need);
+  EXPECT_NO_THROW(renderer->validate(s));  // the budget is inclusive
+  renderer->limitMemory(need / 2);
+  std::string message;
+  try {
+    renderer->validate(s);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  renderer->limitMemory(0);
+  // Counted down independently of validate()'s bisection.
+  int largest = s.shadowMapSize;
+  for (gl::RenderSettings smaller = s; gl::estimateMemory(smaller).total() > need / 2;) {
+    smaller.shadowMapSize = --largest;
+  }
+  EXPECT_NE(message.find("evsm4 at shadow-map size 1024"), std::string::npos) << message;
+  EXPECT_NE(message.find("(" + std::to_string(need) + " bytes)"), std::string::npos) << message;
+  EXPECT_NE(message.find("more than the limit of"), std::string::npos) << message;
+  const std::string advice = "the largest shadow-map size that fits is " + std::to_string(largest);
+  EXPECT_EQ(message.substr(message.size() - std::min(message.size(), advice.size())), advice)
+      << message;
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+  EXPECT_NO_THROW(renderer->validate(s));  // the cap is gone
+}
+
+TEST_F(RendererTest, TexturesTheGlCannotCreateAreRefusedBeforeAllocation) {
+  // The case: EVSM4 at 16384^2 is a 5.3 GiB texture, which llvmpipe cannot create (its
+  // textures stay below 2 GiB); validate() asks the GL's proxy test instead of failing in
+  // glTexStorage3D. Vendor GPUs may hold it, so the case is llvmpipe's.
+  if (renderer->deviceDescription().find("llvmpipe") == std::string::npos) {
+    GTEST_SKIP() << "per-texture limits differ on " << renderer->deviceDescription();
+  }
+  gl::RenderSettings s = small(Technique::Evsm4);
+  s.shadowMapSize = 16384;
+  std::string message;
+  try {
+    renderer->validate(s);
+  } catch (const Error& e) {
+    message = e.what();
+  }
+  EXPECT_NE(message.find("cannot create its 16384x16384 channel texture"), std::string::npos)
+      << message;
+  const size_t at = message.find("the largest shadow-map size that fits is ");
+  ASSERT_NE(at, std::string::npos) << message;
+  const int largest = std::stoi(message.substr(at + 41));
+  s.shadowMapSize = largest;
+  EXPECT_NO_THROW(renderer->validate(s));
+  s.shadowMapSize = largest + 1;
+  EXPECT_THROW(renderer->validate(s), Error);
+}
+
+TEST_F(RendererTest, GaussianPcfIsTheFilteredReferenceForEveryBlurRadius) {
+  // With point lookups the reference is PCF under the blur's kernel (docs/reference.md), for
+  // every radius the blur takes (up to 64) and sigmas at both ends of its range. Radius 16 and
+  // above once broke on llvmpipe: per-tap kernel normalisation ran past its 65535-iteration loop
+  // limit. The tolerance is fp32 summation: the reference's weights come from the CPU.
+  const Scene scene = makeBuiltinScene("planar");
+  for (int radius : {15, 16, 64}) {
+    for (float sigma : {0.01f, 0.5f, 20.0f, 64.0f}) {
+      gl::RenderSettings s = small(Technique::Pcf);
+      s.shadowMapSize = 128;
+      s.width = 64;
+      s.height = 36;
+      s.filter = gl::FilterMode::Point;
+      s.blur = {BlurKernel::Gaussian, radius, sigma};
+      s.params.pcf.kernel = shaders::kKernelGaussian;
+      s.params.pcf.radius = radius;
+      s.params.pcf.sigma = sigma;
+      s.params.pcf.bias.constantBias = 2e-5f;  // the reference's tie
+      s.params.pcf.bias.slopeScaledBias = 0.0f;
+      const Image pcf = renderer->render(scene, s).visibility;
+      const Image reference = renderer->renderReference(scene, s, 1).visibility;
+      float worst = 0.0f;
+      for (size_t i = 0; i < pcf.data().size(); ++i) {
+        worst = std::max(worst, std::abs(pcf.data()[i] - reference.data()[i]));
+      }
+      EXPECT_LT(worst, 1e-5f) << "radius " << radius << " sigma " << sigma;
+    }
+  }
+}
+
 TEST_F(RendererTest, MsaaSamplesAreEncodedBeforeTheyAreAveraged) {
   // Averaging depths first would leave one depth per texel, and zero variance; encoding each
   // sample first gives silhouette texels the variance of their partial coverage.
@@ -261,6 +400,26 @@ TEST_F(RendererTest, MsaaSamplesAreEncodedBeforeTheyAreAveraged) {
   };
   EXPECT_EQ(silhouetteTexels(1), 0);
   EXPECT_GT(silhouetteTexels(4), 100);
+}
+
+TEST_F(RendererTest, DocumentedBoundsOfFloatSettingsAreAcceptedAndOneStepBeyondIsNot) {
+  // Settings hold floats; --blur-sigma 0.01 arrives as 0.00999999978f.
+  auto check = [&](auto set, float lo, float hi, const char* what) {
+    for (float v : {lo, hi}) {
+      gl::RenderSettings s = small(Technique::Vsm);
+      set(s, v);
+      EXPECT_NO_THROW(renderer->validate(s)) << what << " " << v;
+    }
+    for (float v : {std::nextafter(lo, -INFINITY), std::nextafter(hi, INFINITY)}) {
+      gl::RenderSettings s = small(Technique::Vsm);
+      set(s, v);
+      EXPECT_THROW(renderer->validate(s), Error) << what << " " << v;
+    }
+  };
+  check([](gl::RenderSettings& s, float v) { s.blur.sigma = v; }, 0.01f, 64.0f, "blur sigma");
+  check([](gl::RenderSettings& s, float v) { s.normalOffsetTexels = v; }, 0.0f, 10.0f,
+        "normal offset");
+  check([](gl::RenderSettings& s, float v) { s.ambient = v; }, 0.0f, 1.0f, "ambient");
 }
 
 TEST_F(RendererTest, BadSettingsAreRejectedWithTheRange) {

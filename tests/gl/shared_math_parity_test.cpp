@@ -55,6 +55,7 @@ TechniqueParams randomParams(Technique t, std::mt19937& rng) {
     }
   }
   p.lvsm.transition = std::min(p.lvsm.transition, p.lvsm.overlap);
+  p.csm.offsetScale = std::min(p.csm.offsetScale, float(p.csm.termCount - 1));
   if (p.esm.filterSpace == shaders::kEsmFilterLinear)
     p.esm.exponent = std::min(p.esm.exponent, 88.0f);
   validateParams(t, p);

@@ -1,13 +1,17 @@
 // `penumbra compare`: parses options, runs penumbra::compare, writes the report.
 #include "compare_command.h"
 
+#include <algorithm>
 #include <iostream>
 #include <memory>
 
+#include "interrupt_cleanup.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
+#include "penumbra/compare/report_folder.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/params.h"
 #include "progress_bar.h"
 #include "render_options.h"
 #include "technique_options.h"
@@ -24,6 +28,7 @@ struct CompareOptions {
   int frames = 4;
   double tau = 0.05;
   std::string outDir = "out/compare";
+  bool force = false;
   bool quiet = false;
 };
 
@@ -34,8 +39,11 @@ void runCompare(const CompareOptions& o) {
   makeBuiltinScene(o.scene);  // unknown scenes fail before anything else
   request.techniques = selectedTechniques(o.technique);
   request.settings.params = selectedParams(o.technique, request.techniques);
-  for (const std::string& p : o.technique.params) {
-    if (p.rfind("pcf.", 0) == 0 || p.rfind("kernel=", 0) == 0 || p.rfind("radius=", 0) == 0) {
+  // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
+  // no longer matched to the prefilter (the report says so).
+  for (const std::string& assignment : o.technique.params) {
+    const std::vector<Technique> targets = assignmentTargets(request.techniques, assignment);
+    if (std::find(targets.begin(), targets.end(), Technique::Pcf) != targets.end()) {
       request.matchPcfKernel = false;
     }
   }
@@ -46,26 +54,29 @@ void runCompare(const CompareOptions& o) {
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
+  compare::ReportFolder folder(o.outDir, o.force);  // a bad --out fails before any GL work
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   compare::validateRequest(request, renderer);
-  const std::filesystem::path staging = compare::prepareReportFolder(o.outDir);
+  interrupt.uninterrupted([&] {
+    folder.createStaging();
+    interrupt.setCleanup([staging = folder.staging()] { compare::removeReportStaging(staging); });
+  });
   compare::ComparisonResult result;
   {
     ProgressBar bar(o.quiet);
-    try {
-      result = compare::runComparison(
-          request, renderer,
-          [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
-    } catch (...) {
-      std::error_code ec;
-      std::filesystem::remove_all(staging, ec);
-      throw;
-    }
+    result = compare::runComparison(
+        request, renderer,
+        [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
-  compare::writeReport(result, staging, o.outDir);
+  compare::writeReportFiles(result, folder.staging());
+  interrupt.uninterrupted([&] {
+    folder.commit();
+    interrupt.setCleanup({});
+  });
   if (!o.quiet) {
-    std::cout << "wrote " << (std::filesystem::path(o.outDir) / "index.html").string() << "\n";
+    std::cout << "wrote " << (folder.target() / "index.html").string() << "\n";
   }
 }
 
@@ -86,8 +97,12 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir, "report folder (replaced when the new report is complete)")
+  cmd->add_option("-o,--out", o->outDir,
+                  "report folder; an earlier penumbra report there is replaced once the new one is "
+                  "complete, any other existing folder is refused")
       ->capture_default_str();
+  cmd->add_flag("--force", o->force,
+                "replace --out even when it is not a penumbra report (deletes everything in it)");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   cmd->callback([o] { runCompare(*o); });
 }

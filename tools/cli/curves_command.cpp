@@ -5,8 +5,8 @@
 #include <iostream>
 #include <memory>
 
+#include "output_folder.h"
 #include "penumbra/curves.h"
-#include "penumbra/error.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
@@ -30,10 +30,7 @@ void runCurves(const CurvesOptions& options) {
   const CurvesTable table = computeCurves(request);
 
   namespace fs = std::filesystem;
-  const fs::path dir = options.outDir;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw Error("cannot create output folder " + dir.string() + ": " + ec.message());
+  const fs::path dir = createOutputFolder(options.outDir);
   const fs::path csv = dir / "curves.csv";
   writeCurvesCsv(table, csv);
   std::cout << "wrote " << csv.string() << "\n";

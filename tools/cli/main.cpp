@@ -1,6 +1,7 @@
 // The `penumbra` command line: subcommands register themselves; errors become a message and a
 // non-zero exit.
 #include <CLI/CLI.hpp>
+#include <exception>
 #include <iostream>
 
 #include "accuracy_command.h"
@@ -26,6 +27,11 @@ int main(int argc, char** argv) {
     std::cerr << "penumbra: error: " << e.what() << " (see --help)\n";
     return 2;
   } catch (const penumbra::Error& e) {
+    std::cerr << "penumbra: error: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    // Library failures that are not penumbra::Error (std::filesystem, allocation): still one
+    // line and a non-zero exit, never an abort.
     std::cerr << "penumbra: error: " << e.what() << "\n";
     return 1;
   }

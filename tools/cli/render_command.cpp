@@ -6,6 +6,7 @@
 #include <iostream>
 #include <memory>
 
+#include "output_folder.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/render_record.h"
@@ -38,11 +39,7 @@ void runRender(const RenderCommandOptions& options) {
   gl::RenderSettings settings = toRenderSettings(options.render);
   settings.params = selectedParams(options.technique, techniques);
 
-  namespace fs = std::filesystem;
-  const fs::path dir = options.outDir;
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw Error("cannot create output folder " + dir.string() + ": " + ec.message());
+  checkOutputPath(options.outDir);  // before any GL work
 
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
@@ -50,6 +47,9 @@ void runRender(const RenderCommandOptions& options) {
     settings.technique = technique;
     renderer.validate(settings);
   }
+  // Only once every technique is known to fit, so that a refused request leaves no folder.
+  namespace fs = std::filesystem;
+  const fs::path dir = createOutputFolder(options.outDir);
   for (Technique technique : techniques) {
     settings.technique = technique;
     // Later repetitions time warm passes: shader JIT compilation lands in the first.

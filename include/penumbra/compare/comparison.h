@@ -22,8 +22,10 @@ struct ComparisonRequest {
   int pathFrames = 4;           // camera-path frames for flicker, [2, 32]
   double tau = 0.05;            // leak / over-darkening threshold on visibility, (0, 1)
   // Give PCF the kernel of the prefilter (box blur: box x bilinear, or box for point lookups;
-  // Gaussian blur: Gaussian) so that it is the filtered reference itself where the lookup allows
-  // (point, bilinear); off when the user set PCF's kernel.
+  // Gaussian blur: Gaussian, the blur's sigma; the blur's radius), no bias and the receiver-plane
+  // test, so that it is the filtered reference itself where the lookup allows (point, bilinear).
+  // Off when the user set any PCF parameter: PCF then runs with `settings.params.pcf` as given
+  // and the report says it is not matched.
   bool matchPcfKernel = true;
 };
 

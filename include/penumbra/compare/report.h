@@ -8,14 +8,8 @@
 
 namespace penumbra::compare {
 
-// Creates `outDir`'s staging folder (a sibling named outDir + ".partial"); throws Error when the
-// location is not writable. Call before the long run, so bad output paths fail fast.
-std::filesystem::path prepareReportFolder(const std::filesystem::path& outDir);
-
-// Writes the report into the staging folder and renames it to `outDir` (replacing an earlier
-// report) only once complete; on failure the staging folder is removed and nothing that looks
-// like a finished report is left.
-void writeReport(const ComparisonResult& result, const std::filesystem::path& staging,
-                 const std::filesystem::path& outDir);
+// Writes the report's files into the existing folder `dir` (a ReportFolder's staging folder,
+// report_folder.h); throws Error when a file cannot be written.
+void writeReportFiles(const ComparisonResult& result, const std::filesystem::path& dir);
 
 }  // namespace penumbra::compare

@@ -58,6 +58,10 @@ struct MemoryReport {       // exact bytes allocated
   }
 };
 
+// The bytes render() allocates for these settings (its RenderResult::memory), computed up front
+// from the same formulas; Renderer::validate refuses settings whose allocations do not fit.
+MemoryReport estimateMemory(const RenderSettings& settings);
+
 struct RenderResult {
   Image color;       // RGBA in [0,1], row 0 at the top
   Image visibility;  // one float channel in [0,1], row 0 at the top
@@ -88,8 +92,15 @@ class Renderer {
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;
 
-  // Checks settings against their ranges and this GL's limits; throws Error saying which and why.
+  // Checks settings against their ranges and this GL's limits, memory included: every texture
+  // must pass the GL's proxy test and the total (estimateMemory) must fit the free GPU memory
+  // (GL_NVX_gpu_memory_info, GL_ATI_meminfo) or, where the GL does not say, half the machine's
+  // RAM. Throws Error saying which and why, and for memory the largest shadow-map size that fits.
   void validate(const RenderSettings& settings) const;
+
+  // Caps the memory validate() lets one render plan for, below what the GL offers (several
+  // renderers sharing a device, tests). 0 removes the cap.
+  void limitMemory(uint64_t bytes);
 
   RenderResult render(const Scene& scene, const RenderSettings& settings);
 
@@ -126,6 +137,8 @@ class Renderer {
   struct State;  // GL objects; defined in src/gl/renderer_state.h for the pass files
 
  private:
+  void checkMemory(const RenderSettings& settings) const;
+
   std::unique_ptr<State> state_;
 };
 

@@ -11,8 +11,8 @@ const int kCsmMaxTerms = 16;
 struct CsmParams {
   int termCount;      // M in [1, 16]; M/2 RGBA textures (CSM paper §4)
   float attenuation;  // alpha of the ringing attenuation exp(-alpha (k/M)^2) (§3.2.1), [0, 20]
-  float offsetScale;  // receiver offset in units of 1/(2M) (§3.2.2), [0, 4]; 1 puts the first
-                      // ringing maximum on a lit receiver so lit surfaces come out lit
+  float offsetScale;  // receiver offset in units of 1/(2M) (§3.2.2), [0, min(4, M - 1)]; 1 puts
+                      // the first ringing maximum on a lit receiver so lit surfaces come out lit
   float scale;        // the reconstruction is multiplied by this (§3.2.2: 2), [1, 4]
   int storage;        // kStorageUnorm8 (paper), kStorageFloat16 or kStorageFloat32
   int pad0;
@@ -42,7 +42,8 @@ PENUMBRA_INLINE float csmFrequency(int k) {
 // its ringing spreads each jump over about 1/(2M). Depths in [0,1] are scaled by kappa before
 // the expansion so that t plus the receiver offset stays clear of the jumps at t = +-1 for every
 // pair of depths (the paper uses kappa = 1 and gets the wrong answer for receivers near the
-// light with occluders near the far plane). The cost: the step is kappa times less steep.
+// light with occluders near the far plane). The cost: the step is kappa times less steep. The
+// registry keeps offset <= M - 1, so kappa >= 1/2 and the floor never binds for valid parameters.
 PENUMBRA_INLINE float csmDepthScale(CsmParams p) {
   return max(0.5f, 1.0f - (1.0f + p.offsetScale) / (2.0f * float(p.termCount)));
 }

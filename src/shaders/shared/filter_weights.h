@@ -29,11 +29,14 @@ PENUMBRA_INLINE float gaussianWeightSum(int radius, float sigma) {
 // Normalised 1D weight of tap `tap` of a kernel of `radius` (2r+1 taps; the bilinear kernel has
 // taps -r..r+1 and `fraction` is the lookup's sub-texel position in [0,1)). Taps outside the kernel
 // weigh 0. 2D kernels are the product of two 1D weights.
-PENUMBRA_INLINE float kernelWeight1D(int kernel, int tap, int radius, float sigma, float fraction) {
+// `gaussianSum` is gaussianWeightSum(radius, sigma) for the Gaussian (ignored otherwise): loops
+// over taps compute it once (kernelWeight1D computes it per call).
+PENUMBRA_INLINE float kernelWeight1DWithSum(int kernel, int tap, int radius, float sigma,
+                                            float fraction, float gaussianSum) {
   float width = float(2 * radius + 1);
   if (kernel == kKernelGaussian) {
     if (tap < -radius || tap > radius) return 0.0f;
-    return gaussianTapWeight(tap, sigma) / gaussianWeightSum(radius, sigma);
+    return gaussianTapWeight(tap, sigma) / gaussianSum;
   }
   if (kernel == kKernelBilinear) {
     if (tap < -radius || tap > radius + 1) return 0.0f;
@@ -43,6 +46,11 @@ PENUMBRA_INLINE float kernelWeight1D(int kernel, int tap, int radius, float sigm
   }
   if (tap < -radius || tap > radius) return 0.0f;
   return 1.0f / width;
+}
+
+PENUMBRA_INLINE float kernelWeight1D(int kernel, int tap, int radius, float sigma, float fraction) {
+  float gaussianSum = kernel == kKernelGaussian ? gaussianWeightSum(radius, sigma) : 1.0f;
+  return kernelWeight1DWithSum(kernel, tap, radius, sigma, fraction, gaussianSum);
 }
 
 PENUMBRA_END_SHARED

@@ -9,20 +9,34 @@
 PENUMBRA_BEGIN_SHARED
 
 struct MsmParams {
-  float momentBias;      // alpha of the moment bias: 3e-5 suits 16-bit storage, 3e-6 fp32
+  float momentBias;      // alpha of the moment bias, [0, 0.01], or kMsmMomentBiasAuto (default):
+                         // the storage's own, 3e-5 for 16-bit and 3e-6 for fp32 (msm notes)
   float depthBias;       // subtracted from the receiver depth, [0, 0.1]; 0.001 keeps planar
                          // receivers lit under 16-bit quantisation (msm_test)
   float bleedReduction;  // thesis §3.4 clamp applied to the visibility, [0, 0.99]
   int storage;           // kStorageUnorm16 (optimised quantisation) or kStorageFloat32
 };
 
+// momentBias below 0: the bias follows the storage format (msmMomentBias).
+const float kMsmMomentBiasAuto = -1.0f;
+
 PENUMBRA_INLINE MsmParams msmDefaultParams() {
   MsmParams p;
-  p.momentBias = 0.00003f;
+  p.momentBias = kMsmMomentBiasAuto;
   p.depthBias = 0.001f;
   p.bleedReduction = 0.0f;
   p.storage = kStorageUnorm16;
   return p;
+}
+
+// The notes' alpha for a storage format: 3e-5 for 16-bit, 3e-6 for 32-bit.
+PENUMBRA_INLINE float msmDefaultMomentBias(int storage) {
+  return storage == kStorageUnorm16 ? 0.00003f : 0.000003f;
+}
+
+// The moment bias in use: the given one, or the storage's default when it is left on auto.
+PENUMBRA_INLINE float msmMomentBias(MsmParams p) {
+  return p.momentBias < 0.0f ? msmDefaultMomentBias(p.storage) : p.momentBias;
 }
 
 // Offset added to the first quantised moment (Peters & Klein §4).
@@ -110,7 +124,7 @@ PENUMBRA_INLINE float msmShadowIntensity(vec4 b, float receiverDepth, float mome
 
 PENUMBRA_INLINE float msmVisibility(vec4 filteredStored, float receiverDepth, MsmParams p) {
   PENUMBRA_PRECISE vec4 b = msmDecode(filteredStored, p);
-  PENUMBRA_PRECISE float g = msmShadowIntensity(b, receiverDepth - p.depthBias, p.momentBias);
+  PENUMBRA_PRECISE float g = msmShadowIntensity(b, receiverDepth - p.depthBias, msmMomentBias(p));
   return reduceLightBleeding(1.0f - g, p.bleedReduction);
 }
 

@@ -163,9 +163,10 @@ PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, 
   vec2 fraction = bilinear ? position - 0.5f - origin : vec2(0.0f);
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
   float lit = 0.0f;
+  float kernelSum = pcfKernelSum(pcf);  // once per lookup (pcf.h)
   for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); ++j) {
     for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); ++i) {
-      float w = pcfTapWeight(i, j, fraction, pcf);
+      float w = pcfTapWeightWithSum(i, j, fraction, pcf, kernelSum);
       if (w <= 0.0f) continue;
       vec2 tap = origin + vec2(float(i), float(j));
       float z = pcfDepthTexel(s, fromLightDepth, clampTexel(ivec2(tap), size));

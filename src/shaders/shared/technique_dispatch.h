@@ -103,8 +103,11 @@ PENUMBRA_INLINE float reconstructVisibility(int technique, float channels[kMaxCh
     vec3 stats = vec3(channels[3 * layer], channels[3 * layer + 1], channels[3 * layer + 2]);
     return powerCdfVisibility(stats, receiverDepth, p.powerCdf);
   }
-  vec4 moments = vec4(channels[0], channels[1], channels[2], channels[3]);
-  return msmVisibility(moments, receiverDepth, p.msm);
+  if (technique == kTechniqueMsm) {
+    vec4 moments = vec4(channels[0], channels[1], channels[2], channels[3]);
+    return msmVisibility(moments, receiverDepth, p.msm);
+  }
+  return 1.0f;  // an unknown id: lit, a defined value (the C++ entry points reject such ids)
 }
 
 PENUMBRA_END_SHARED

@@ -1,0 +1,254 @@
+// The report's target folder, its staging folder and the swap between them.
+#include "penumbra/compare/report_folder.h"
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <charconv>
+#include <chrono>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "penumbra/error.h"
+
+namespace penumbra::compare {
+namespace fs = std::filesystem;
+
+namespace {
+
+constexpr std::string_view kMarkerLine = "penumbra report 1";
+constexpr std::string_view kStagingSuffix = ".partial-";
+constexpr std::string_view kReplacedSuffix = ".replaced-";
+
+enum class Existing { None, EmptyFolder, Report, Other };
+
+std::string quoted(const fs::path& path) {
+  return "'" + path.string() + "'";
+}
+
+// The marker's lines, or nothing when `folder` has no readable marker.
+std::vector<std::string> markerLines(const fs::path& folder) {
+  std::ifstream in(folder / kReportMarkerFile);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+void writeMarker(const fs::path& folder, const std::string& text) {
+  std::ofstream out(folder / kReportMarkerFile, std::ios::trunc);
+  out << text;
+  out.close();
+  if (!out) throw Error("cannot write the report marker in " + quoted(folder));
+}
+
+std::string stagingMarker(long pid) {
+  return std::string(kMarkerLine) + "\nstaging " + std::to_string(pid) + "\n";
+}
+
+Existing classify(const fs::path& target) {
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(target, ec);
+  if (status.type() == fs::file_type::not_found) return Existing::None;
+  if (ec) throw Error("cannot inspect the report folder " + quoted(target) + ": " + ec.message());
+  if (fs::is_symlink(status)) {
+    throw Error("the report folder " + quoted(target) +
+                " is a symbolic link; give the folder it points to");
+  }
+  if (!fs::is_directory(status)) {
+    throw Error("the report folder " + quoted(target) + " exists and is not a folder");
+  }
+  if (isPenumbraReport(target)) return Existing::Report;
+  const bool empty = fs::is_empty(target, ec);
+  if (ec) throw Error("cannot inspect the report folder " + quoted(target) + ": " + ec.message());
+  return empty ? Existing::EmptyFolder : Existing::Other;
+}
+
+void refuseOther(const fs::path& target) {
+  throw Error("the report folder " + quoted(target) +
+              " exists and is not a penumbra report (it has no " + std::string(kReportMarkerFile) +
+              " file); choose another folder, or pass --force to replace it and everything in it");
+}
+
+// `target` made absolute and lexically normal, without a trailing separator.
+fs::path normalisedTarget(const fs::path& outDir) {
+  if (outDir.empty()) throw Error("the report folder path is empty; name a folder to write to");
+  std::error_code ec;
+  fs::path target = fs::absolute(outDir, ec).lexically_normal();
+  if (ec) throw Error("cannot resolve the report folder " + quoted(outDir) + ": " + ec.message());
+  if (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
+  if (!target.has_relative_path()) {
+    throw Error("the report folder " + quoted(outDir) + " is the file-system root");
+  }
+  const fs::path cwd = fs::current_path(ec);
+  if (!ec) {
+    // Compare real locations, so that "..", symbolic links in the prefix and "." all count.
+    std::error_code realError, hereError;
+    const fs::path real = fs::weakly_canonical(target, realError);
+    const fs::path here = fs::weakly_canonical(cwd, hereError);
+    const fs::path inside = here.lexically_relative(real);
+    if (!realError && !hereError && !inside.empty() && *inside.begin() != "..") {
+      throw Error("the report folder " + quoted(outDir) +
+                  " is the current folder or contains it; name a folder below it");
+    }
+  }
+  return target;
+}
+
+bool processIsGone(long pid) {
+  return pid > 0 && ::kill(pid_t(pid), 0) == -1 && errno == ESRCH;
+}
+
+// The pid in "<name><suffix><pid>", or 0.
+long pidAfter(std::string_view entry, std::string_view prefix) {
+  if (entry.substr(0, prefix.size()) != prefix) return 0;
+  const std::string_view digits = entry.substr(prefix.size());
+  long pid = 0;
+  auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), pid);
+  if (digits.empty() || error != std::errc() || end != digits.data() + digits.size()) return 0;
+  return pid;
+}
+
+// Staging and set-aside folders of runs to the same target whose process is gone (a run killed
+// by SIGKILL cannot clean up after itself). Only folders carrying penumbra's marker are removed;
+// a staging folder's marker must also name the dead process.
+void removeStaleFolders(const fs::path& target) {
+  const std::string name = target.filename().string();
+  const std::string stagingPrefix = name + std::string(kStagingSuffix);
+  const std::string replacedPrefix = name + std::string(kReplacedSuffix);
+  std::error_code ec;
+  for (const fs::directory_entry& entry : fs::directory_iterator(target.parent_path(), ec)) {
+    const std::string entryName = entry.path().filename().string();
+    const long stagingPid = pidAfter(entryName, stagingPrefix);
+    const long replacedPid = pidAfter(entryName, replacedPrefix);
+    const long pid = stagingPid != 0 ? stagingPid : replacedPid;
+    if (pid == 0 || pid == long(::getpid()) || !processIsGone(pid)) continue;
+    std::error_code typeError;
+    if (!entry.is_directory(typeError) || entry.is_symlink(typeError)) continue;
+    const std::vector<std::string> lines = markerLines(entry.path());
+    if (lines.empty() || lines[0] != kMarkerLine) continue;
+    if (stagingPid != 0 && (lines.size() < 2 || lines[1] != "staging " + std::to_string(pid))) {
+      continue;
+    }
+    std::error_code removeError;
+    fs::remove_all(entry.path(), removeError);
+  }
+}
+
+}  // namespace
+
+bool isPenumbraReport(const fs::path& folder) {
+  const std::vector<std::string> lines = markerLines(folder);
+  return !lines.empty() && lines[0] == kMarkerLine;
+}
+
+void removeReportStaging(const fs::path& staging) noexcept {
+  // A writer may still be creating files in it: retry until it is gone.
+  for (int attempt = 0; attempt < 20; ++attempt) {
+    std::error_code ec;
+    fs::remove_all(staging, ec);
+    if (!fs::exists(fs::symlink_status(staging, ec))) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+}
+
+ReportFolder::ReportFolder(const fs::path& outDir, bool force)
+    : target_(normalisedTarget(outDir)), force_(force) {
+  if (classify(target_) == Existing::Other && !force_) refuseOther(target_);
+}
+
+ReportFolder::~ReportFolder() {
+  discard();
+}
+
+void ReportFolder::createStaging() {
+  const fs::path parent = target_.parent_path();
+  const long pid = long(::getpid());
+  std::error_code ec;
+  fs::create_directories(parent, ec);
+  if (ec) {
+    throw Error("cannot write the report next to " + quoted(target_) + ": cannot create " +
+                quoted(parent) + ": " + ec.message());
+  }
+  removeStaleFolders(target_);
+  const fs::path staging =
+      parent / (target_.filename().string() + std::string(kStagingSuffix) + std::to_string(pid));
+  if (fs::exists(fs::symlink_status(staging, ec))) {
+    // This process's own earlier staging folder (an earlier ReportFolder that was not discarded).
+    const std::vector<std::string> lines = markerLines(staging);
+    if (lines.size() < 2 || lines[1] != "staging " + std::to_string(pid)) {
+      throw Error("cannot write the report next to " + quoted(target_) + ": " + quoted(staging) +
+                  " exists and is not this run's staging folder");
+    }
+    fs::remove_all(staging, ec);
+  }
+  if (!fs::create_directory(staging, ec) || ec) {
+    throw Error("cannot write the report next to " + quoted(target_) + ": cannot create " +
+                quoted(staging) + (ec ? ": " + ec.message() : std::string()));
+  }
+  staging_ = staging;
+  try {
+    writeMarker(staging_, stagingMarker(pid));
+  } catch (const Error& e) {
+    discard();
+    throw Error("cannot write the report next to " + quoted(target_) + ": " + e.what());
+  }
+}
+
+void ReportFolder::commit() {
+  if (staging_.empty()) throw Error("no staged report to move to " + quoted(target_));
+  writeMarker(staging_, std::string(kMarkerLine) + "\n");
+  // The run took a while: check the target again.
+  const Existing existing = classify(target_);
+  if (existing == Existing::Other && !force_) {
+    const fs::path kept = staging_;
+    staging_.clear();  // the finished report stays where it is
+    throw Error("the report folder " + quoted(target_) +
+                " appeared during the run and is not a penumbra report; the new report is in " +
+                quoted(kept));
+  }
+  std::error_code ec;
+  if (existing == Existing::None) {
+    fs::rename(staging_, target_, ec);
+    if (ec) {
+      throw Error("cannot move the finished report to " + quoted(target_) + ": " + ec.message());
+    }
+    staging_.clear();
+    return;
+  }
+  const fs::path aside =
+      target_.parent_path() / (target_.filename().string() + std::string(kReplacedSuffix) +
+                               std::to_string(long(::getpid())));
+  fs::rename(target_, aside, ec);
+  if (ec) {
+    throw Error("cannot move the earlier report " + quoted(target_) + " aside: " + ec.message());
+  }
+  fs::rename(staging_, target_, ec);
+  if (ec) {
+    std::error_code restore;
+    fs::rename(aside, target_, restore);
+    throw Error("cannot move the finished report to " + quoted(target_) + ": " + ec.message());
+  }
+  staging_.clear();
+  // An empty folder goes with rmdir, which cannot delete anything that appeared in it meanwhile.
+  if (existing == Existing::EmptyFolder) {
+    fs::remove(aside, ec);
+  } else {
+    fs::remove_all(aside, ec);
+  }
+  if (ec) {
+    throw Error("the report is in " + quoted(target_) +
+                ", but the earlier one could not be removed from " + quoted(aside) + ": " +
+                ec.message());
+  }
+}
+
+void ReportFolder::discard() noexcept {
+  if (staging_.empty()) return;
+  removeReportStaging(staging_);
+  staging_.clear();
+}
+
+}  // namespace penumbra::compare

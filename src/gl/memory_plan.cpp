@@ -1,0 +1,131 @@
+// The allocations of a render, from its settings.
+#include "memory_plan.h"
+
+#include <epoxy/gl.h>
+
+#include <algorithm>
+
+#include "gl_formats.h"
+#include "penumbra/channel_layout.h"
+#include "renderer_state.h"
+
+namespace penumbra::gl {
+namespace {
+
+// The camera pass's render targets (frame_passes.cpp, allocateFrame).
+struct FrameTarget {
+  std::string_view what;
+  GLenum format;
+  int bytesPerPixel;
+};
+constexpr FrameTarget kFrameTargets[] = {
+    {"frame lookup target", GL_RGBA32F, 16}, {"frame receiver-plane target", GL_RG32F, 8},
+    {"frame colour target", GL_RGBA8, 4},    {"frame visibility target", GL_R32F, 4},
+    {"frame diagnostic target", GL_R32F, 4}, {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
+    {"frame uv-derivatives target", GL_RGBA32F, 16},
+};
+
+}  // namespace
+
+bool prefiltersChannels(Technique technique) {
+  return !filtersAfterTest(technique) && technique != Technique::Hard;
+}
+
+int channelLevelsFor(const RenderSettings& s) {
+  return prefiltersChannels(s.technique) && usesMips(s.filter)
+             ? mipLevelCount(s.shadowMapSize, s.shadowMapSize)
+             : 1;
+}
+
+bool blursIntoScratch(const RenderSettings& s) {
+  return prefiltersChannels(s.technique) && s.blur.radius > 0 && s.filter != FilterMode::SummedArea;
+}
+
+bool buildsSummedAreaTable(const RenderSettings& s) {
+  return prefiltersChannels(s.technique) && s.filter == FilterMode::SummedArea;
+}
+
+bool buildsZmaxPyramid(const RenderSettings& s) {
+  return s.technique == Technique::Esm && s.params.esm.classifier == shaders::kEsmClassifyZmax;
+}
+
+bool placesLayersByLloyd(const RenderSettings& s) {
+  return s.technique == Technique::Lvsm && s.params.lvsm.placement == shaders::kLayerPlacementLloyd;
+}
+
+uint64_t lightPassBytes(int shadowMapSize, int samples) {
+  // R32F linear depth and a D32F depth buffer, per sample.
+  return uint64_t(shadowMapSize) * uint64_t(shadowMapSize) * (4 + 4) * uint64_t(samples);
+}
+
+uint64_t frameBytes(int width, int height) {
+  uint64_t perPixel = 0;
+  for (const FrameTarget& target : kFrameTargets) perPixel += target.bytesPerPixel;
+  return uint64_t(width) * uint64_t(height) * perPixel;
+}
+
+SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
+  const size_t c = size_t(channels), n = size_t(shadowMapSize);
+  return {c * n * 16, c * 16, c * n * n * 8};
+}
+
+size_t lloydSampleBytes(int shadowMapSize) {
+  const size_t inner = size_t(shadowMapSize - 1);
+  return inner * inner * sizeof(SplitSample);
+}
+
+MemoryReport estimateMemory(const RenderSettings& s) {
+  const int size = s.shadowMapSize;
+  const ChannelLayout layout = channelLayout(s.technique, s.params);
+  MemoryReport m;
+  m.lightPass = lightPassBytes(size, s.msaaSamples);
+  m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1);
+  if (buildsSummedAreaTable(s)) {
+    const SummedAreaSizes sat = summedAreaSizes(layout.channels, size);
+    m.summedArea = sat.rows + sat.stats + sat.sums;
+  }
+  if (blursIntoScratch(s)) m.scratch = channelTextureBytes(layout, size, size, false);
+  if (buildsZmaxPyramid(s)) {
+    const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
+    m.auxiliary += channelTextureBytes(r32f, size, size, true);
+  }
+  if (placesLayersByLloyd(s)) m.auxiliary += lloydSampleBytes(size);
+  m.frame = frameBytes(s.width, s.height);
+  return m;
+}
+
+std::vector<PlannedTexture> plannedTextures(const RenderSettings& s) {
+  const int size = s.shadowMapSize;
+  const ChannelLayout layout = channelLayout(s.technique, s.params);
+  const int levels = channelLevelsFor(s);
+  const bool ms = s.msaaSamples > 1;
+  const GLenum light = ms ? GL_PROXY_TEXTURE_2D_MULTISAMPLE : GL_PROXY_TEXTURE_2D;
+  const uint64_t half = lightPassBytes(size, s.msaaSamples) / 2;  // each of the two targets
+  std::vector<PlannedTexture> t{
+      {"channel texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), levels, size, size,
+       layout.layers, 1, channelTextureBytes(layout, size, size, levels > 1)},
+      {"light-pass depth", light, GL_R32F, 1, size, size, 1, s.msaaSamples, half},
+      {"light-pass depth buffer", light, GL_DEPTH_COMPONENT32F, 1, size, size, 1, s.msaaSamples,
+       half},
+  };
+  if (blursIntoScratch(s)) {
+    t.push_back({"blur scratch texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), 1, size,
+                 size, layout.layers, 1, channelTextureBytes(layout, size, size, false)});
+  }
+  if (buildsZmaxPyramid(s)) {
+    const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
+    t.push_back({"Z-max pyramid", GL_PROXY_TEXTURE_2D_ARRAY, GL_R32F, mipLevelCount(size, size),
+                 size, size, 1, 1, channelTextureBytes(r32f, size, size, true)});
+  }
+  const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
+  for (const FrameTarget& target : kFrameTargets) {
+    t.push_back({target.what, GL_PROXY_TEXTURE_2D, target.format, 1, s.width, s.height, 1, 1,
+                 pixels * uint64_t(target.bytesPerPixel)});
+  }
+  std::stable_sort(t.begin(), t.end(), [](const PlannedTexture& a, const PlannedTexture& b) {
+    return a.bytes > b.bytes;
+  });
+  return t;
+}
+
+}  // namespace penumbra::gl

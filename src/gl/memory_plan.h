@@ -1,0 +1,45 @@
+// What a render allocates, derived from the settings alone. The allocation code takes its
+// decisions and buffer sizes from here, the memory report its formulas, and Renderer::validate
+// the up-front estimate it checks against what the GL can hold: one source for all three.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "penumbra/gl/renderer.h"
+
+namespace penumbra::gl {
+
+// Decisions of the passes.
+bool prefiltersChannels(Technique technique);  // not PCF or the hard test (raw depth)
+int channelLevelsFor(const RenderSettings& settings);
+bool blursIntoScratch(const RenderSettings& settings);
+bool buildsSummedAreaTable(const RenderSettings& settings);
+bool buildsZmaxPyramid(const RenderSettings& settings);
+bool placesLayersByLloyd(const RenderSettings& settings);
+
+// Bytes of the allocations that are not channel textures (channel_layout.h has those).
+uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sample
+uint64_t frameBytes(int width, int height);               // the camera pass's six targets
+struct SummedAreaSizes {
+  size_t rows, stats, sums;
+};
+SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize);
+size_t lloydSampleBytes(int shadowMapSize);
+
+// One texture a render creates, as the GL's proxy test takes it.
+struct PlannedTexture {
+  std::string_view what;  // "channel texture", ...
+  unsigned proxyTarget;   // GL_PROXY_TEXTURE_2D, _2D_ARRAY or _2D_MULTISAMPLE
+  unsigned internalFormat;
+  int levels = 1;
+  int width = 0, height = 0, layers = 1, samples = 1;
+  uint64_t bytes = 0;
+};
+
+// The textures of a render with these settings, largest first.
+std::vector<PlannedTexture> plannedTextures(const RenderSettings& settings);
+
+}  // namespace penumbra::gl

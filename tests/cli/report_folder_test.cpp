@@ -1,0 +1,230 @@
+// The report folder never deletes what penumbra did not write: targets are checked before
+// anything is created, a report is staged beside its target and swapped in complete, and
+// leftovers of dead runs are removed only when they carry penumbra's marker.
+#include "penumbra/compare/report_folder.h"
+
+#include <gtest/gtest.h>
+
+#include "penumbra/error.h"
+#include "run_penumbra.h"
+
+namespace penumbra::compare {
+namespace {
+
+namespace fs = std::filesystem;
+using test::entriesStartingWith;
+using test::readFile;
+using test::ScratchFolder;
+using test::snapshot;
+using test::writeFile;
+
+std::string errorOf(auto&& action) {
+  try {
+    action();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+// Runs the test body with `folder` as the current folder.
+class InFolder {
+ public:
+  explicit InFolder(const fs::path& folder) : previous_(fs::current_path()) {
+    fs::current_path(folder);
+  }
+  ~InFolder() { fs::current_path(previous_); }
+
+ private:
+  fs::path previous_;
+};
+
+// A complete report at `target` holding `note`.
+void writeReport(const fs::path& target, const std::string& note) {
+  ReportFolder folder(target, false);
+  folder.createStaging();
+  writeFile(folder.staging() / "index.html", note);
+  folder.commit();
+}
+
+// A process id that is certainly not running: a child that has exited and been reaped.
+long deadPid() {
+  const pid_t pid = fork();
+  if (pid == 0) _exit(0);
+  waitpid(pid, nullptr, 0);
+  return long(pid);
+}
+
+TEST(ReportFolder, RefusesAnEmptyPath) {
+  EXPECT_NE(errorOf([] { ReportFolder("", false); }).find("path is empty"), std::string::npos);
+}
+
+TEST(ReportFolder, RefusesTheCurrentFolderAndFoldersContainingIt) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "work" / "notes.txt", "mine");
+  InFolder here(scratch.path() / "work");
+  for (const char* out : {".", "./", "..", "../work", "/"}) {
+    const std::string message = errorOf([&] { ReportFolder(out, true); });
+    EXPECT_TRUE(message.find("current folder") != std::string::npos ||
+                message.find("file-system root") != std::string::npos)
+        << out << ": " << message;
+  }
+  EXPECT_EQ(readFile(scratch.path() / "work" / "notes.txt"), "mine");
+}
+
+TEST(ReportFolder, TrailingSeparatorNamesTheSameFolder) {
+  ScratchFolder scratch;
+  InFolder here(scratch.path());
+  EXPECT_EQ(ReportFolder("report/", false).target(), ReportFolder("report", false).target());
+  EXPECT_EQ(ReportFolder("report/", false).target().filename(), "report");
+}
+
+TEST(ReportFolder, RefusesAnExistingFolderThatIsNotAReportAndLeavesItAlone) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "photos" / "holiday.jpg", "jpeg");
+  const auto before = snapshot(scratch.path());
+  for (const fs::path& out : {scratch.path() / "photos", scratch.path() / "photos/"}) {
+    const std::string message = errorOf([&] { ReportFolder(out, false); });
+    EXPECT_NE(message.find("is not a penumbra report"), std::string::npos) << message;
+    EXPECT_NE(message.find("--force"), std::string::npos) << message;
+  }
+  EXPECT_EQ(snapshot(scratch.path()), before);
+}
+
+TEST(ReportFolder, RefusesAFileAndASymbolicLink) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "file", "text");
+  writeReport(scratch.path() / "report", "old");
+  fs::create_directory_symlink(scratch.path() / "report", scratch.path() / "link");
+  EXPECT_NE(errorOf([&] { ReportFolder(scratch.path() / "file", true); }).find("is not a folder"),
+            std::string::npos);
+  EXPECT_NE(errorOf([&] { ReportFolder(scratch.path() / "link", true); }).find("symbolic link"),
+            std::string::npos);
+}
+
+TEST(ReportFolder, ReplacesAnEarlierReportOnlyWhenTheNewOneIsComplete) {
+  ScratchFolder scratch;
+  const fs::path target = scratch.path() / "report";
+  writeReport(target, "first");
+  ASSERT_TRUE(isPenumbraReport(target));
+  {
+    ReportFolder folder(fs::path(target.string() + "/"), false);
+    folder.createStaging();
+    writeFile(folder.staging() / "index.html", "second");
+    EXPECT_EQ(readFile(target / "index.html"), "first");  // untouched while staging
+    folder.commit();
+  }
+  EXPECT_EQ(readFile(target / "index.html"), "second");
+  EXPECT_TRUE(isPenumbraReport(target));
+  EXPECT_EQ(entriesStartingWith(scratch.path(), "report.").size(), 0u);
+}
+
+TEST(ReportFolder, ReplacesAnEmptyFolder) {
+  ScratchFolder scratch;
+  fs::create_directory(scratch.path() / "report");
+  writeReport(scratch.path() / "report", "new");
+  EXPECT_EQ(readFile(scratch.path() / "report" / "index.html"), "new");
+}
+
+TEST(ReportFolder, ForceReplacesAFolderThatIsNotAReport) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "old" / "data.txt", "old");
+  ReportFolder folder(scratch.path() / "old", true);
+  folder.createStaging();
+  writeFile(folder.staging() / "index.html", "new");
+  folder.commit();
+  EXPECT_FALSE(fs::exists(scratch.path() / "old" / "data.txt"));
+  EXPECT_EQ(readFile(scratch.path() / "old" / "index.html"), "new");
+}
+
+TEST(ReportFolder, AnUncommittedStagingFolderIsRemovedAndTheTargetKept) {
+  ScratchFolder scratch;
+  const fs::path target = scratch.path() / "report";
+  writeReport(target, "kept");
+  const auto before = snapshot(target);
+  {
+    ReportFolder folder(target, false);
+    folder.createStaging();
+    ASSERT_TRUE(fs::exists(folder.staging()));
+    writeFile(folder.staging() / "images" / "half.png", "half");
+  }  // e.g. an exception during the run
+  EXPECT_EQ(snapshot(target), before);
+  EXPECT_EQ(entriesStartingWith(scratch.path(), "report.").size(), 0u);
+}
+
+TEST(ReportFolder, AFolderThatAppearsDuringTheRunIsNotReplaced) {
+  ScratchFolder scratch;
+  const fs::path target = scratch.path() / "report";
+  ReportFolder folder(target, false);
+  folder.createStaging();
+  writeFile(folder.staging() / "index.html", "new");
+  writeFile(target / "mine.txt", "mine");
+  const std::string message = errorOf([&] { folder.commit(); });
+  EXPECT_NE(message.find("appeared during the run"), std::string::npos) << message;
+  EXPECT_EQ(readFile(target / "mine.txt"), "mine");
+  // The finished report is kept for the user, at the path the message names.
+  const std::vector<std::string> staged = entriesStartingWith(scratch.path(), "report.partial-");
+  ASSERT_EQ(staged.size(), 1u);
+  EXPECT_NE(message.find(staged[0]), std::string::npos);
+  EXPECT_EQ(readFile(scratch.path() / staged[0] / "index.html"), "new");
+}
+
+TEST(ReportFolder, CannotCreateBelowAFile) {
+  // "Cannot create" without permission bits, which root ignores.
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "file", "text");
+  ReportFolder folder(scratch.path() / "file" / "report", false);
+  const std::string message = errorOf([&] { folder.createStaging(); });
+  EXPECT_NE(message.find("cannot write the report next to"), std::string::npos) << message;
+  EXPECT_NE(message.find("Not a directory"), std::string::npos) << message;
+  EXPECT_EQ(readFile(scratch.path() / "file"), "text");
+}
+
+TEST(ReportFolder, ReadOnlyParentIsRefusedWithTheReason) {
+  if (geteuid() == 0) {
+    // Root writes into a mode-0555 folder anyway; CannotCreateBelowAFile and the CLI test
+    // cli.compare_unwritable_folder (/proc) cover the same error path.
+    GTEST_SKIP() << "running as root, which ignores permission bits";
+  }
+  ScratchFolder scratch;
+  const fs::path parent = scratch.path() / "locked";
+  fs::create_directory(parent);
+  fs::permissions(parent, fs::perms::owner_read | fs::perms::owner_exec);
+  ReportFolder folder(parent / "report", false);
+  const std::string message = errorOf([&] { folder.createStaging(); });
+  fs::permissions(parent, fs::perms::owner_all);
+  EXPECT_NE(message.find("cannot write the report next to"), std::string::npos) << message;
+  EXPECT_NE(message.find("Permission denied"), std::string::npos) << message;
+}
+
+TEST(ReportFolder, RemovesLeftoversOfDeadRunsThatCarryTheMarkerOnly) {
+  ScratchFolder scratch;
+  const long dead = deadPid();
+  const long alive = long(getppid());
+  const std::string marker = std::string(kReportMarkerFile);
+  const fs::path deadStaging = scratch.path() / ("report.partial-" + std::to_string(dead));
+  writeFile(deadStaging / marker, "penumbra report 1\nstaging " + std::to_string(dead) + "\n");
+  const fs::path deadAside = scratch.path() / ("report.replaced-" + std::to_string(dead));
+  writeFile(deadAside / marker, "penumbra report 1\n");
+  // Not penumbra's (no marker, or a marker naming another process), or a live run's: kept.
+  const fs::path unmarked = scratch.path() / ("report.partial-" + std::to_string(dead + 1000000));
+  writeFile(unmarked / "thesis.tex", "mine");
+  const fs::path otherPid = scratch.path() / ("report.replaced-" + std::to_string(dead + 2000000));
+  writeFile(otherPid / "notes.txt", "mine");
+  const fs::path live = scratch.path() / ("report.partial-" + std::to_string(alive));
+  writeFile(live / marker, "penumbra report 1\nstaging " + std::to_string(alive) + "\n");
+  const fs::path otherTarget = scratch.path() / ("other.partial-" + std::to_string(dead));
+  writeFile(otherTarget / marker, "penumbra report 1\nstaging " + std::to_string(dead) + "\n");
+
+  ReportFolder folder(scratch.path() / "report", false);
+  folder.createStaging();
+  EXPECT_FALSE(fs::exists(deadStaging));
+  EXPECT_FALSE(fs::exists(deadAside));
+  EXPECT_EQ(readFile(unmarked / "thesis.tex"), "mine");
+  EXPECT_EQ(readFile(otherPid / "notes.txt"), "mine");
+  EXPECT_TRUE(fs::exists(live / marker));
+  EXPECT_TRUE(fs::exists(otherTarget / marker));  // another target's leftovers are its own business
+}
+
+}  // namespace
+}  // namespace penumbra::compare
