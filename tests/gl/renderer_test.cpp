@@ -151,11 +151,50 @@ TEST_F(RendererTest, EverySceneRendersWithEveryTechniqueWithoutNanOrGlErrors) {
       if (t == Technique::Msm && name == "spheres") s.msaaSamples = 4;
       const gl::RenderResult r = renderer->render(scene, s);
       int outOfRange = 0;
-      for (float v : r.visibility.data()) outOfRange += !(v >= 0.0f && v <= 1.0f);
-      for (float v : r.color.data()) outOfRange += !std::isfinite(v);
+      for (float v : r.visibility.data()) outOfRange += !(v >= 0.0f && v <= 1.0f);  // and NaN
       EXPECT_EQ(outOfRange, 0) << name << " " << techniqueId(t);
     }
   }
+}
+
+// The camera pass shades albedo * (ambient + (1 - ambient) * N.L * visibility). On the planar
+// scene the light falls straight down, so the ground (N.L = 1, the farthest receiver from the
+// light) reads albedo * (ambient + (1 - ambient) * v) wherever v is, lit, penumbra or shadow. The
+// colour target is RGBA8: one 1/255 step of tolerance (GL may round to either neighbour).
+TEST_F(RendererTest, GroundColourIsAlbedoTimesAmbientPlusLambertTimesVisibility) {
+  const Scene scene = makeBuiltinScene("planar");
+  const glm::vec3 albedo = scene.meshes.front().albedo;  // the ground comes first
+  gl::RenderSettings s = small(Technique::Pcf);
+  s.ambient = 0.3f;
+  const gl::RenderResult r = renderer->render(scene, s);
+  float groundDepth = 0.0f;  // the largest receiver depth on a surface facing the light
+  for (int y = 0; y < r.lookup.height(); ++y) {
+    for (int x = 0; x < r.lookup.width(); ++x) {
+      if (r.lookup.at(x, y, 3) == 1.0f) groundDepth = std::max(groundDepth, r.lookup.at(x, y, 2));
+    }
+  }
+  int lit = 0, penumbra = 0, shadowed = 0, bad = 0;
+  for (int y = 0; y < r.lookup.height(); ++y) {
+    for (int x = 0; x < r.lookup.width(); ++x) {
+      if (r.lookup.at(x, y, 3) != 1.0f || r.lookup.at(x, y, 2) < groundDepth - 1e-3f) continue;
+      const float v = r.visibility.at(x, y);
+      lit += v == 1.0f;
+      shadowed += v == 0.0f;
+      penumbra += v > 0.0f && v < 1.0f;
+      for (int c = 0; c < 3; ++c) {
+        const float expected = albedo[c] * (s.ambient + (1.0f - s.ambient) * v);
+        if (std::abs(r.color.at(x, y, c) - expected) > 1.0f / 255.0f && ++bad <= 3) {
+          ADD_FAILURE() << "pixel " << x << "," << y << " channel " << c << ": colour "
+                        << r.color.at(x, y, c) << ", expected " << expected << " at visibility "
+                        << v;
+        }
+      }
+    }
+  }
+  EXPECT_EQ(bad, 0);
+  EXPECT_GT(lit, 1000);
+  EXPECT_GT(shadowed, 100);
+  EXPECT_GT(penumbra, 50);
 }
 
 TEST_F(RendererTest, PlanarVsmEqualsPcfWithTheSameKernel) {
