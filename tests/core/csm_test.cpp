@@ -107,7 +107,6 @@ TEST(Csm, NoDepthPairWrapsAroundThePeriod) {
   }
 }
 
-<<<<<<< HEAD
 TEST(Csm, NoAcceptedTermCountAndOffsetWrapsALitReceiver) {
   // Sweeps every (M, offset) the registry accepts, through encode and reconstruct. A receiver in
   // front of (or at) its occluder sits on the lit half of the truncated step, t in [0, 1): the
@@ -163,8 +162,6 @@ TEST(Csm, NoAcceptedTermCountAndOffsetWrapsALitReceiver) {
   EXPECT_EQ(accepted, 1 + 5 + 9 + 13 + 12 * 17);  // M = 1..4 take offsets up to M - 1 only
 }
 
-TEST(Csm, ScalingByTwoLightsLitSurfacesAndSharpensTheStep) {
-=======
 // Receiver-depth distance over which one occluder's visibility falls from 0.9 to 0.1, found by a
 // sweep of 1e-5 steps from z - 0.2 (the first receiver below 0.9, then the first below 0.1).
 float transitionWidth(float occluder, const shaders::CsmParams& p) {
@@ -188,7 +185,6 @@ float transitionWidth(float occluder, const shaders::CsmParams& p) {
 // attenuation, from eq. 11 evaluated in double. Ignoring the scale gives 1; scaling about 1/2
 // (2f - 1/2, steeper without lighting) gives less than 1/2.
 TEST(Csm, ScalingByTwoHalvesTheTransitionAndLightsTheOccludersOwnDepth) {
->>>>>>> test-fixes
   shaders::CsmParams p = plainSeries(8);
   p.attenuation = shaders::csmDefaultParams().attenuation;
   const float unscaled = transitionWidth(0.5f, p);
