@@ -6,6 +6,7 @@
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
+#include "shared/shadow_lookup.h"
 
 namespace penumbra::compare {
 namespace {
@@ -14,20 +15,17 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
   gl::RenderSettings s = request.settings;
   s.technique = technique;
   if (technique == Technique::Pcf && request.matchPcfKernel) {
-    // Point lookups take the blur kernel alone; the others add the bilinear tent (exactly for
-    // bilinear, as the nearest PCF kernel for mip-mapped lookups).
-    const bool box = s.blur.kernel == BlurKernel::Box;
-    const bool point = s.filter == gl::FilterMode::Point;
-    s.params.pcf.kernel =
-        !box ? shaders::kKernelGaussian : (point ? shaders::kKernelBox : shaders::kKernelBilinear);
-    // PCF's ranges cover the blur's (radius 64, sigma [0.01, 64]): nothing is clamped, so PCF
-    // stays the reference for every prefilter.
-    s.params.pcf.radius = s.blur.radius;
-    s.params.pcf.sigma = s.blur.sigma;
-    // The reference's own depth test: the receiver plane, ties within its tolerance, no bias.
-    s.params.pcf.receiverPlane = 1;
-    s.params.pcf.bias.constantBias = 2e-5f;
-    s.params.pcf.bias.slopeScaledBias = 0.0f;
+    // The prefilter's own kernel, the receiver plane and the reference's tie
+    // (shared/shadow_lookup.h): the filtered reference itself for point and bilinear lookups,
+    // the nearest PCF kernel for mip-mapped ones. PCF's ranges cover the blur's, so nothing is
+    // clamped.
+    shaders::LookupSettings lookup{};
+    lookup.filterMode = int(s.filter);
+    lookup.blurKernel =
+        s.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian : shaders::kKernelBox;
+    lookup.blurRadius = s.blur.radius;
+    lookup.blurSigma = s.blur.sigma;
+    s.params.pcf = shaders::pcfMatchingPrefilter(lookup);
   }
   return s;
 }

@@ -14,6 +14,7 @@
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
+#include "shared/shadow_lookup.h"
 
 namespace penumbra {
 namespace {
@@ -445,7 +446,7 @@ TEST_F(RendererTest, GaussianPcfIsTheFilteredReferenceForEveryBlurRadius) {
       s.params.pcf.kernel = shaders::kKernelGaussian;
       s.params.pcf.radius = radius;
       s.params.pcf.sigma = sigma;
-      s.params.pcf.bias.constantBias = 2e-5f;  // the reference's tie
+      s.params.pcf.bias.constantBias = shaders::kReferenceTie;
       s.params.pcf.bias.slopeScaledBias = 0.0f;
       const Image pcf = renderer->render(scene, s).visibility;
       const Image reference = renderer->renderReference(scene, s, 1).visibility;
@@ -554,7 +555,7 @@ float bruteForceReference(const Image& depth, float u, float v, float receiver, 
         for (int a = -r; a <= r; ++a) {
           const float z = depth.clamped(tx + a, ty + b);
           const double d = receiver + gx * (tx + a + 0.5 - px) + gy * (ty + b + 0.5 - py);
-          lit += w * blur[size_t(a + r)] * blur[size_t(b + r)] * (z >= d - 2e-5 ? 1.0 : 0.0);
+          lit += w * blur[size_t(a + r)] * blur[size_t(b + r)] * (z >= d - shaders::kReferenceTie ? 1.0 : 0.0);
         }
       }
     }
