@@ -272,7 +272,7 @@ void Renderer::validate(const RenderSettings& settings) const {
     throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": this GL (" + s.device +
                 ") supports at most " + std::to_string(s.maxSamples));
   }
-  checkRange("blur radius", settings.blur.radius, 0, 64);
+  checkRange("blur radius", settings.blur.radius, 0, shaders::kMaxBlurRadius);
   checkRange("blur sigma", settings.blur.sigma, 0.01f, 64.0f);
   checkRange("anisotropy", settings.anisotropy, 1, std::min(16, int(s.maxAnisotropy)));
   checkRange("normal offset (texels)", settings.normalOffsetTexels, 0.0f, 10.0f);

@@ -1,6 +1,8 @@
 // Shared render options.
 #include "render_options.h"
 
+#include "shared/filter_weights.h"
+
 #include <algorithm>
 
 #include "penumbra/error.h"
@@ -32,7 +34,8 @@ gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   s.msaaSamples = o.msaa;
   if (o.blurTaps < 1 || o.blurTaps % 2 == 0) {
     throw Error("blur taps " + std::to_string(o.blurTaps) +
-                ": give an odd kernel width (1 = no blur, 3, 5, 7, ... 129)");
+                ": give an odd kernel width (1 = no blur, 3, 5, 7, ... " +
+                std::to_string(2 * shaders::kMaxBlurRadius + 1) + ")");
   }
   s.blur.radius = (o.blurTaps - 1) / 2;
   if (o.blurKernel != "gaussian" && o.blurKernel != "box") {
