@@ -1,11 +1,10 @@
 // Shared render options.
 #include "render_options.h"
 
-#include "shared/filter_weights.h"
-
 #include <algorithm>
 
 #include "penumbra/error.h"
+#include "shared/filter_weights.h"
 
 namespace penumbra::cli {
 
