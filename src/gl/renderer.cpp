@@ -16,7 +16,9 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/params.h"
+#include "penumbra/shadow_lookup.h"
 #include "renderer_state.h"
+#include "shared/shading.h"
 #include "shared/summed_area.h"
 
 namespace penumbra::gl {
@@ -425,6 +427,40 @@ Image downsample(const Image& image, int factor) {
 
 }  // namespace
 
+// Pixels whose reference kernel needs more texel tests than one shader invocation may run are
+// marked -1 by the camera pass (with the albedo in colour and the light amount in the
+// diagnostic); the CPU twin evaluates them with the same shared code.
+void Renderer::completeReferenceOnCpu(Image& visibility, Image& color, Image& diagnostic,
+                                      const Image& lookup, const Image& receiverPlane,
+                                      const Image& uvDerivatives) const {
+  std::vector<std::pair<int, int>> pending;
+  for (int y = 0; y < visibility.height(); ++y) {
+    for (int x = 0; x < visibility.width(); ++x) {
+      if (visibility.at(x, y) < 0.0f) pending.emplace_back(x, y);
+    }
+  }
+  if (pending.empty()) return;
+  const RenderSettings& settings = state_->settings;
+  const CpuShadowLookup twin(readDepthMap(),
+                             {Technique::Hard, settings.params, settings.filter, settings.blur,
+                              settings.anisotropy, state_->halfRounding});
+  for (const auto& [x, y] : pending) {
+    LookupPixel pixel;
+    pixel.uv = {lookup.at(x, y, 0), lookup.at(x, y, 1)};
+    pixel.receiverDepth = lookup.at(x, y, 2);
+    pixel.uvDx = {uvDerivatives.at(x, y, 0), uvDerivatives.at(x, y, 1)};
+    pixel.uvDy = {uvDerivatives.at(x, y, 2), uvDerivatives.at(x, y, 3)};
+    pixel.depthPerTexel = {receiverPlane.at(x, y, 0), receiverPlane.at(x, y, 1)};
+    const float v = twin.referenceVisibility(pixel);
+    const glm::vec3 albedo(color.at(x, y, 0), color.at(x, y, 1), color.at(x, y, 2));
+    const glm::vec3 shaded =
+        shaders::shadeLambert(albedo, settings.ambient, diagnostic.at(x, y), v);
+    for (int c = 0; c < 3; ++c) color.at(x, y, c) = shaded[c];
+    visibility.at(x, y) = v;
+    diagnostic.at(x, y) = 0.0f;
+  }
+}
+
 RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings& settings,
                                        int supersample) {
   checkRange("reference supersampling", supersample, 1, 8);
@@ -451,21 +487,26 @@ RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings&
   const LightView light = fitLightView(scene);
   renderLightPass(s, gpuScene, light);
   renderCameraPass(s, scene, gpuScene, light, true);
+  Image color = readTexture(s.frameColor.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
+  Image visibility =
+      readTexture(s.frameVisibility.id(), 0, big.width, big.height, 1, 1, GL_RED, true);
+  Image diagnostic =
+      readTexture(s.frameDiagnostic.id(), 0, big.width, big.height, 1, 1, GL_RED, true);
+  const Image lookup =
+      readTexture(s.frameLookup.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
+  const Image receiverPlane =
+      readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
+  const Image uvDerivatives =
+      readTexture(s.frameDerivatives.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
+  completeReferenceOnCpu(visibility, color, diagnostic, lookup, receiverPlane, uvDerivatives);
   RenderResult result;
-  result.color = downsample(
-      readTexture(s.frameColor.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true), supersample);
-  result.visibility =
-      downsample(readTexture(s.frameVisibility.id(), 0, big.width, big.height, 1, 1, GL_RED, true),
-                 supersample);
-  result.diagnostic =
-      downsample(readTexture(s.frameDiagnostic.id(), 0, big.width, big.height, 1, 1, GL_RED, true),
-                 supersample);
+  result.color = downsample(color, supersample);
+  result.visibility = downsample(visibility, supersample);
+  result.diagnostic = downsample(diagnostic, supersample);
   if (supersample == 1) {
-    result.lookup = readTexture(s.frameLookup.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
-    result.receiverPlane =
-        readTexture(s.frameReceiverPlane.id(), 0, big.width, big.height, 1, 2, GL_RG, true);
-    result.uvDerivatives =
-        readTexture(s.frameDerivatives.id(), 0, big.width, big.height, 1, 4, GL_RGBA, true);
+    result.lookup = lookup;
+    result.receiverPlane = receiverPlane;
+    result.uvDerivatives = uvDerivatives;
   }
   result.params = s.params;
   result.wallTimes.light = s.lightTimer.wallMilliseconds();

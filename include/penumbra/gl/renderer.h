@@ -139,6 +139,10 @@ class Renderer {
  private:
   void checkMemory(const RenderSettings& settings) const;
 
+  void completeReferenceOnCpu(Image& visibility, Image& color, Image& diagnostic,
+                              const Image& lookup, const Image& receiverPlane,
+                              const Image& uvDerivatives) const;
+
   std::unique_ptr<State> state_;
 };
 

@@ -13,6 +13,7 @@
 #define MSAA 0
 #endif
 #include "../lib/lookup_access.glsl"
+#include "../shared/shading.h"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
@@ -39,6 +40,8 @@ layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth g
 layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the lookup's footprint
 
 const float kGrazingCosine = 0.05f;
+// Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
+const float kMaxReferenceTestsPerPixel = 48000.0f;
 
 float linearDepth(vec3 lightView) {
   float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
@@ -102,9 +105,14 @@ void main() {
     LookupSources sources;
     sources.unused = 0;
 #if REFERENCE
-    // Weights sum to 1 up to fp32 rounding.
-    visibility = clamp(referenceVisibility(sources, lookupSettings(), uv, receiver, uvDx, uvDy,
-                                           depthPerTexel), 0.0f, 1.0f);
+    // Weights sum to 1 up to fp32 rounding. A lookup whose kernel needs more texel tests than
+    // one invocation may loop over is marked -1 for the CPU twin to evaluate (Renderer).
+    if (referenceTexelTests(lookupSettings(), uv, uvDx, uvDy) > kMaxReferenceTestsPerPixel) {
+      visibility = -1.0f;
+    } else {
+      visibility = clamp(referenceVisibility(sources, lookupSettings(), uv, receiver, uvDx, uvDy,
+                                             depthPerTexel), 0.0f, 1.0f);
+    }
 #else
     ShadowSample shadow = shadowLookup(sources, lookupSettings(), technique, params, uv, receiver,
                                        uvDx, uvDy, depthPerTexel);
@@ -115,8 +123,14 @@ void main() {
 
   float lightAmount = cosine;
   if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
-  vec3 shaded = albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);
-  color = vec4(shaded, 1.0f);
+  color = vec4(shadeLambert(albedo, ambient, lightAmount, visibility), 1.0f);
+#if REFERENCE
+  if (visibility < 0.0f) {
+    // Left to the CPU: the albedo and the light amount let it shade the pixel (shading.h).
+    color = vec4(albedo, 1.0f);
+    diagnostic = lightAmount;
+  }
+#endif
   visibilityOut = visibility;
   diagnosticOut = diagnostic;
   // w: 1 inside the shadow map on a surface facing the light beyond grazing (where the shadow

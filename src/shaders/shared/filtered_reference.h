@@ -129,5 +129,24 @@ PENUMBRA_INLINE float referenceVisibility(LookupSources s, LookupSettings ls, ve
   return lit / float(probes.count);
 }
 
+// At most how many level-0 texel tests referenceVisibility runs for this lookup: what a GPU
+// must run in one invocation (llvmpipe ends every loop of an invocation after 65535 iterations).
+PENUMBRA_INLINE float referenceTexelTests(LookupSettings ls, vec2 uv, vec2 uvDx, vec2 uvDy) {
+  if (ls.filterMode == kFilterSummedArea) {
+    SummedAreaBox box = summedAreaBox(uv, uvDx, uvDy, ls);
+    return (box.hi.x - box.lo.x + 2.0f) * (box.hi.y - box.lo.y + 2.0f);
+  }
+  float blur = float(2 * ls.blurRadius);
+  if (ls.filterMode == kFilterPoint) return (blur + 1.0f) * (blur + 1.0f);
+  if (ls.filterMode == kFilterBilinear || ls.channelLevels == 1) {
+    return (blur + 2.0f) * (blur + 2.0f);
+  }
+  LookupProbes probes = lookupProbes(uvDx, uvDy, ls);
+  TrilinearLevels levels = trilinearLevels(probes.lod, ls.channelLevels);
+  float first = 2.0f * float(1 << levels.level) + blur;
+  float second = levels.fraction > 0.0f ? 2.0f * float(1 << levels.next) + blur : 0.0f;
+  return float(probes.count) * (first * first + second * second);
+}
+
 PENUMBRA_END_SHARED
 #endif

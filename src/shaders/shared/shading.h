@@ -1,0 +1,14 @@
+// The camera pass's shading: Lambert plus ambient, the shadow test scaling the direct part. The
+// GPU shades with it, and the renderer when it fills in reference pixels on the CPU.
+#ifndef PENUMBRA_SHARED_SHADING_H
+#define PENUMBRA_SHARED_SHADING_H
+#include "prelude.h"
+PENUMBRA_BEGIN_SHARED
+
+// lightAmount: N.L times the spot cone's falloff, in [0,1]; ambient: the ambient share, [0,1].
+PENUMBRA_INLINE vec3 shadeLambert(vec3 albedo, float ambient, float lightAmount, float visibility) {
+  return albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);
+}
+
+PENUMBRA_END_SHARED
+#endif
