@@ -21,7 +21,8 @@ float weightSum(const shaders::PcfParams& p, glm::vec2 fraction) {
 
 TEST(Pcf, EveryKernelsWeightsSumToOne) {
   shaders::PcfParams p = shaders::pcfDefaultParams();
-  for (int kernel : {shaders::kKernelBox, shaders::kKernelGaussian, shaders::kKernelBilinear}) {
+  for (int kernel : {shaders::kKernelBox, shaders::kKernelGaussian, shaders::kKernelBilinear,
+                     shaders::kKernelGaussianBilinear}) {
     for (int radius : {0, 1, 2, 7}) {
       for (glm::vec2 f : {glm::vec2(0.0f), glm::vec2(0.3f, 0.8f), glm::vec2(0.999f, 0.5f)}) {
         p.kernel = kernel;

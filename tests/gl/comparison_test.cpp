@@ -106,3 +106,25 @@ TEST_F(ComparisonTest, MipMappedReferenceRefusesANonPowerOfTwoShadowMap) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST_F(ComparisonTest, MatchedPcfIsTheReferenceForGaussianBlursToo) {
+  // Gaussian blur + bilinear lookups: the reference kernel is the Gaussian convolved with the
+  // bilinear tent around floor(position - 1/2); PCF with the plain Gaussian around
+  // floor(position) is half a texel off and untented. On a scene of edges both must agree to the
+  // reference's own rounding (1e-5) where the shadow test decides the shading.
+  for (const char* scene : {"planar", "bench"}) {
+    compare::ComparisonRequest q = request(scene, {Technique::Pcf});
+    q.settings.blur = {BlurKernel::Gaussian, 3, 1.5f};
+    for (FilterMode f : {FilterMode::Point, FilterMode::Bilinear}) {
+      q.settings.filter = f;
+      const compare::ComparisonResult r = compare::runComparison(q, *renderer);
+      EXPECT_LT(find(r, Technique::Pcf).filtered.rmse, 1e-5) << scene << " " << filterModeName(f);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace penumbra

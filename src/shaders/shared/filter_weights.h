@@ -9,7 +9,13 @@ const int kMaxBlurRadius = 64;
 
 const int kKernelBox = 0;
 const int kKernelGaussian = 1;
-const int kKernelBilinear = 2;  // box of 2r+1 texels convolved with the bilinear tent
+const int kKernelBilinear = 2;          // box of 2r+1 texels convolved with the bilinear tent
+const int kKernelGaussianBilinear = 3;  // Gaussian of 2r+1 taps convolved with the bilinear tent
+
+// Kernels convolved with the bilinear tent: taps -r..r+1 around floor(position - 1/2).
+PENUMBRA_INLINE bool kernelHasBilinearTent(int kernel) {
+  return kernel == kKernelBilinear || kernel == kKernelGaussianBilinear;
+}
 
 // Unnormalised Gaussian weight of a tap `offset` texels from the centre.
 PENUMBRA_INLINE float gaussianTapWeight(int offset, float sigma) {
@@ -34,6 +40,13 @@ PENUMBRA_INLINE float gaussianWeightSum(int radius, float sigma) {
 PENUMBRA_INLINE float kernelWeight1DWithSum(int kernel, int tap, int radius, float sigma,
                                             float fraction, float gaussianSum) {
   float width = float(2 * radius + 1);
+  if (kernel == kKernelGaussianBilinear) {
+    // The tent's two taps (1 - f at t, f at t - 1) spread over the Gaussian's.
+    float at = tap >= -radius && tap <= radius ? gaussianTapWeight(tap, sigma) : 0.0f;
+    float before =
+        tap - 1 >= -radius && tap - 1 <= radius ? gaussianTapWeight(tap - 1, sigma) : 0.0f;
+    return ((1.0f - fraction) * at + fraction * before) / gaussianSum;
+  }
   if (kernel == kKernelGaussian) {
     if (tap < -radius || tap > radius) return 0.0f;
     return gaussianTapWeight(tap, sigma) / gaussianSum;
@@ -49,7 +62,8 @@ PENUMBRA_INLINE float kernelWeight1DWithSum(int kernel, int tap, int radius, flo
 }
 
 PENUMBRA_INLINE float kernelWeight1D(int kernel, int tap, int radius, float sigma, float fraction) {
-  float gaussianSum = kernel == kKernelGaussian ? gaussianWeightSum(radius, sigma) : 1.0f;
+  bool gaussian = kernel == kKernelGaussian || kernel == kKernelGaussianBilinear;
+  float gaussianSum = gaussian ? gaussianWeightSum(radius, sigma) : 1.0f;
   return kernelWeight1DWithSum(kernel, tap, radius, sigma, fraction, gaussianSum);
 }
 

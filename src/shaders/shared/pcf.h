@@ -8,7 +8,7 @@
 PENUMBRA_BEGIN_SHARED
 
 struct PcfParams {
-  int kernel;         // kKernelBox, kKernelGaussian or kKernelBilinear
+  int kernel;         // kKernelBox, kKernelGaussian, kKernelBilinear or kKernelGaussianBilinear
   int radius;         // taps each side of the centre: (2r+1)^2 taps, r in [0, 64] like the blur
   float sigma;        // Gaussian standard deviation in texels, [0.01, 64] like the blur
   int receiverPlane;  // 1: each tap's receiver depth follows the receiver plane (bias)
@@ -29,7 +29,8 @@ PENUMBRA_INLINE PcfParams pcfDefaultParams() {
 // tap (the Gaussian's sum is a loop over the radius, O(r^3) per lookup if taken per tap; llvmpipe
 // also ends all loops of a shader invocation after 65535 iterations, which r >= 16 exceeded).
 PENUMBRA_INLINE float pcfKernelSum(PcfParams p) {
-  return p.kernel == kKernelGaussian ? gaussianWeightSum(p.radius, p.sigma) : 1.0f;
+  bool gaussian = p.kernel == kKernelGaussian || p.kernel == kKernelGaussianBilinear;
+  return gaussian ? gaussianWeightSum(p.radius, p.sigma) : 1.0f;
 }
 
 // Weight of tap (tapX, tapY) for a lookup whose sub-texel position is `fraction`.
@@ -48,7 +49,7 @@ PENUMBRA_INLINE int pcfFirstTap(PcfParams p) {
   return -p.radius;
 }
 PENUMBRA_INLINE int pcfLastTap(PcfParams p) {
-  return p.kernel == kKernelBilinear ? p.radius + 1 : p.radius;
+  return kernelHasBilinearTent(p.kernel) ? p.radius + 1 : p.radius;
 }
 
 PENUMBRA_END_SHARED

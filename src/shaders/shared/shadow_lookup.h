@@ -158,7 +158,7 @@ PENUMBRA_INLINE float pcfDepthTexel(LookupSources s, bool fromLightDepth, ivec2 
 PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, vec2 uv,
                                 float receiverDepth, vec2 depthPerTexel, PcfParams pcf) {
   vec2 position = uv * float(size);
-  bool bilinear = pcf.kernel == kKernelBilinear;
+  bool bilinear = kernelHasBilinearTent(pcf.kernel);
   vec2 origin = bilinear ? floor(position - 0.5f) : floor(position);
   vec2 fraction = bilinear ? position - 0.5f - origin : vec2(0.0f);
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
@@ -178,14 +178,16 @@ PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, 
   return clamp(lit, 0.0f, 1.0f);  // the weights sum to 1 up to fp32 rounding
 }
 
-// PCF with the prefilter's own kernel (box blur: box x the bilinear tent, or the box alone for
-// point lookups; Gaussian blur: the Gaussian), the receiver plane and the reference's tie: the
-// filtered reference itself for point and bilinear lookups (docs/reference.md).
+// PCF with the prefilter's own kernel (the blur convolved with the bilinear tent, or the blur
+// alone for point lookups), the receiver plane and the reference's tie: the filtered reference
+// itself for point and bilinear lookups (docs/reference.md).
 PENUMBRA_INLINE PcfParams pcfMatchingPrefilter(LookupSettings ls) {
   PcfParams p;
-  p.kernel = kKernelGaussian;
-  if (ls.blurKernel != kKernelGaussian) {
-    p.kernel = ls.filterMode == kFilterPoint ? kKernelBox : kKernelBilinear;
+  bool point = ls.filterMode == kFilterPoint;
+  if (ls.blurKernel == kKernelGaussian) {
+    p.kernel = point ? kKernelGaussian : kKernelGaussianBilinear;
+  } else {
+    p.kernel = point ? kKernelBox : kKernelBilinear;
   }
   p.radius = ls.blurRadius;
   p.sigma = ls.blurSigma;
