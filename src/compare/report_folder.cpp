@@ -4,6 +4,7 @@
 #include <signal.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <chrono>
@@ -44,6 +45,42 @@ void writeMarker(const fs::path& folder, const std::string& text) {
   if (!out) throw Error("cannot write the report marker in " + quoted(folder));
 }
 
+// Every entry below `folder` (relative, generic separators) but the marker itself, sorted.
+std::vector<std::string> entriesBelow(const fs::path& folder) {
+  std::vector<std::string> entries;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(folder, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const std::string relative = it->path().lexically_relative(folder).generic_string();
+    if (relative != kReportMarkerFile) entries.push_back(relative);
+  }
+  if (ec) throw Error("cannot list the report folder " + quoted(folder) + ": " + ec.message());
+  std::sort(entries.begin(), entries.end());
+  return entries;
+}
+
+// A finished report's marker lists everything the writer put there, so that a later run
+// replaces the folder only while it holds nothing else.
+std::string finishedMarker(const fs::path& folder) {
+  std::string text = std::string(kMarkerLine) + "\n";
+  for (const std::string& entry : entriesBelow(folder)) text += "entry " + entry + "\n";
+  return text;
+}
+
+// The first entry of a report folder that its marker does not list, or "".
+std::string unlistedEntry(const fs::path& folder) {
+  const std::vector<std::string> lines = markerLines(folder);
+  std::vector<std::string> listed;
+  for (const std::string& line : lines) {
+    if (line.rfind("entry ", 0) == 0) listed.push_back(line.substr(6));
+  }
+  std::sort(listed.begin(), listed.end());
+  for (const std::string& entry : entriesBelow(folder)) {
+    if (!std::binary_search(listed.begin(), listed.end(), entry)) return entry;
+  }
+  return "";
+}
+
 std::string stagingMarker(long pid) {
   return std::string(kMarkerLine) + "\nstaging " + std::to_string(pid) + "\n";
 }
@@ -60,13 +97,21 @@ Existing classify(const fs::path& target) {
   if (!fs::is_directory(status)) {
     throw Error("the report folder " + quoted(target) + " exists and is not a folder");
   }
-  if (isPenumbraReport(target)) return Existing::Report;
+  if (isPenumbraReport(target)) {
+    return unlistedEntry(target).empty() ? Existing::Report : Existing::Other;
+  }
   const bool empty = fs::is_empty(target, ec);
   if (ec) throw Error("cannot inspect the report folder " + quoted(target) + ": " + ec.message());
   return empty ? Existing::EmptyFolder : Existing::Other;
 }
 
 void refuseOther(const fs::path& target) {
+  if (isPenumbraReport(target)) {
+    throw Error("the report folder " + quoted(target) +
+                " holds files penumbra did not write there (" + unlistedEntry(target) +
+                "); move them out, choose another folder, or pass --force to replace it and "
+                "everything in it");
+  }
   throw Error("the report folder " + quoted(target) +
               " exists and is not a penumbra report (it has no " + std::string(kReportMarkerFile) +
               " file); choose another folder, or pass --force to replace it and everything in it");
@@ -199,7 +244,7 @@ void ReportFolder::createStaging() {
 
 void ReportFolder::commit() {
   if (staging_.empty()) throw Error("no staged report to move to " + quoted(target_));
-  writeMarker(staging_, std::string(kMarkerLine) + "\n");
+  writeMarker(staging_, finishedMarker(staging_));
   // The run took a while: check the target again.
   const Existing existing = classify(target_);
   if (existing == Existing::Other && !force_) {

@@ -22,7 +22,8 @@ const std::vector<std::string> kLongCompare{
 
 // A report from an earlier run: the marker and a page.
 void writeEarlierReport(const fs::path& target) {
-  writeFile(target / std::string(compare::kReportMarkerFile), "penumbra report 1\n");
+  writeFile(target / std::string(compare::kReportMarkerFile),
+            "penumbra report 1\nentry index.html\n");
   writeFile(target / "index.html", "earlier report");
 }
 

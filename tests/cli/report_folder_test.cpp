@@ -119,6 +119,30 @@ TEST(ReportFolder, ReplacesAnEarlierReportOnlyWhenTheNewOneIsComplete) {
   EXPECT_EQ(entriesStartingWith(scratch.path(), "report.").size(), 0u);
 }
 
+TEST(ReportFolder, KeepsAnEarlierReportHoldingFilesPenumbraDidNotWrite) {
+  // A user's notes saved inside an old report (even in one of its subfolders) are not the
+  // report's: replacing it needs --force, and the error names the file.
+  ScratchFolder scratch;
+  const fs::path target = scratch.path() / "report";
+  {
+    ReportFolder folder(target, false);
+    folder.createStaging();
+    fs::create_directories(folder.staging() / "images");
+    writeFile(folder.staging() / "images" / "vsm.png", "image");
+    writeFile(folder.staging() / "index.html", "first");
+    folder.commit();
+  }
+  writeFile(target / "images" / "my-notes.txt", "mine");
+  const std::string error = errorOf([&] {
+    ReportFolder folder(target, false);
+    folder.createStaging();
+    folder.commit();
+  });
+  EXPECT_NE(error.find("images/my-notes.txt"), std::string::npos) << error;
+  EXPECT_EQ(readFile(target / "images" / "my-notes.txt"), "mine");
+  EXPECT_EQ(readFile(target / "index.html"), "first");
+}
+
 TEST(ReportFolder, ReplacesAnEmptyFolder) {
   ScratchFolder scratch;
   fs::create_directory(scratch.path() / "report");
