@@ -109,6 +109,21 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
     throw Error("the CPU shadow lookup needs a square one-channel depth map");
   }
   validateParams(config.technique, config.params);
+  if (config.anisotropy < 1 || config.anisotropy > 16) {
+    throw Error("anisotropy " + std::to_string(config.anisotropy) + " is out of range [1, 16]");
+  }
+  if (config.filter == FilterMode::SummedArea && !filtersAfterTest(config.technique) &&
+      config.technique != Technique::Hard) {
+    for (int c = 0; c < channelCount(config.technique, config.params); ++c) {
+      if (channelReduction(config.technique, config.params, c) != ChannelReduction::Mean ||
+          config.technique == Technique::Esm || config.technique == Technique::Evsm2 ||
+          config.technique == Technique::Evsm4) {
+        throw Error("the summed-area filter holds only bounded mean channels; " +
+                    std::string(techniqueId(config.technique)) +
+                    " has min/max, log-space or exponential channels");
+      }
+    }
+  }
   shaders::CpuLookupTextures& t = *textures_;
   const Technique technique = config.technique;
   const TechniqueParams& params = config.params;

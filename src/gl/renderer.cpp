@@ -300,6 +300,17 @@ void Renderer::validate(const RenderSettings& settings) const {
             " has min/max or log-space channels; use point, bilinear, trilinear or anisotropic");
       }
     }
+    // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
+    const uint64_t entries = uint64_t(channelCount(settings.technique, p)) *
+                             uint64_t(settings.shadowMapSize) * uint64_t(settings.shadowMapSize);
+    GLint64 maxBlock = 0;
+    glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
+    if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxBlock)) {
+      throw Error("the summed-area table of " + std::string(techniqueId(settings.technique)) +
+                  " at " + std::to_string(settings.shadowMapSize) + "^2 needs " +
+                  std::to_string(entries * 8) + " bytes in one storage buffer; this GL holds " +
+                  std::to_string(maxBlock) + "; use a smaller shadow map");
+    }
   }
   checkMemory(settings);
 }

@@ -639,3 +639,27 @@ TEST_F(ReferenceTest, SupersampledGroundTruthIsTheBoxAverageOfTheReferenceAtFour
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST_F(RendererTest, SummedAreaTablesBeyondOneStorageBufferAreRefusedUpFront) {
+  // CSM's 32 channels at 4096^2 need 4 GiB of 64-bit sums in one buffer: beyond any GL's
+  // storage-block limit and, at 8192^2 with 16 LVSM layers, beyond 32-bit indexing.
+  gl::RenderSettings s = small(Technique::Csm);
+  s.filter = gl::FilterMode::SummedArea;
+  s.shadowMapSize = 4096;
+  try {
+    renderer->validate(s);
+    FAIL() << "a 4 GiB summed-area table must be refused";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("needs 4294967296 bytes in one storage buffer"),
+              std::string::npos)
+        << e.what();
+  }
+  s.shadowMapSize = 256;  // 16 MiB: fine
+  EXPECT_NO_THROW(renderer->validate(s));
+}
+
+}  // namespace
+}  // namespace penumbra

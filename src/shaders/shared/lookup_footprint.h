@@ -71,8 +71,10 @@ PENUMBRA_INLINE LookupProbes lookupProbes(vec2 uvDx, vec2 uvDy, LookupSettings s
   float minor = max(min(lengthX, lengthY), 1.0e-6f);
   LookupProbes p;
   p.count = 1;
-  if (s.filterMode == kFilterAnisotropic)
-    p.count = clamp(int(ceil(major / minor)), 1, s.anisotropy);
+  if (s.filterMode == kFilterAnisotropic) {
+    // Clamped as a float first: major / minor may exceed any int where a derivative vanishes.
+    p.count = int(clamp(ceil(major / minor), 1.0f, float(max(s.anisotropy, 1))));
+  }
   p.lod = log2(major / float(p.count));
   p.axis = lengthX >= lengthY ? uvDx : uvDy;
   return p;
