@@ -4,6 +4,8 @@
 #include "penumbra/compare/report_folder.h"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include "penumbra/error.h"
 #include "run_penumbra.h"
@@ -205,18 +207,43 @@ TEST(ReportFolder, CannotCreateBelowAFile) {
 }
 
 TEST(ReportFolder, ReadOnlyParentIsRefusedWithTheReason) {
-  if (geteuid() == 0) {
-    // Root writes into a mode-0555 folder anyway; CannotCreateBelowAFile and the CLI test
-    // cli.compare_unwritable_folder (/proc) cover the same error path.
-    GTEST_SKIP() << "running as root, which ignores permission bits";
-  }
   ScratchFolder scratch;
+  // The scratch folder itself must be traversable by the unprivileged child below.
+  fs::permissions(scratch.path(), fs::perms::group_exec | fs::perms::others_exec,
+                  fs::perm_options::add);
   const fs::path parent = scratch.path() / "locked";
   fs::create_directory(parent);
-  fs::permissions(parent, fs::perms::owner_read | fs::perms::owner_exec);
-  ReportFolder folder(parent / "report", false);
-  const std::string message = errorOf([&] { folder.createStaging(); });
+  fs::permissions(parent, fs::perms::owner_read | fs::perms::owner_exec | fs::perms::group_read |
+                              fs::perms::group_exec | fs::perms::others_read |
+                              fs::perms::others_exec);
+  // Root writes into a read-only folder anyway, so as root the attempt runs in a child that has
+  // given up root for the unprivileged user 65534 (nobody), to whom the folder is read-only too.
+  int channel[2];
+  ASSERT_EQ(pipe(channel), 0);
+  const pid_t child = fork();
+  if (child == 0) {
+    close(channel[0]);
+    if (geteuid() == 0 && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(2);
+    std::string message;
+    try {
+      ReportFolder folder(parent / "report", false);
+      message = errorOf([&] { folder.createStaging(); });
+    } catch (const std::exception& e) {
+      message = std::string("unexpected: ") + e.what();
+    }
+    const ssize_t written = write(channel[1], message.data(), message.size());
+    _exit(written == ssize_t(message.size()) ? 0 : 3);
+  }
+  close(channel[1]);
+  std::string message;
+  char buffer[512];
+  for (ssize_t n; (n = read(channel[0], buffer, sizeof buffer)) > 0;)
+    message.append(buffer, size_t(n));
+  close(channel[0]);
+  int status = 0;
+  waitpid(child, &status, 0);
   fs::permissions(parent, fs::perms::owner_all);
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "child status " << status;
   EXPECT_NE(message.find("cannot write the report next to"), std::string::npos) << message;
   EXPECT_NE(message.find("Permission denied"), std::string::npos) << message;
 }
