@@ -19,6 +19,9 @@ struct BlurSpec {
   float sigma = 1.0f;  // Gaussian standard deviation in texels, > 0
 };
 
+// The shared headers' id of the kernel (shared/filter_weights.h kKernelBox, kKernelGaussian).
+int blurKernelId(BlurKernel kernel);
+
 // The normalised 1D weights of the kernel, 2r+1 values (shared/filter_weights.h).
 std::vector<float> blurWeights(const BlurSpec& spec);
 // Running sums of blurWeights in tap order (2r+1 values, the last one their total): the filtered

@@ -49,20 +49,30 @@ std::vector<AccuracyCeiling> readAccuracyCeilings(const std::filesystem::path& c
     if (line.empty() || line[0] == '#' || line.rfind("scene,", 0) == 0) continue;
     std::istringstream row(line);
     AccuracyCeiling c;
-    std::string measured, ceiling;
+    std::string measured, ceiling, extra;
     std::getline(row, c.scene, ',');
     std::getline(row, c.technique, ',');
     std::getline(row, measured, ',');
     std::getline(row, ceiling, ',');
+    const bool extraColumn = bool(std::getline(row, extra, ','));
     try {
-      size_t used = 0;
-      c.measured = std::stod(measured, &used);
-      c.ceiling = std::stod(ceiling, &used);
-      if (used != ceiling.size() || !(c.ceiling >= 0.0)) throw std::invalid_argument(ceiling);
+      size_t usedMeasured = 0, usedCeiling = 0;
+      c.measured = std::stod(measured, &usedMeasured);
+      c.ceiling = std::stod(ceiling, &usedCeiling);
+      if (extraColumn || usedMeasured != measured.size() || usedCeiling != ceiling.size() ||
+          !(c.ceiling >= 0.0)) {
+        throw std::invalid_argument(ceiling);
+      }
     } catch (const std::exception&) {
       throw Error(csv.string() + ":" + std::to_string(number) +
                   ": expected scene,technique,measured_rmse,ceiling_rmse with numbers, got '" +
                   line + "'");
+    }
+    for (const AccuracyCeiling& earlier : ceilings) {
+      if (earlier.scene == c.scene && earlier.technique == c.technique) {
+        throw Error(csv.string() + ":" + std::to_string(number) + ": a second ceiling for " +
+                    c.scene + " " + c.technique);
+      }
     }
     ceilings.push_back(c);
   }

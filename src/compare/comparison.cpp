@@ -21,8 +21,7 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
     // clamped.
     shaders::LookupSettings lookup{};
     lookup.filterMode = int(s.filter);
-    lookup.blurKernel =
-        s.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian : shaders::kKernelBox;
+    lookup.blurKernel = blurKernelId(s.blur.kernel);
     lookup.blurRadius = s.blur.radius;
     lookup.blurSigma = s.blur.sigma;
     s.params.pcf = shaders::pcfMatchingPrefilter(lookup);

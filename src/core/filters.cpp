@@ -52,6 +52,10 @@ Image filterPass(const Image& in, std::span<const float> weights, bool horizonta
 
 }  // namespace
 
+int blurKernelId(BlurKernel kernel) {
+  return kernel == BlurKernel::Box ? shaders::kKernelBox : shaders::kKernelGaussian;
+}
+
 std::vector<float> blurWeights(const BlurSpec& spec) {
   if (spec.radius < 0 || spec.radius > shaders::kMaxBlurRadius) {
     throw Error("blur radius " + std::to_string(spec.radius) + " is out of range [0, " +
@@ -60,8 +64,7 @@ std::vector<float> blurWeights(const BlurSpec& spec) {
   if (spec.kernel == BlurKernel::Gaussian && !(spec.sigma > 0.0f)) {
     throw Error("Gaussian sigma " + std::to_string(spec.sigma) + " must be positive");
   }
-  const int kernel =
-      spec.kernel == BlurKernel::Box ? shaders::kKernelBox : shaders::kKernelGaussian;
+  const int kernel = blurKernelId(spec.kernel);
   std::vector<float> weights;
   for (int i = -spec.radius; i <= spec.radius; ++i) {
     weights.push_back(shaders::kernelWeight1D(kernel, i, spec.radius, spec.sigma, 0.0f));

@@ -172,8 +172,7 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   t.settings.shadowMapSize = size;
   t.settings.channelLevels = int(t.channels.size());
   t.settings.anisotropy = config.anisotropy;
-  t.settings.blurKernel =
-      config.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian : shaders::kKernelBox;
+  t.settings.blurKernel = blurKernelId(config.blur.kernel);
   t.settings.blurRadius = config.blur.radius;
   t.settings.blurSigma = config.blur.sigma;
   t.settings.zmaxLevels = int(t.zmax.size());

@@ -42,8 +42,7 @@ void setLookupUniforms(Renderer::State& s, const Program& program, bool referenc
                          : s.channelLevels;
   program.set("channelLevels", levels);
   program.set("anisotropy", settings.anisotropy);
-  program.set("blurKernel", settings.blur.kernel == BlurKernel::Gaussian ? shaders::kKernelGaussian
-                                                                         : shaders::kKernelBox);
+  program.set("blurKernel", blurKernelId(settings.blur.kernel));
   program.set("blurRadius", settings.blur.radius);
   program.set("blurSigma", settings.blur.sigma);
   program.set("zmaxLevels", s.zmaxLevels);

@@ -69,6 +69,12 @@ TEST(AccuracyCheck, MalformedCeilingRowsNameTheFileAndLine) {
     EXPECT_NE(std::string(e.what()).find("penumbra-accuracy-malformed.csv:3"), std::string::npos)
         << e.what();
   }
+  for (const char* row : {"bench,esm,0.1x,0.2", "bench,esm,0.1,0.2,0.3", "bench,vsm,0.04,0.06"}) {
+    std::ofstream out(file);
+    out << "scene,technique,measured_rmse,ceiling_rmse\nbench,vsm,0.04,0.05\n" << row << "\n";
+    out.close();
+    EXPECT_THROW(compare::readAccuracyCeilings(file), Error) << row;  // junk, extra, duplicate
+  }
   std::filesystem::remove(file);
 }
 

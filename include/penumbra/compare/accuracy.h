@@ -29,7 +29,7 @@ std::vector<AccuracyEntry> measureAccuracy(gl::Renderer& renderer, const Progres
 struct AccuracyCeiling {
   std::string scene;
   std::string technique;
-  double measured = 0.0;  // when the ceiling was set, on the machine named in the table
+  double measured = 0.0;  // when the ceiling was set (docs/results/accuracy.md names the machine)
   double ceiling = 0.0;
 };
 
