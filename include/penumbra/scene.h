@@ -86,7 +86,12 @@ struct LightView {
   float texelWorldSize(int shadowMapSize) const;
 };
 
-LightView fitLightView(const Scene& scene);
+LightView fitLightView(const Light& light, const Bounds& sceneBounds);
+inline LightView fitLightView(const Scene& scene) { return fitLightView(scene.light, scene.bounds()); }
+
+// The camera's near plane and the far plane that keeps the whole scene in view.
+inline constexpr float kCameraNear = 0.05f;
+float cameraFar(const Camera& camera, const Bounds& sceneBounds);
 
 // View and projection of the scene's camera for an image of the given aspect ratio.
 glm::mat4 viewFromWorld(const Camera& camera);

@@ -1,10 +1,12 @@
-// Technique-specific passes beside the shared pipeline: ESM's Z-max pyramid (ESM paper §3.3)
-// and LVSM's Lloyd split placement (thesis §4.1.2).
+// ESM's Z-max pyramid and LVSM's Lloyd split placement on the GPU.
+#include "auxiliary_passes.h"
+
 #include <epoxy/gl.h>
 
+#include "light_pass.h"
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
-#include "renderer_state.h"
+#include "shadow_map_filter.h"
 #include "shared/constants.h"
 
 namespace penumbra::gl {
@@ -16,48 +18,75 @@ unsigned groups(int n) {
 
 }  // namespace
 
-void buildZmaxPyramid(Renderer::State& s, unsigned depthTexture, bool multisampled) {
-  s.zmaxLevels = mipLevelCount(s.shadowMapSize, s.shadowMapSize);
-  s.zmax = Texture(GL_TEXTURE_2D_ARRAY);
-  glTextureStorage3D(s.zmax.id(), s.zmaxLevels, GL_R32F, s.shadowMapSize, s.shadowMapSize, 1);
-  const Program& base = s.compute("passes/zmax_base.comp", {{"MSAA", multisampled ? "1" : "0"}});
-  glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), s.shadowMapSize,
-                     s.shadowMapSize);
-  base.set("sampleCount", s.msaaSamples);
-  glBindTextureUnit(0, depthTexture);
-  glBindImageTexture(0, s.zmax.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
-  base.dispatch(groups(s.shadowMapSize), groups(s.shadowMapSize));
-  const Program& reduce = s.compute(
+void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters,
+                        const LightPass& light) {
+  const LightPassShape& shape = light.shape();
+  if (!built() || size_ != shape.size || layers_ != shape.cascades) {
+    size_ = shape.size;
+    layers_ = shape.cascades;
+    levels_ = mipLevelCount(size_, size_);
+    texture_ = Texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(texture_.id(), levels_, GL_R32F, size_, size_, layers_);
+  }
+  const Program& base =
+      programs.compute("passes/zmax_base.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
+  glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), size_, size_);
+  base.set("sampleCount", shape.samples);
+  glBindTextureUnit(0, light.depthTexture());
+  glBindImageTexture(0, texture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  base.dispatch(groups(size_), groups(size_), unsigned(layers_));
+  const Program& reduce = programs.compute(
       "passes/mip_reduce.comp",
       {{"CHANNEL_FORMAT", "r32f"}, {"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}});
   const ChannelLayout depthOnly{1, 1, 1, StorageFormat::Float32};
-  reduceMipLevels(s, reduce, s.zmax, depthOnly, s.zmaxLevels);
+  reduceMipLevels(reduce, parameters, texture_, depthOnly, layers_, size_, levels_);
   checkErrors("building the Z-max pyramid");
 }
 
-std::vector<SplitSample> readSplitSamplesBuffer(const Renderer::State& s) {
-  std::vector<SplitSample> samples(size_t(s.shadowMapSize - 1) * size_t(s.shadowMapSize - 1));
-  s.splitSamples->read(std::as_writable_bytes(std::span(samples)));
+void ZmaxPyramid::release() {
+  texture_ = Texture();
+  levels_ = 0;
+}
+
+uint64_t ZmaxPyramid::bytes() const {
+  if (!built()) return 0;
+  const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
+  return channelTextureBytes(r32f, size_, size_, true) * uint64_t(layers_);
+}
+
+std::vector<SplitSample> LloydPlacement::readSamples() const {
+  std::vector<SplitSample> samples(size_t(size_ - 1) * size_t(size_ - 1) * size_t(layers_));
+  samples_->read(std::as_writable_bytes(std::span(samples)));
   return samples;
 }
 
-void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisampled) {
-  const int size = s.shadowMapSize;
-  s.splitSamples.emplace(lloydSampleBytes(size));
+void LloydPlacement::release() {
+  samples_.reset();
+}
+
+shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPass& light,
+                                           const shaders::LvsmParams& lvsm) {
+  const int size = light.shape().size;
+  const int layers = light.shape().cascades;
+  if (!samples_ || size_ != size || layers_ != layers) {
+    size_ = size;
+    layers_ = layers;
+    samples_.emplace(lloydSampleBytes(size) * size_t(layers));
+  }
   const Program& samples =
-      s.compute("passes/split_samples.comp", {{"MSAA", multisampled ? "1" : "0"}});
+      programs.compute("passes/split_samples.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
-  glBindTextureUnit(0, depthTexture);
-  s.splitSamples->bindStorage(1);
-  samples.dispatch(groups(size), groups(size));
-  // Each step's sums are gathered on the GPU, row by row; the CPU adds the rows and moves the
-  // splits, as the thesis reads back its reduction.
-  const int rows = size - 1;
+  glBindTextureUnit(0, light.depthTexture());
+  samples_->bindStorage(1);
+  samples.dispatch(groups(size), groups(size), unsigned(layers));
+  // Each step's sums are gathered on the GPU, row by row (every cascade's rows in turn); the CPU
+  // adds the rows and moves the splits, as the thesis reads back its reduction.
+  const int rows = (size - 1) * layers;
   Buffer rowSums(size_t(rows) * 4 * shaders::kMaxLayers * sizeof(float));
-  const Program& gather = s.compute("passes/lloyd_sums.comp", {});
+  const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);
-  s.splitSamples->bindStorage(1);
+  samples_->bindStorage(1);
   rowSums.bindStorage(2);
   std::vector<float> partial(size_t(rows) * 4 * shaders::kMaxLayers);
   auto accumulate = [&](const shaders::LayerSplits& splits) {
@@ -80,10 +109,11 @@ void placeLayersByLloyd(Renderer::State& s, unsigned depthTexture, bool multisam
     }
     return sums;
   };
-  shaders::LvsmParams& lvsm = s.params.lvsm;
-  lvsm.splits = lloydRelaxation(lvsm.splits.layerCount, lvsm.lloydIterations,
-                                std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap, accumulate);
+  const shaders::LayerSplits splits =
+      lloydRelaxation(lvsm.splits.layerCount, lvsm.lloydIterations,
+                      std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap, accumulate);
   checkErrors("placing the layers");
+  return splits;
 }
 
 }  // namespace penumbra::gl

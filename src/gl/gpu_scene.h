@@ -1,6 +1,8 @@
-// A scene's meshes in GL buffers: one vertex array, drawn mesh by mesh.
+// A scene's meshes in GL buffers, uploaded once: one vertex array, drawn mesh by mesh with each
+// mesh's material.
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <vector>
 
@@ -10,13 +12,18 @@ namespace penumbra::gl {
 
 class GpuScene {
  public:
+  struct Material {
+    glm::vec3 albedo{0.8f};
+  };
+
   explicit GpuScene(const Scene& scene);
   ~GpuScene();
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
-  // Draws every mesh; `beforeMesh` runs first for each (to set its albedo).
-  void draw(const std::function<void(const Mesh&)>& beforeMesh) const;
+  // Draws every mesh; `beforeMesh` runs first for each (to set its material).
+  void draw(const std::function<void(const Material&)>& beforeMesh) const;
+  uint64_t bytes() const { return bytes_; }
 
  private:
   struct Range {
@@ -28,7 +35,12 @@ class GpuScene {
   unsigned vertexBuffer_ = 0;
   unsigned indexBuffer_ = 0;
   std::vector<Range> ranges_;
-  const Scene& scene_;
+  std::vector<Material> materials_;
+  uint64_t bytes_ = 0;
 };
+
+// A 64-bit FNV-1a hash of what GpuScene uploads (geometry and materials): equal scenes hash
+// equal, so a renderer re-uploads only a scene whose content changed.
+uint64_t sceneFingerprint(const Scene& scene);
 
 }  // namespace penumbra::gl

@@ -27,6 +27,11 @@ void GpuTimer::end() {
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start_).count();
 }
 
+void GpuTimer::reset() {
+  used_ = false;
+  wallMilliseconds_ = 0.0;
+}
+
 double GpuTimer::gpuMilliseconds() const {
   if (!used_) return 0.0;
   GLuint64 nanoseconds = 0;

@@ -16,6 +16,7 @@ class GpuTimer {
 
   void begin();
   void end();
+  void reset();  // the pass did not run: both times read 0
   double gpuMilliseconds() const;  // waits for the query result
   double wallMilliseconds() const { return wallMilliseconds_; }
 

@@ -7,12 +7,11 @@
 
 #include "gl_formats.h"
 #include "penumbra/channel_layout.h"
-#include "renderer_state.h"
 
 namespace penumbra::gl {
 namespace {
 
-// The camera pass's render targets (frame_passes.cpp, allocateFrame).
+// The camera pass's render targets (camera_pass.cpp, CameraPass::prepare).
 struct FrameTarget {
   std::string_view what;
   GLenum format;
@@ -22,7 +21,7 @@ constexpr FrameTarget kFrameTargets[] = {
     {"frame lookup target", GL_RGBA32F, 16}, {"frame receiver-plane target", GL_RG32F, 8},
     {"frame colour target", GL_RGBA8, 4},    {"frame visibility target", GL_R32F, 4},
     {"frame diagnostic target", GL_R32F, 4}, {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
-    {"frame uv-derivatives target", GL_RGBA32F, 16},
+    {"frame uv-derivatives target", GL_RGBA32F, 16}, {"frame cascade target", GL_RG32F, 8},
 };
 
 }  // namespace
@@ -58,6 +57,14 @@ uint64_t lightPassBytes(int shadowMapSize, int samples) {
   return uint64_t(shadowMapSize) * uint64_t(shadowMapSize) * (4 + 4) * uint64_t(samples);
 }
 
+bool fitsDepthBounds(const RenderSettings& s) {
+  return s.cascades.count > 1 && s.cascades.fitDepthBounds;
+}
+
+uint64_t depthBoundsBytes(int width, int height) {
+  return uint64_t(width) * uint64_t(height) * 4 + 8;  // D32F target and two uint bounds
+}
+
 uint64_t frameBytes(int width, int height) {
   uint64_t perPixel = 0;
   for (const FrameTarget& target : kFrameTargets) perPixel += target.bytesPerPixel;
@@ -77,20 +84,22 @@ size_t lloydSampleBytes(int shadowMapSize) {
 MemoryReport estimateMemory(const RenderSettings& s) {
   const int size = s.shadowMapSize;
   const ChannelLayout layout = channelLayout(s.technique, s.params);
+  const uint64_t cascades = uint64_t(s.cascades.count);
   MemoryReport m;
-  m.lightPass = lightPassBytes(size, s.msaaSamples);
-  m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1);
+  m.lightPass = lightPassBytes(size, s.msaaSamples) * cascades;
+  m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1) * cascades;
   if (buildsSummedAreaTable(s)) {
-    const SummedAreaSizes sat = summedAreaSizes(layout.channels, size);
+    const SummedAreaSizes sat = summedAreaSizes(layout.channels * s.cascades.count, size);
     m.summedArea = sat.rows + sat.stats + sat.sums;
   }
-  if (blursIntoScratch(s)) m.scratch = channelTextureBytes(layout, size, size, false);
+  if (blursIntoScratch(s)) m.scratch = channelTextureBytes(layout, size, size, false) * cascades;
   if (buildsZmaxPyramid(s)) {
     const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
-    m.auxiliary += channelTextureBytes(r32f, size, size, true);
+    m.auxiliary += channelTextureBytes(r32f, size, size, true) * cascades;
   }
-  if (placesLayersByLloyd(s)) m.auxiliary += lloydSampleBytes(size);
+  if (placesLayersByLloyd(s)) m.auxiliary += lloydSampleBytes(size) * cascades;
   m.frame = frameBytes(s.width, s.height);
+  if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);
   return m;
 }
 
@@ -99,23 +108,28 @@ std::vector<PlannedTexture> plannedTextures(const RenderSettings& s) {
   const ChannelLayout layout = channelLayout(s.technique, s.params);
   const int levels = channelLevelsFor(s);
   const bool ms = s.msaaSamples > 1;
-  const GLenum light = ms ? GL_PROXY_TEXTURE_2D_MULTISAMPLE : GL_PROXY_TEXTURE_2D;
-  const uint64_t half = lightPassBytes(size, s.msaaSamples) / 2;  // each of the two targets
+  const int cascades = s.cascades.count;
+  const GLenum light = ms ? GL_PROXY_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_PROXY_TEXTURE_2D_ARRAY;
+  // Each of the two targets, every cascade.
+  const uint64_t half = lightPassBytes(size, s.msaaSamples) / 2 * uint64_t(cascades);
   std::vector<PlannedTexture> t{
       {"channel texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), levels, size, size,
-       layout.layers, 1, channelTextureBytes(layout, size, size, levels > 1)},
-      {"light-pass depth", light, GL_R32F, 1, size, size, 1, s.msaaSamples, half},
-      {"light-pass depth buffer", light, GL_DEPTH_COMPONENT32F, 1, size, size, 1, s.msaaSamples,
-       half},
+       layout.layers * cascades, 1,
+       channelTextureBytes(layout, size, size, levels > 1) * uint64_t(cascades)},
+      {"light-pass depth", light, GL_R32F, 1, size, size, cascades, s.msaaSamples, half},
+      {"light-pass depth buffer", light, GL_DEPTH_COMPONENT32F, 1, size, size, cascades,
+       s.msaaSamples, half},
   };
   if (blursIntoScratch(s)) {
     t.push_back({"blur scratch texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), 1, size,
-                 size, layout.layers, 1, channelTextureBytes(layout, size, size, false)});
+                 size, layout.layers * cascades, 1,
+                 channelTextureBytes(layout, size, size, false) * uint64_t(cascades)});
   }
   if (buildsZmaxPyramid(s)) {
     const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
     t.push_back({"Z-max pyramid", GL_PROXY_TEXTURE_2D_ARRAY, GL_R32F, mipLevelCount(size, size),
-                 size, size, 1, 1, channelTextureBytes(r32f, size, size, true)});
+                 size, size, cascades, 1,
+                 channelTextureBytes(r32f, size, size, true) * uint64_t(cascades)});
   }
   const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
   for (const FrameTarget& target : kFrameTargets) {

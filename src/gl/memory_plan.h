@@ -19,10 +19,12 @@ bool blursIntoScratch(const RenderSettings& settings);
 bool buildsSummedAreaTable(const RenderSettings& settings);
 bool buildsZmaxPyramid(const RenderSettings& settings);
 bool placesLayersByLloyd(const RenderSettings& settings);
+bool fitsDepthBounds(const RenderSettings& settings);  // cascades split the visible depth range
 
 // Bytes of the allocations that are not channel textures (channel_layout.h has those).
 uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sample
-uint64_t frameBytes(int width, int height);               // the camera pass's six targets
+uint64_t frameBytes(int width, int height);               // the camera pass's seven targets
+uint64_t depthBoundsBytes(int width, int height);         // the depth-bounds pass
 struct SummedAreaSizes {
   size_t rows, stats, sums;
 };
@@ -32,7 +34,7 @@ size_t lloydSampleBytes(int shadowMapSize);
 // One texture a render creates, as the GL's proxy test takes it.
 struct PlannedTexture {
   std::string_view what;  // "channel texture", ...
-  unsigned proxyTarget;   // GL_PROXY_TEXTURE_2D, _2D_ARRAY or _2D_MULTISAMPLE
+  unsigned proxyTarget;   // GL_PROXY_TEXTURE_2D, _2D_ARRAY or _2D_MULTISAMPLE_ARRAY
   unsigned internalFormat;
   int levels = 1;
   int width = 0, height = 0, layers = 1, samples = 1;

@@ -1,12 +1,11 @@
-// The technique-independent GPU passes after the light pass: encode, separable blur, mip chain
-// and summed-area table, each the GPU twin of a CPU reference filter in src/core/.
+// Encode, separable blur, mip chain and summed-area table over every cascade's layers.
+#include "shadow_map_filter.h"
+
 #include <epoxy/gl.h>
 
 #include "gl_formats.h"
 #include "memory_plan.h"
-#include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
-#include "renderer_state.h"
 
 namespace penumbra::gl {
 namespace {
@@ -25,132 +24,174 @@ void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int l
   glBindImageTexture(0, texture.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, internalFormat(layout));
 }
 
-void blurAxis(Renderer::State& s, const Program& blur, const Texture& from, const Texture& to,
-              glm::ivec2 direction) {
-  glBindTextureUnit(0, from.id());
-  bindChannelImage(to, s.layout, 0);
-  glProgramUniform2i(blur.id(), glGetUniformLocation(blur.id(), "direction"), direction.x,
-                     direction.y);
-  blur.dispatch(groups(s.shadowMapSize, kGroup), groups(s.shadowMapSize, kGroup));
+void setSize(const Program& p, const char* name, int size) {
+  glProgramUniform2i(p.id(), glGetUniformLocation(p.id(), name), size, size);
 }
 
 }  // namespace
 
-void reduceMipLevels(Renderer::State& s, const Program& reduce, const Texture& texture,
-                     const ChannelLayout& layout, int levels) {
-  s.bindParameters();
-  reduce.set("layerCount", layout.layers);
+bool ChannelShape::operator==(const ChannelShape& o) const {
+  return layout.channels == o.layout.channels && layout.layers == o.layout.layers &&
+         layout.componentsPerTexel == o.layout.componentsPerTexel &&
+         layout.format == o.layout.format && size == o.size && levels == o.levels &&
+         cascades == o.cascades && scratch == o.scratch && summedArea == o.summedArea;
+}
+
+ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
+  // PCF and the hard test read raw depth: no prefilter, no mips, no scratch (memory_plan.h).
+  ChannelShape shape;
+  shape.layout = channelLayout(settings.technique, settings.params);
+  shape.size = settings.shadowMapSize;
+  shape.levels = channelLevelsFor(settings);
+  shape.cascades = cascades;
+  shape.scratch = blursIntoScratch(settings);
+  shape.summedArea = buildsSummedAreaTable(settings);
+  return shape;
+}
+
+void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
+                     const Texture& texture, const ChannelLayout& layout, int layers, int size,
+                     int levels) {
+  parameters.bind();
+  reduce.set("layerCount", layers);
   glBindTextureUnit(0, texture.id());
   for (int level = 0; level + 1 < levels; ++level) {
-    const int source = std::max(1, s.shadowMapSize >> level);
-    const int target = std::max(1, s.shadowMapSize >> (level + 1));
+    const int source = std::max(1, size >> level);
+    const int target = std::max(1, size >> (level + 1));
     reduce.set("sourceLevel", level);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source,
-                       source);
-    glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
-                       target);
+    setSize(reduce, "sourceSize", source);
+    setSize(reduce, "targetSize", target);
     bindChannelImage(texture, layout, level + 1);
     reduce.dispatch(groups(target, kGroup), groups(target, kGroup));
   }
 }
 
-namespace {
-
-void buildMipChain(Renderer::State& s) {
-  reduceMipLevels(s, s.compute("passes/mip_reduce.comp", formatDefines(s.layout)), s.channels,
-                  s.layout, s.channelLevels);
-}
-
-void buildSummedAreaTable(Renderer::State& s) {
-  const int size = s.shadowMapSize;
-  const int channels = s.layout.channels;
-  const SummedAreaSizes bytes = summedAreaSizes(channels, size);
-  s.satRows.emplace(bytes.rows);
-  s.satStats.emplace(bytes.stats);
-  s.satSums.emplace(bytes.sums);
-  s.satRows->bindStorage(1);
-  s.satStats->bindStorage(2);
-  s.satSums->bindStorage(3);
-  glBindTextureUnit(0, s.channels.id());
-  auto setCommon = [&](const Program& p) {
-    glProgramUniform2i(p.id(), glGetUniformLocation(p.id(), "size"), size, size);
-    p.set("channelCount", channels);
-  };
-  const Program& stats = s.compute("passes/sat_stats.comp", {});
-  setCommon(stats);
-  stats.dispatch(groups(size, 64), unsigned(channels));
-  const Program& centre = s.compute("passes/sat_centre.comp", {});
-  setCommon(centre);
-  centre.dispatch(unsigned(channels));
-  const Program& rows = s.compute("passes/sat_rows.comp", {});
-  setCommon(rows);
-  rows.dispatch(groups(size, 64), unsigned(channels));
-  const Program& columns = s.compute("passes/sat_columns.comp", {});
-  setCommon(columns);
-  columns.dispatch(groups(size, 64), unsigned(channels));
-}
-
-}  // namespace
-
-void allocateChannels(Renderer::State& s, const RenderSettings& settings) {
-  // PCF and the hard test read raw depth: no prefilter, no mips, no scratch (memory_plan.h).
-  s.layout = channelLayout(settings.technique, settings.params);
-  s.channelLevels = channelLevelsFor(settings);
-  s.channels = Texture(GL_TEXTURE_2D_ARRAY);
-  glTextureStorage3D(s.channels.id(), s.channelLevels, internalFormat(s.layout), s.shadowMapSize,
-                     s.shadowMapSize, s.layout.layers);
-  s.scratch = Texture();
-  if (blursIntoScratch(settings)) {
-    s.scratch = Texture(GL_TEXTURE_2D_ARRAY);
-    glTextureStorage3D(s.scratch.id(), 1, internalFormat(s.layout), s.shadowMapSize,
-                       s.shadowMapSize, s.layout.layers);
+void ShadowMapFilter::prepare(const ChannelShape& shape) {
+  if (prepared_ && shape == shape_) return;
+  shape_ = shape;
+  prepared_ = true;
+  const int layers = shape.layout.layers * shape.cascades;
+  channels_ = Texture(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
+                     shape.size, layers);
+  scratch_ = Texture();
+  if (shape.scratch) {
+    scratch_ = Texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(scratch_.id(), 1, internalFormat(shape.layout), shape.size, shape.size,
+                       layers);
   }
-  s.satRows.reset();
-  s.satStats.reset();
-  s.satSums.reset();
+  satRows_.reset();
+  satStats_.reset();
+  satSums_.reset();
+  if (shape.summedArea) {
+    const SummedAreaSizes bytes = summedAreaSizes(shape.layout.channels * shape.cascades, shape.size);
+    satRows_.emplace(bytes.rows);
+    satStats_.emplace(bytes.stats);
+    satSums_.emplace(bytes.sums);
+  }
   checkErrors("allocating the technique's channels");
 }
 
-void encodeChannels(Renderer::State& s, unsigned depthTexture, bool multisampled) {
-  std::vector<ShaderDefine> defines = formatDefines(s.layout);
-  defines.push_back({"MSAA", multisampled ? "1" : "0"});
-  const Program& encode = s.compute("passes/encode.comp", defines);
-  s.bindParameters();
-  glProgramUniform2i(encode.id(), glGetUniformLocation(encode.id(), "size"), s.shadowMapSize,
-                     s.shadowMapSize);
-  encode.set("layerCount", s.layout.layers);
-  encode.set("sampleCount", s.msaaSamples);
+void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& parameters,
+                             unsigned depthTexture, int samples) {
+  std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
+  defines.push_back({"MSAA", samples > 1 ? "1" : "0"});
+  const Program& encode = programs.compute("passes/encode.comp", defines);
+  parameters.bind();
+  setSize(encode, "size", shape_.size);
+  encode.set("layerCount", shape_.layout.layers);
+  encode.set("sampleCount", samples);
   glBindTextureUnit(0, depthTexture);
-  bindChannelImage(s.channels, s.layout, 0);
-  s.encodeTimer.begin();
-  encode.dispatch(groups(s.shadowMapSize, kGroup), groups(s.shadowMapSize, kGroup));
-  s.encodeTimer.end();
+  bindChannelImage(channels_, shape_.layout, 0);
+  encodeTimer.begin();
+  encode.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup),
+                  unsigned(shape_.cascades));
+  encodeTimer.end();
 }
 
-void prefilterChannels(Renderer::State& s) {
-  const RenderSettings& settings = s.settings;
-  const bool filtersAfterTest =
-      settings.technique == Technique::Pcf || settings.technique == Technique::Hard;
-  s.prefilterTimer.begin();
-  if (!filtersAfterTest && s.scratch.id() != 0) {
-    const Program& blur = s.compute("passes/blur.comp", formatDefines(s.layout));
-    s.bindParameters();
-    const std::vector<float> weights = blurWeights(settings.blur);
-    glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
-                        GLsizei(weights.size()), weights.data());
-    blur.set("radius", settings.blur.radius);
-    blur.set("layerCount", s.layout.layers);
-    glProgramUniform2i(blur.id(), glGetUniformLocation(blur.id(), "size"), s.shadowMapSize,
-                       s.shadowMapSize);
-    blurAxis(s, blur, s.channels, s.scratch, {1, 0});
-    blurAxis(s, blur, s.scratch, s.channels, {0, 1});
+void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& parameters,
+                                Technique technique, std::span<const BlurSpec> cascadeBlurs) {
+  const bool filtersAfterTest = technique == Technique::Pcf || technique == Technique::Hard;
+  prefilterTimer.begin();
+  if (!filtersAfterTest && shape_.scratch) {
+    const Program& blur = programs.compute("passes/blur.comp", formatDefines(shape_.layout));
+    parameters.bind();
+    blur.set("layerCount", shape_.layout.layers);
+    setSize(blur, "size", shape_.size);
+    const GLint direction = glGetUniformLocation(blur.id(), "direction");
+    for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
+      const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
+      const std::vector<float> weights = blurWeights(spec);
+      glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
+                          GLsizei(weights.size()), weights.data());
+      blur.set("radius", spec.radius);
+      blur.set("layerBase", cascade * shape_.layout.layers);
+      // Horizontal into scratch, vertical back: both through the same program.
+      glBindTextureUnit(0, channels_.id());
+      bindChannelImage(scratch_, shape_.layout, 0);
+      glProgramUniform2i(blur.id(), direction, 1, 0);
+      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+      glBindTextureUnit(0, scratch_.id());
+      bindChannelImage(channels_, shape_.layout, 0);
+      glProgramUniform2i(blur.id(), direction, 0, 1);
+      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+    }
   }
-  s.prefilterTimer.end();
-  s.mipsTimer.begin();
-  if (!filtersAfterTest && s.channelLevels > 1) buildMipChain(s);
-  if (!filtersAfterTest && settings.filter == FilterMode::SummedArea) buildSummedAreaTable(s);
-  s.mipsTimer.end();
+  prefilterTimer.end();
+  mipsTimer.begin();
+  if (!filtersAfterTest && shape_.levels > 1) {
+    reduceMipLevels(programs.compute("passes/mip_reduce.comp", formatDefines(shape_.layout)),
+                    parameters, channels_, shape_.layout, shape_.layout.layers * shape_.cascades,
+                    shape_.size, shape_.levels);
+  }
+  if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
+  mipsTimer.end();
   checkErrors("prefiltering the channels");
+}
+
+void ShadowMapFilter::buildSummedAreaTable(ProgramCache& programs) {
+  const int size = shape_.size;
+  // Each cascade's channels are consecutive table channels (lib/summed_area.glsl).
+  const int channels = shape_.layout.channels * shape_.cascades;
+  satRows_->bindStorage(1);
+  satStats_->bindStorage(2);
+  satSums_->bindStorage(3);
+  glBindTextureUnit(0, channels_.id());
+  auto setCommon = [&](const Program& p) {
+    setSize(p, "size", size);
+    p.set("channelCount", channels);
+    p.set("channelsPerCascade", shape_.layout.channels);
+    p.set("layersPerCascade", shape_.layout.layers);
+  };
+  const Program& stats = programs.compute("passes/sat_stats.comp", {});
+  setCommon(stats);
+  stats.dispatch(groups(size, 64), unsigned(channels));
+  const Program& centre = programs.compute("passes/sat_centre.comp", {});
+  setSize(centre, "size", size);
+  centre.dispatch(unsigned(channels));
+  const Program& rows = programs.compute("passes/sat_rows.comp", {});
+  setCommon(rows);
+  rows.dispatch(groups(size, 64), unsigned(channels));
+  const Program& columns = programs.compute("passes/sat_columns.comp", {});
+  setSize(columns, "size", size);
+  columns.set("channelCount", channels);
+  columns.dispatch(groups(size, 64), unsigned(channels));
+}
+
+uint64_t ShadowMapFilter::channelBytes() const {
+  return channelTextureBytes(shape_.layout, shape_.size, shape_.size, shape_.levels > 1) *
+         uint64_t(shape_.cascades);
+}
+
+uint64_t ShadowMapFilter::scratchBytes() const {
+  if (!shape_.scratch) return 0;
+  return channelTextureBytes(shape_.layout, shape_.size, shape_.size, false) *
+         uint64_t(shape_.cascades);
+}
+
+uint64_t ShadowMapFilter::summedAreaBytes() const {
+  if (!satSums_) return 0;
+  return satSums_->size() + satStats_->size() + satRows_->size();
 }
 
 }  // namespace penumbra::gl

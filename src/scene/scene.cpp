@@ -47,13 +47,12 @@ glm::vec3 upFor(glm::vec3 forward) {
 
 }  // namespace
 
-LightView fitLightView(const Scene& scene) {
-  const Bounds bounds = scene.bounds();
+LightView fitLightView(const Light& light, const Bounds& bounds) {
   const glm::vec3 centre = bounds.centre();
   const float radius = std::max(bounds.radius(), 1e-3f);
   LightView view;
-  if (scene.light.kind == LightKind::Directional) {
-    const glm::vec3 dir = glm::normalize(scene.light.direction);
+  if (light.kind == LightKind::Directional) {
+    const glm::vec3 dir = glm::normalize(light.direction);
     const glm::vec3 eye = centre - dir * (2.0f * radius);
     view.lightFromWorld = glm::lookAt(eye, centre, upFor(dir));
     view.nearDistance = radius;
@@ -62,13 +61,13 @@ LightView fitLightView(const Scene& scene) {
         glm::ortho(-radius, radius, -radius, radius, view.nearDistance, view.farDistance);
     view.perspective = false;
   } else {
-    const glm::vec3 eye = scene.light.position;
-    const glm::vec3 forward = glm::normalize(scene.light.target - eye);
+    const glm::vec3 eye = light.position;
+    const glm::vec3 forward = glm::normalize(light.target - eye);
     const float distance = glm::length(centre - eye);
-    view.lightFromWorld = glm::lookAt(eye, scene.light.target, upFor(forward));
+    view.lightFromWorld = glm::lookAt(eye, light.target, upFor(forward));
     view.nearDistance = std::max(0.05f, distance - radius);
     view.farDistance = distance + radius;
-    view.clipFromLight = glm::perspective(glm::radians(scene.light.spotAngleDegrees), 1.0f,
+    view.clipFromLight = glm::perspective(glm::radians(light.spotAngleDegrees), 1.0f,
                                           view.nearDistance, view.farDistance);
     view.perspective = true;
   }
@@ -85,10 +84,13 @@ glm::mat4 viewFromWorld(const Camera& camera) {
                      upFor(glm::normalize(camera.target - camera.position)));
 }
 
+float cameraFar(const Camera& camera, const Bounds& sceneBounds) {
+  return glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
+}
+
 glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
-  const float far =
-      glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
-  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, 0.05f, far);
+  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, kCameraNear,
+                          cameraFar(camera, sceneBounds));
 }
 
 }  // namespace penumbra

@@ -1,5 +1,7 @@
 // The OpenGL 4.5 shadow renderer: light pass -> encode -> prefilter (blur, mips or summed-area
-// table) -> camera pass, for any technique, with per-pass GPU times and exact memory.
+// table) -> camera pass, for any technique, one shadow map or cascades, with per-pass GPU times
+// and exact memory. It lives across frames: the scene is uploaded once, each pass keeps its
+// resources while the settings that shape them stay the same, and one call renders one frame.
 #pragma once
 
 #include <cstdint>
@@ -7,6 +9,7 @@
 #include <string>
 #include <string_view>
 
+#include "penumbra/cascades.h"
 #include "penumbra/filter_mode.h"
 #include "penumbra/filters.h"
 #include "penumbra/image.h"
@@ -21,6 +24,11 @@ class HeadlessContext;
 
 using penumbra::FilterMode;  // penumbra/filter_mode.h
 
+enum class Overlay {
+  None,
+  Cascades,  // tints each pixel by its cascade (blended in the blend band)
+};
+
 struct RenderSettings {
   Technique technique = Technique::Vsm;
   TechniqueParams params = defaultTechniqueParams();
@@ -34,6 +42,16 @@ struct RenderSettings {
   int height = 540;
   float normalOffsetTexels = 0.0f;  // normal-offset bias in shadow-map texels, [0, 10]
   float ambient = 0.2f;             // ambient share of the shading, [0, 1]
+  // Cascades (directional lights); count 1 is one map fitted to the scene. The prefilter's
+  // kernel is the blur above in cascade 0 and the same world size in every other cascade.
+  CascadeSettings cascades;
+  Overlay overlay = Overlay::None;
+};
+
+// Where one frame is seen from and lit from.
+struct FrameView {
+  Camera camera;
+  Light light;
 };
 
 struct PassTimes {  // milliseconds per pass
@@ -43,7 +61,10 @@ struct PassTimes {  // milliseconds per pass
   double mipsOrSat = 0.0;  // mip chain or summed-area table
   double auxiliary = 0.0;  // ESM's Z-max pyramid or LVSM's Lloyd split placement
   double camera = 0.0;
-  double total() const { return light + encode + prefilter + mipsOrSat + auxiliary + camera; }
+  double depthBounds = 0.0;  // the depth-bounds pre-pass and reduction (cascades fitted to depth)
+  double total() const {
+    return light + encode + prefilter + mipsOrSat + auxiliary + camera + depthBounds;
+  }
 };
 
 struct MemoryReport {       // exact bytes allocated
@@ -52,14 +73,16 @@ struct MemoryReport {       // exact bytes allocated
   uint64_t summedArea = 0;  // summed-area table sums and statistics
   uint64_t scratch = 0;     // the blur's intermediate texture
   uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
-  uint64_t frame = 0;       // camera-pass colour, visibility, diagnostic and depth targets
+  uint64_t frame = 0;       // camera-pass targets (and the depth-bounds pass's)
+  uint64_t geometry = 0;    // the scene's vertex and index buffers
   uint64_t total() const {
-    return lightPass + technique + summedArea + scratch + auxiliary + frame;
+    return lightPass + technique + summedArea + scratch + auxiliary + frame + geometry;
   }
 };
 
-// The bytes render() allocates for these settings (its RenderResult::memory), computed up front
-// from the same formulas; Renderer::validate refuses settings whose allocations do not fit.
+// The bytes render() allocates for these settings (its RenderResult::memory, geometry aside),
+// computed up front from the same formulas; Renderer::validate refuses settings whose
+// allocations do not fit.
 MemoryReport estimateMemory(const RenderSettings& settings);
 
 struct RenderResult {
@@ -79,6 +102,12 @@ struct RenderResult {
   Image lookup;
   Image receiverPlane;
   Image uvDerivatives;  // per pixel, row 0 at the top: dFdx(uv) and dFdy(uv), the footprint
+  // Per pixel, row 0 at the top: the cascade whose lookup (uv, receiver plane, derivatives
+  // above) decides, -1 outside every map; and the blend weight of the next cascade.
+  Image cascades;
+  CascadeFrame cascadeFrame;            // the frame's cascades (count 1: one map, identity box)
+  std::vector<BlurSpec> cascadeBlurs;   // the prefilter kernel of each cascade
+  DepthRange depthBounds;               // the depth range the cascades split
   PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
@@ -102,16 +131,26 @@ class Renderer {
   // renderers sharing a device, tests). 0 removes the cap.
   void limitMemory(uint64_t bytes);
 
+  // Uploads the scene's geometry and materials once; frames then draw it from any view.
+  void setScene(const Scene& scene);
+  // One frame of the current scene.
+  RenderResult render(const RenderSettings& settings, const FrameView& view);
+  // One frame from the scene's own camera and light; uploads the scene first unless its content
+  // is the one already uploaded.
   RenderResult render(const Scene& scene, const RenderSettings& settings);
 
   // The filtered reference (docs/reference.md): per pixel, the exact PCF of the raw depth under
-  // the effective kernel of `settings` (its blur, filter mode and anisotropy), evaluated at
-  // supersample x supersample sub-pixel positions and averaged (1: the filtered reference
-  // itself; 4 or more: the supersampled ground truth). MSAA is off for the reference.
+  // the effective kernel of `settings` (its blur, filter mode and anisotropy) in the pixel's
+  // cascade (blended like the technique in the blend band), evaluated at supersample x
+  // supersample sub-pixel positions and averaged (1: the filtered reference itself; 4 or more:
+  // the supersampled ground truth). MSAA is off for the reference.
+  RenderResult renderReference(const RenderSettings& settings, const FrameView& view,
+                               int supersample);
   RenderResult renderReference(const Scene& scene, const RenderSettings& settings, int supersample);
 
-  // The light pass's linear depth (sample 0 under MSAA) of the last render, row 0 at the bottom.
-  Image readDepthMap() const;
+  // A cascade's light-pass linear depth (sample 0 under MSAA) of the last render, row 0 at the
+  // bottom.
+  Image readDepthMap(int cascade = 0) const;
   // The technique's channels at a mip level after the last render (encoded and prefiltered),
   // one image channel per technique channel, row 0 at the bottom.
   Image readChannels(int level) const;
@@ -139,9 +178,8 @@ class Renderer {
  private:
   void checkMemory(const RenderSettings& settings) const;
 
-  void completeReferenceOnCpu(Image& visibility, Image& color, Image& diagnostic,
-                              const Image& lookup, const Image& receiverPlane,
-                              const Image& uvDerivatives) const;
+  RenderResult renderFrame(const RenderSettings& settings, const FrameView& view, bool reference);
+  void completeReferenceOnCpu(RenderResult& full) const;
 
   std::unique_ptr<State> state_;
 };

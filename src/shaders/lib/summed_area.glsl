@@ -9,6 +9,14 @@ struct SatChannelStats {
   double step;  // value of one fixed-point unit
 };
 
+// Table channel c is channel c % perCascade of cascade c / perCascade in the channel texture.
+float satChannelValue(sampler2DArray channelMap, int channel, int x, int y, int perCascade,
+                      int layersPerCascade) {
+  int cascade = channel / perCascade;
+  int k = channel % perCascade;
+  return texelFetch(channelMap, ivec3(x, y, cascade * layersPerCascade + k / 4), 0)[k % 4];
+}
+
 uint satIndex(int channel, int x, int y, ivec2 size) {
   return (uint(channel) * uint(size.y) + uint(y)) * uint(size.x) + uint(x);
 }

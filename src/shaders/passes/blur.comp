@@ -12,7 +12,8 @@ uniform float weights[2 * kMaxBlurRadius + 1];
 uniform int radius;
 uniform ivec2 direction;
 uniform ivec2 size;
-uniform int layerCount;
+uniform int layerCount;  // channel layers per cascade
+uniform int layerBase;   // the cascade's first layer: each cascade has its own kernel
 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
@@ -27,10 +28,10 @@ void main() {
           startReduction(channelReduction(technique, channel, params), params.esm.exponent);
       for (int i = -radius; i <= radius; ++i) {
         ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
-        acc = accumulateTap(acc, texelFetch(source, ivec3(q, layer), 0)[c], weights[i + radius]);
+        acc = accumulateTap(acc, texelFetch(source, ivec3(q, layerBase + layer), 0)[c], weights[i + radius]);
       }
       result[c] = acc.value;
     }
-    imageStore(target, ivec3(p, layer), result);
+    imageStore(target, ivec3(p, layerBase + layer), result);
   }
 }

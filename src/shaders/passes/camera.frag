@@ -1,5 +1,7 @@
-// Camera pass: receiver depth in light space (with normal offset), the technique's visibility,
-// and Lambert + ambient shading. Writes colour and the float visibility.
+// Camera pass: the pixel's cascade (shared/cascade_selection.h), receiver depth in light space
+// (with normal offset), the technique's visibility (blended with the next cascade in the blend
+// band), and Lambert + ambient shading. Writes colour, the float visibility and the lookup's
+// inputs for the CPU twin.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -18,8 +20,9 @@
 in vec3 worldPosition;
 in vec3 worldNormal;
 
+uniform mat4 cameraViewFromWorld;  // view depth selects the cascade
 uniform mat4 lightViewFromWorld;
-uniform mat4 lightClipFromView;
+uniform mat4 lightClipFromView;    // one map: its projection; cascades: unused (boxes instead)
 uniform int lightPerspective;
 uniform float lightNear;
 uniform float lightFar;
@@ -27,8 +30,17 @@ uniform vec3 lightDirection;  // directional: the way light travels
 uniform vec3 lightPosition;   // spot
 uniform vec3 spotAxis;        // spot: unit direction from the light to its target
 uniform float spotCosine;     // spot: cos(half cone angle)
-uniform float normalOffset;   // world units per unit light distance (spot) or absolute
-uniform float texelWorldSize;  // one shadow-map texel in world units (per unit distance, spot)
+uniform float normalOffsetTexels;
+// 0: one map, uv through lightClipFromView. 1: cascades, boxes on the light's view plane.
+uniform int cascaded;
+uniform int cascadeCount;
+uniform vec4 cascadeBoxes[kMaxCascades];   // one map: (0, 0, 1, 1) over its uv
+uniform float cascadeTexelWorldSize[kMaxCascades];  // per unit distance for spot lights
+uniform float cascadeStart;
+uniform vec4 cascadeEnds0;
+uniform vec4 cascadeEnds1;
+uniform float cascadeBlendBand;
+uniform int cascadeOverlay;  // 1: tint each pixel by its cascade
 uniform vec3 albedo;
 uniform float ambient;
 
@@ -38,6 +50,7 @@ layout(location = 2) out float diagnosticOut;  // ShadowSample's; -1 where nothi
 layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, where (see main)
 layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
 layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the lookup's footprint
+layout(location = 6) out vec2 cascadeOut;        // the deciding cascade (-1: none) and blend
 
 const float kGrazingCosine = 0.05f;
 // Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
@@ -48,25 +61,27 @@ float linearDepth(vec3 lightView) {
   return (distance - lightNear) / (lightFar - lightNear);
 }
 
-// A world position's shadow-map position in level-0 texels and its linear depth.
-vec3 shadowMapTexelAndDepth(vec3 world) {
+// A world position on the light's plane (one map: its uv; cascades: light-view x, y), its
+// linear depth, and its clip w (in front of a spot light when > 0).
+vec4 lightPlaneAndDepth(vec3 world) {
   vec4 view = lightViewFromWorld * vec4(world, 1.0f);
+  if (cascaded != 0) return vec4(view.x, view.y, linearDepth(view.xyz), 1.0f);
   vec4 clip = lightClipFromView * view;
-  return vec3((clip.xy / clip.w * 0.5f + 0.5f) * float(shadowMapSize), linearDepth(view.xyz));
+  return vec4(clip.xy / clip.w * 0.5f + 0.5f, linearDepth(view.xyz), clip.w);
 }
 
-// The receiver plane's depth gradient per shadow-map texel, from the rasterised triangle's own
-// plane (normal n) at `world`: two steps of about a texel along the plane mapped into the shadow
-// map, then solved for g in g . (texel step) = depth step. Solving the screen derivatives of uv
-// and depth instead is ill-conditioned where the camera grazes a surface (the footprint's two
-// axes nearly parallel in the shadow map): the far ground then shadowed itself.
+// The receiver plane's depth gradient per unit of the light's plane, from the rasterised
+// triangle's own plane (normal n) at `world`: two steps of about a texel along the plane mapped
+// onto the light's plane, then solved for g in g . (plane step) = depth step. Solving the screen
+// derivatives of uv and depth instead is ill-conditioned where the camera grazes a surface (the
+// footprint's two axes nearly parallel in the shadow map): the far ground then shadowed itself.
 vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
   vec3 axis = abs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
   vec3 tangent = normalize(cross(n, axis));
   vec3 bitangent = cross(n, tangent);
-  vec3 centre = shadowMapTexelAndDepth(world);
-  vec3 a = shadowMapTexelAndDepth(world + step * tangent) - centre;
-  vec3 b = shadowMapTexelAndDepth(world + step * bitangent) - centre;
+  vec3 centre = lightPlaneAndDepth(world).xyz;
+  vec3 a = lightPlaneAndDepth(world + step * tangent).xyz - centre;
+  vec3 b = lightPlaneAndDepth(world + step * bitangent).xyz - centre;
   float determinant = a.x * b.y - a.y * b.x;
   if (abs(determinant) <= 1e-6f * (dot(a.xy, a.xy) + dot(b.xy, b.xy))) {
     return vec2(0.0f);  // the surface is seen edge-on from the light: no plane over the texels
@@ -74,60 +89,102 @@ vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
   return vec2(b.y * a.z - a.y * b.z, -b.x * a.z + a.x * b.z) / determinant;
 }
 
+// One cascade's lookup of the pixel: visibility (-1: left to the CPU) and diagnostic.
+vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPerTexel,
+                       float receiver) {
+  LookupSources sources;
+  sources.cascade = cascade;
+  LookupSettings settings = lookupSettings(cascade);
+#if REFERENCE
+  // Weights sum to 1 up to fp32 rounding. A lookup whose kernel needs more texel tests than
+  // one invocation may loop over is marked -1 for the CPU twin to evaluate (Renderer).
+  if (referenceTexelTests(settings, uv, uvDx, uvDy) > kMaxReferenceTestsPerPixel) {
+    return vec2(-1.0f, 0.0f);
+  }
+  return vec2(clamp(referenceVisibility(sources, settings, uv, receiver, uvDx, uvDy,
+                                        depthPerTexel), 0.0f, 1.0f), 0.0f);
+#else
+  ShadowSample shadow = shadowLookup(sources, settings, technique, params, uv, receiver, uvDx,
+                                     uvDy, depthPerTexel);
+  return vec2(shadow.visibility, shadow.diagnostic);
+#endif
+}
+
+vec3 cascadeTint(int cascade) {
+  const vec3 palette[kMaxCascades] = vec3[](vec3(1.0f, 0.45f, 0.45f), vec3(0.45f, 1.0f, 0.45f),
+      vec3(0.5f, 0.6f, 1.0f), vec3(1.0f, 1.0f, 0.4f), vec3(1.0f, 0.45f, 1.0f),
+      vec3(0.4f, 1.0f, 1.0f), vec3(1.0f, 0.7f, 0.35f), vec3(0.75f, 0.75f, 0.75f));
+  return palette[cascade];
+}
+
 void main() {
   vec3 n = normalize(worldNormal);
   vec3 toLight = lightPerspective != 0 ? normalize(lightPosition - worldPosition) : -lightDirection;
   if (!gl_FrontFacing) n = -n;
   float cosine = max(dot(n, toLight), 0.0f);
+
+  float viewDepth = -(cameraViewFromWorld * vec4(worldPosition, 1.0f)).z;
+  CascadeChoice choice = selectCascade(viewDepth, cascadeStart, cascadeEnds0, cascadeEnds1,
+                                       cascadeCount, cascadeBlendBand);
+  int cascade = min(choice.index, cascadeCount - 1);
+  vec4 box = cascadeBoxes[cascade];
+
   float offsetScale = lightPerspective != 0 ? length(lightPosition - worldPosition) : 1.0f;
-  vec3 offsetPosition = worldPosition + n * normalOffset * offsetScale * (1.0f - cosine);
+  float texelWorld = cascadeTexelWorldSize[cascade] * offsetScale;
+  vec3 offsetPosition = worldPosition + n * normalOffsetTexels * texelWorld * (1.0f - cosine);
+  vec4 planeAndDepth = lightPlaneAndDepth(offsetPosition);
+  vec2 plane = planeAndDepth.xy;
+  float receiver = planeAndDepth.z;
 
-  vec4 lightView = lightViewFromWorld * vec4(offsetPosition, 1.0f);
-  vec4 clip = lightClipFromView * lightView;
-  vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
-  float receiver = linearDepth(lightView.xyz);
-
-  // Derivatives in uniform control flow: the lookup's footprint.
-  vec2 uvDx = dFdx(uv);
-  vec2 uvDy = dFdy(uv);
+  // Derivatives in uniform control flow: the lookup's footprint on the light's plane.
+  vec2 planeDx = dFdx(plane);
+  vec2 planeDy = dFdy(plane);
   // The triangle's geometric normal: the plane the light pass rasterised (a tessellated curved
   // surface's shading normal is not), from derivatives that stay within the triangle.
   vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
   vec3 planeNormal = dot(face, face) > 1e-20f ? normalize(face) : n;
-  vec2 depthPerTexel =
-      receiverPlaneGradient(offsetPosition, planeNormal, texelWorldSize * offsetScale);
+  vec2 depthPerUnit = receiverPlaneGradient(offsetPosition, planeNormal, texelWorld);
+
+  vec2 uv = cascadeUv(plane, box, 0);
+  vec2 uvDx = cascadeUv(planeDx, box, 1);
+  vec2 uvDy = cascadeUv(planeDy, box, 1);
+  vec2 depthPerTexel = cascadeDepthPerTexel(depthPerUnit, box, shadowMapSize);
 
   float visibility = 1.0f;
   float diagnostic = 0.0f;
-  bool inside = all(greaterThanEqual(uv, vec2(0.0f))) && all(lessThanEqual(uv, vec2(1.0f))) &&
-                receiver <= 1.0f && clip.w > 0.0f;
+  bool inside = choice.index < cascadeCount && all(greaterThanEqual(uv, vec2(0.0f))) &&
+                all(lessThanEqual(uv, vec2(1.0f))) && receiver <= 1.0f && planeAndDepth.w > 0.0f;
   if (inside) {
-    LookupSources sources;
-    sources.unused = 0;
-#if REFERENCE
-    // Weights sum to 1 up to fp32 rounding. A lookup whose kernel needs more texel tests than
-    // one invocation may loop over is marked -1 for the CPU twin to evaluate (Renderer).
-    if (referenceTexelTests(lookupSettings(), uv, uvDx, uvDy) > kMaxReferenceTestsPerPixel) {
-      visibility = -1.0f;
-    } else {
-      visibility = clamp(referenceVisibility(sources, lookupSettings(), uv, receiver, uvDx, uvDy,
-                                             depthPerTexel), 0.0f, 1.0f);
+    vec2 result = cascadeVisibility(cascade, uv, uvDx, uvDy, depthPerTexel, receiver);
+    visibility = result.x;
+    diagnostic = result.y;
+    if (choice.blend > 0.0f) {
+      // The blend band: the next cascade's lookup of the same point, mixed in (its box covers
+      // this band by construction, penumbra/cascades.h).
+      vec4 next = cascadeBoxes[cascade + 1];
+      vec2 blended = cascadeVisibility(cascade + 1, cascadeUv(plane, next, 0),
+                                       cascadeUv(planeDx, next, 1), cascadeUv(planeDy, next, 1),
+                                       cascadeDepthPerTexel(depthPerUnit, next, shadowMapSize),
+                                       receiver);
+      visibility = visibility < 0.0f || blended.x < 0.0f
+                       ? -1.0f
+                       : mix(visibility, blended.x, choice.blend);
     }
-#else
-    ShadowSample shadow = shadowLookup(sources, lookupSettings(), technique, params, uv, receiver,
-                                       uvDx, uvDy, depthPerTexel);
-    visibility = shadow.visibility;
-    diagnostic = shadow.diagnostic;
-#endif
   }
 
   float lightAmount = cosine;
   if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
-  color = vec4(shadeLambert(albedo, ambient, lightAmount, visibility), 1.0f);
+  vec3 surface = albedo;
+  if (cascadeOverlay != 0 && choice.index < cascadeCount) {
+    vec3 tint = cascadeTint(cascade);
+    if (choice.blend > 0.0f) tint = mix(tint, cascadeTint(cascade + 1), choice.blend);
+    surface *= tint;
+  }
+  color = vec4(shadeLambert(surface, ambient, lightAmount, visibility), 1.0f);
 #if REFERENCE
   if (visibility < 0.0f) {
     // Left to the CPU: the albedo and the light amount let it shade the pixel (shading.h).
-    color = vec4(albedo, 1.0f);
+    color = vec4(surface, 1.0f);
     diagnostic = lightAmount;
   }
 #endif
@@ -138,4 +195,5 @@ void main() {
   lookupOut = vec4(uv, receiver, inside ? (cosine > kGrazingCosine ? 1.0f : 0.5f) : 0.0f);
   depthPerTexelOut = depthPerTexel;
   uvDerivativesOut = vec4(uvDx, uvDy);
+  cascadeOut = vec2(inside ? float(cascade) : -1.0f, inside ? choice.blend : 0.0f);
 }

@@ -1,5 +1,5 @@
 // Encode pass: light-space depth -> the technique's channels (shared encodeChannel), written to
-// its storage format. With MSAA every sample is encoded, then the samples are reduced like
+// its storage format, for every cascade (the dispatch's z) at once. With MSAA every sample is encoded, then the samples are reduced like
 // filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
 #include "../lib/technique_block.glsl"
 #include "../shared/channel_reduction.h"
@@ -7,15 +7,15 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channelImage;
 #if MSAA
-layout(binding = 0) uniform sampler2DMS depthMap;
+layout(binding = 0) uniform sampler2DMSArray depthMap;
 uniform int sampleCount;
 #else
-layout(binding = 0) uniform sampler2D depthMap;
+layout(binding = 0) uniform sampler2DArray depthMap;
 #endif
 uniform ivec2 size;
-uniform int layerCount;
+uniform int layerCount;  // channel layers per cascade
 
-float encodeTexel(ivec2 p, int channel) {
+float encodeTexel(ivec3 p, int channel) {
 #if MSAA
   bool depthOnly = technique == kTechniqueHard || technique == kTechniquePcf;
   int reduction = depthOnly ? kReduceMin : channelReduction(technique, channel, params);
@@ -31,7 +31,7 @@ float encodeTexel(ivec2 p, int channel) {
 }
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec3 p = ivec3(gl_GlobalInvocationID);  // z: the cascade, its depth layer
   if (p.x >= size.x || p.y >= size.y) return;
   int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
@@ -40,6 +40,6 @@ void main() {
       int channel = 4 * layer + c;
       if (channel < count) v[c] = encodeTexel(p, channel);
     }
-    imageStore(channelImage, ivec3(p, layer), v);
+    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), v);
   }
 }

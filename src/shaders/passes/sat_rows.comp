@@ -12,7 +12,9 @@ layout(std430, binding = 3) writeonly buffer Sums {
 };
 
 uniform ivec2 size;
-uniform int channelCount;
+uniform int channelCount;  // every cascade's channels
+uniform int channelsPerCascade;
+uniform int layersPerCascade;
 
 void main() {
   int y = int(gl_GlobalInvocationID.x);
@@ -21,7 +23,7 @@ void main() {
   SatChannelStats s = stats[channel];
   uint64_t running = 0UL;
   for (int x = 0; x < size.x; ++x) {
-    float v = texelFetch(channelMap, ivec3(x, y, channel / 4), 0)[channel % 4];
+    float v = satChannelValue(channelMap, channel, x, y, channelsPerCascade, layersPerCascade);
     running += uint64_t(int64_t(round((double(v) - s.centre) / s.step)));
     sums[satIndex(channel, x, y, size)] = running;
   }

@@ -15,7 +15,9 @@ layout(std430, binding = 1) writeonly buffer Rows {
 };
 
 uniform ivec2 size;
-uniform int channelCount;
+uniform int channelCount;  // every cascade's channels
+uniform int channelsPerCascade;
+uniform int layersPerCascade;
 
 void main() {
   int y = int(gl_GlobalInvocationID.x);
@@ -25,7 +27,7 @@ void main() {
   float lo = 3.4e38f;
   float hi = -3.4e38f;
   for (int x = 0; x < size.x; ++x) {
-    float v = texelFetch(channelMap, ivec3(x, y, channel / 4), 0)[channel % 4];
+    float v = satChannelValue(channelMap, channel, x, y, channelsPerCascade, layersPerCascade);
     sum += double(v);
     lo = min(lo, v);
     hi = max(hi, v);

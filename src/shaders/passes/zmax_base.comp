@@ -4,15 +4,15 @@
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, r32f) uniform writeonly image2DArray zmaxImage;
 #if MSAA
-layout(binding = 0) uniform sampler2DMS depthMap;
+layout(binding = 0) uniform sampler2DMSArray depthMap;
 uniform int sampleCount;
 #else
-layout(binding = 0) uniform sampler2D depthMap;
+layout(binding = 0) uniform sampler2DArray depthMap;
 #endif
 uniform ivec2 size;
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  ivec3 p = ivec3(gl_GlobalInvocationID);  // z: the cascade
   if (p.x >= size.x || p.y >= size.y) return;
 #if MSAA
   float z = 0.0f;
@@ -20,5 +20,5 @@ void main() {
 #else
   float z = texelFetch(depthMap, p, 0).x;
 #endif
-  imageStore(zmaxImage, ivec3(p, 0), vec4(z, 0.0f, 0.0f, 0.0f));
+  imageStore(zmaxImage, p, vec4(z, 0.0f, 0.0f, 0.0f));
 }

@@ -7,7 +7,8 @@
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
-// Names the textures of one lookup. The GPU's samplers are globals, so its handle is empty.
+// Names the textures of one lookup. The GPU's samplers are globals holding every cascade, so its
+// handle is the cascade; a CPU twin holds one cascade's images.
 #ifdef __cplusplus
 struct CpuLookupTextures;
 struct LookupSources {
@@ -15,7 +16,7 @@ struct LookupSources {
 };
 #else
 struct LookupSources {
-  int unused;
+  int cascade;
 };
 #endif
 

@@ -1,0 +1,80 @@
+// Cascaded shadow maps for directional lights: split the camera's depth range, fit one
+// orthographic map per split, optionally stabilised against shimmering (docs/cascades.md).
+// The per-pixel selection and blend live in src/shaders/shared/cascade_selection.h.
+#pragma once
+
+#include <array>
+#include <glm/glm.hpp>
+#include <vector>
+
+#include "penumbra/filters.h"
+#include "penumbra/scene.h"
+
+namespace penumbra {
+
+inline constexpr int kMaxCascadeCount = 8;
+
+enum class CascadeFit {
+  Tight,       // the light-view bounding box of the split's frustum corners: sharpest, shimmers
+  Stabilized,  // bounding sphere of the split (rotation-invariant size) snapped to whole texels
+};
+
+struct CascadeSettings {
+  int count = 1;  // [1, 8]; 1: one shadow map fitted to the whole scene (any light type)
+  // Practical split scheme (Zhang et al. 2006, PSSM): each split mixes the logarithmic and the
+  // uniform split by lambda in [0, 1]; 0.5 is the PSSM paper's and Babylon.js's default.
+  float lambda = 0.5f;
+  // Given split distances (view depth, world units): count - 1 increasing values strictly inside
+  // the shadow range; empty: the practical scheme.
+  std::vector<float> distances;
+  // Split the depth range the camera actually sees (min/max of its depth buffer, reduced on the
+  // GPU; sample-distribution shadow maps, Lauritzen et al. 2011) instead of [near, max distance].
+  bool fitDepthBounds = false;
+  CascadeFit fit = CascadeFit::Stabilized;
+  // Share of each cascade's depth range, at its far end, blended with the next cascade: [0, 0.5].
+  float blendBand = 0.1f;
+  // Shadows end here (view depth, world units); 0: the camera's far plane.
+  float maxDistance = 0.0f;
+};
+
+// Throws Error naming the setting and its range.
+void validateCascadeSettings(const CascadeSettings& settings);
+
+// The view depths where cascades 0..count-1 end, by the practical scheme (PSSM eq. 7-9):
+// lambda * near * (far/near)^(i/count) + (1 - lambda) * (near + (far - near) * i/count).
+std::vector<float> practicalSplitEnds(float near, float far, int count, float lambda);
+
+// One frame's cascades: the shared light view (rotation and depth metric of fitLightView) and,
+// per cascade, its depth range end and its map's box on the light's view plane.
+struct CascadeFrame {
+  LightView light;  // lightFromWorld and the depth metric shared by every cascade
+  int count = 1;
+  float start = 0.0f;                       // view depth where cascade 0 begins
+  std::array<float, kMaxCascadeCount> ends{};  // view depth where cascade i ends
+  std::array<glm::vec4, kMaxCascadeCount> boxes{};  // (min x, min y, size x, size y), light view
+  float blendBand = 0.0f;
+
+  // The orthographic projection of cascade i over the shared depth metric.
+  glm::mat4 clipFromLight(int cascade) const;
+  // World size of one texel of cascade i's map (its larger axis).
+  float texelWorldSize(int cascade, int shadowMapSize) const;
+};
+
+// The camera's depth range [near, far] its shadows cover before any depth-bounds fit.
+struct DepthRange {
+  float near = 0.05f;
+  float far = 1.0f;
+};
+
+// Fits `settings.count` cascades for a directional light over the camera's view of [range]:
+// splits by the settings, then per split either a tight or a stabilised box.
+CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, float aspect,
+                         DepthRange range, const Light& light, const Bounds& sceneBounds,
+                         int shadowMapSize);
+
+// The prefilter kernel of a cascade whose texels are `texelWorld` wide, given the kernel of
+// cascade 0 (texels `nearestTexelWorld` wide): the same world-space width, (2r + 1) texels
+// rounded to the nearest odd count, and sigma scaled exactly.
+BlurSpec cascadeBlur(const BlurSpec& nearest, float nearestTexelWorld, float texelWorld);
+
+}  // namespace penumbra

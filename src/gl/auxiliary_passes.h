@@ -1,0 +1,47 @@
+// Technique-specific passes beside the shared pipeline: ESM's Z-max pyramid (ESM paper §3.3)
+// and LVSM's Lloyd split placement (thesis §4.1.2). Each owns its GPU resources.
+#pragma once
+
+#include <optional>
+#include <vector>
+
+#include "penumbra/gl/program.h"
+#include "penumbra/layer_placement.h"
+#include "program_cache.h"
+
+namespace penumbra::gl {
+
+class LightPass;
+
+// The largest depth under each texel of each mip level, one layer per cascade.
+class ZmaxPyramid {
+ public:
+  void build(ProgramCache& programs, const ParameterBlock& parameters, const LightPass& light);
+  void release();
+  bool built() const { return texture_.id() != 0; }
+  const Texture& texture() const { return texture_; }
+  int levels() const { return levels_; }
+  uint64_t bytes() const;
+
+ private:
+  Texture texture_;  // 2D array, one R32F layer per cascade, full mip chain
+  int levels_ = 0, size_ = 0, layers_ = 0;
+};
+
+// Places LVSM's layer splits by Lloyd relaxation over the second-occluder samples of every
+// cascade's depth map (one depth metric for all cascades, so one placement serves them all).
+class LloydPlacement {
+ public:
+  shaders::LayerSplits place(ProgramCache& programs, const LightPass& light,
+                             const shaders::LvsmParams& lvsm);
+  void release();
+  bool placed() const { return samples_.has_value(); }
+  std::vector<SplitSample> readSamples() const;
+  uint64_t bytes() const { return samples_ ? samples_->size() : 0; }
+
+ private:
+  std::optional<Buffer> samples_;
+  int size_ = 0, layers_ = 0;
+};
+
+}  // namespace penumbra::gl

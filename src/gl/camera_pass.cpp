@@ -1,0 +1,212 @@
+// Camera-pass targets, uniforms and drawing.
+#include "camera_pass.h"
+
+#include <epoxy/gl.h>
+
+#include <cmath>
+
+#include "light_pass.h"
+#include "memory_plan.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "shadow_map_filter.h"
+#include "texture_readback.h"
+
+namespace penumbra::gl {
+namespace {
+
+void setChannelSampling(const Texture& channels, int levels, const RenderSettings& settings) {
+  const FilterMode mode = settings.filter;
+  const GLuint t = channels.id();
+  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, mode == FilterMode::Point ? GL_NEAREST : GL_LINEAR);
+  GLint minFilter = GL_LINEAR;
+  if (mode == FilterMode::Point) minFilter = GL_NEAREST;
+  if (levels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
+  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
+  const float anisotropy = mode == FilterMode::Anisotropic ? float(settings.anisotropy) : 1.0f;
+  glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+}
+
+GLint location(const Program& p, const char* name) {
+  return glGetUniformLocation(p.id(), name);
+}
+
+// The lookup's settings (shared/lookup_footprint.h LookupSettings, per cascade) and its textures
+// beyond the channels: the light pass's depth (ESM's fallback, the reference) and blur weights.
+void setLookupUniforms(const Program& program, const RenderSettings& settings,
+                       const ShadowMaps& maps, bool reference) {
+  const ChannelShape& shape = maps.filter.shape();
+  program.set("filterMode", int(settings.filter));
+  program.set("shadowMapSize", shape.size);
+  // The reference follows the technique's lookup over every level the lookup may use.
+  const int levels = reference && usesMips(settings.filter) ? mipLevelCount(shape.size, shape.size)
+                                                            : shape.levels;
+  program.set("channelLevels", levels);
+  program.set("anisotropy", settings.anisotropy);
+  program.set("blurKernel", blurKernelId(settings.blur.kernel));
+  std::vector<int> radii;
+  std::vector<float> sigmas;
+  for (const BlurSpec& b : maps.cascadeBlurs) {
+    radii.push_back(b.radius);
+    sigmas.push_back(b.sigma);
+  }
+  glProgramUniform1iv(program.id(), location(program, "blurRadius"), GLsizei(radii.size()),
+                      radii.data());
+  glProgramUniform1fv(program.id(), location(program, "blurSigma"), GLsizei(sigmas.size()),
+                      sigmas.data());
+  program.set("zmaxLevels", maps.zmaxLevels);
+  program.set("layersPerCascade", shape.layout.layers);
+  program.set("channelsPerCascade", shape.layout.channels);
+  if (maps.light.multisampled()) program.set("lightSamples", maps.light.shape().samples);
+  glBindTextureUnit(2, maps.light.depthTexture());
+  maps.blurCumulative.bindStorage(4);
+}
+
+void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
+  const CascadeFrame& c = frame.cascades;
+  program.set("cascaded", frame.cascaded ? 1 : 0);
+  program.set("cascadeCount", c.count);
+  glProgramUniform4fv(program.id(), location(program, "cascadeBoxes"), c.count, &c.boxes[0][0]);
+  std::vector<float> texel;
+  for (int i = 0; i < c.count; ++i) {
+    texel.push_back(frame.cascaded ? c.texelWorldSize(i, frame.shadowMapSize)
+                                   : frame.lightView.texelWorldSize(frame.shadowMapSize));
+  }
+  glProgramUniform1fv(program.id(), location(program, "cascadeTexelWorldSize"), c.count,
+                      texel.data());
+  program.set("cascadeStart", c.start);
+  glProgramUniform4fv(program.id(), location(program, "cascadeEnds0"), 1, &c.ends[0]);
+  glProgramUniform4fv(program.id(), location(program, "cascadeEnds1"), 1, &c.ends[4]);
+  program.set("cascadeBlendBand", c.blendBand);
+}
+
+}  // namespace
+
+CameraPass::~CameraPass() {
+  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+}
+
+void CameraPass::prepare(int width, int height) {
+  if (framebuffer_ != 0 && width == width_ && height == height_) return;
+  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  width_ = width;
+  height_ = height;
+  struct Target {
+    Texture* texture;
+    GLenum format;
+  };
+  const Target targets[] = {{&color_, GL_RGBA8},         {&visibility_, GL_R32F},
+                            {&diagnostic_, GL_R32F},     {&lookup_, GL_RGBA32F},
+                            {&receiverPlane_, GL_RG32F}, {&derivatives_, GL_RGBA32F},
+                            {&cascade_, GL_RG32F},       {&depth_, GL_DEPTH_COMPONENT32F}};
+  for (const Target& t : targets) {
+    *t.texture = Texture(GL_TEXTURE_2D);
+    glTextureStorage2D(t.texture->id(), 1, t.format, width, height);
+  }
+  glCreateFramebuffers(1, &framebuffer_);
+  GLenum buffers[7];
+  for (int i = 0; i < 7; ++i) {
+    buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
+    glNamedFramebufferTexture(framebuffer_, buffers[i], targets[i].texture->id(), 0);
+  }
+  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  glNamedFramebufferDrawBuffers(framebuffer_, 7, buffers);
+  if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error("the camera-pass framebuffer is incomplete");
+  }
+  checkErrors("allocating the camera pass");
+}
+
+void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters,
+                        const GpuScene& scene, const RenderSettings& settings,
+                        const FrameGeometry& frame, const ShadowMaps& maps, bool reference) {
+  const bool summedArea =
+      !reference && settings.filter == FilterMode::SummedArea && maps.filter.hasSummedAreaTable();
+  const bool zmax = !reference && maps.zmax != nullptr;
+  const Program& program = programs.graphics("passes/camera.vert", "passes/camera.frag",
+                                             {{"SUMMED_AREA", summedArea ? "1" : "0"},
+                                              {"ZMAX", zmax ? "1" : "0"},
+                                              {"MSAA", maps.light.multisampled() ? "1" : "0"},
+                                              {"REFERENCE", reference ? "1" : "0"}});
+  setLookupUniforms(program, settings, maps, reference);
+  setCascadeUniforms(program, frame);
+  parameters.bind();
+  const float aspect = float(width_) / float(height_);
+  const glm::mat4 view = viewFromWorld(frame.camera);
+  program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.sceneBounds) * view);
+  program.set("cameraViewFromWorld", view);
+  program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
+  program.set("lightClipFromView", frame.lightView.clipFromLight);
+  program.set("lightPerspective", frame.lightView.perspective ? 1 : 0);
+  program.set("lightNear", frame.lightView.nearDistance);
+  program.set("lightFar", frame.lightView.farDistance);
+  program.set("lightDirection", glm::normalize(frame.light.direction));
+  program.set("lightPosition", frame.light.position);
+  program.set("spotAxis", glm::normalize(frame.light.target - frame.light.position));
+  program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
+  program.set("normalOffsetTexels", settings.normalOffsetTexels);
+  program.set("ambient", settings.ambient);
+  program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
+  setChannelSampling(maps.filter.channels(), maps.filter.shape().levels, settings);
+  glBindTextureUnit(0, maps.filter.channels().id());
+  if (zmax) glBindTextureUnit(1, maps.zmax->id());
+  if (summedArea) {
+    maps.filter.summedAreaStats().bindStorage(2);
+    maps.filter.summedAreaSums().bindStorage(3);
+  }
+  program.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  glViewport(0, 0, width_, height_);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  const float sky[4] = {0.62f, 0.72f, 0.86f, 1.0f};
+  const float lit[4] = {1.0f, 0.0f, 0.0f, 0.0f};
+  const float nothing[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
+  const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};
+  // Every target, every frame: they live across frames, and pixels nothing covers this frame
+  // must not keep the last frame's lookup.
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, sky);
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, lit);
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 2, nothing);
+  for (int target = 3; target <= 5; ++target) {
+    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, target, zero);
+  }
+  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 6, nothing);
+  glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  timer.begin();
+  scene.draw([&](const GpuScene::Material& m) { program.set("albedo", m.albedo); });
+  timer.end();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkErrors("camera pass");
+}
+
+Image CameraPass::readColor() const {
+  return readTexture(color_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
+}
+Image CameraPass::readVisibility() const {
+  return readTexture(visibility_.id(), 0, width_, height_, 1, 1, GL_RED, true);
+}
+Image CameraPass::readDiagnostic() const {
+  return readTexture(diagnostic_.id(), 0, width_, height_, 1, 1, GL_RED, true);
+}
+Image CameraPass::readLookup() const {
+  return readTexture(lookup_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
+}
+Image CameraPass::readReceiverPlane() const {
+  return readTexture(receiverPlane_.id(), 0, width_, height_, 1, 2, GL_RG, true);
+}
+Image CameraPass::readUvDerivatives() const {
+  return readTexture(derivatives_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
+}
+Image CameraPass::readCascades() const {
+  return readTexture(cascade_.id(), 0, width_, height_, 1, 2, GL_RG, true);
+}
+
+uint64_t CameraPass::bytes() const {
+  return frameBytes(width_, height_);
+}
+
+}  // namespace penumbra::gl

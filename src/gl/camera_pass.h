@@ -1,0 +1,73 @@
+// The camera pass: the scene from the camera, each pixel's shadow lookup in its cascade (or the
+// filtered reference), shading, and the lookup's inputs as extra targets for the CPU twin. Owns
+// its render targets and keeps them while the frame size stays the same.
+#pragma once
+
+#include <span>
+
+#include "gpu_scene.h"
+#include "gpu_timer.h"
+#include "penumbra/cascades.h"
+#include "penumbra/filters.h"
+#include "penumbra/gl/program.h"
+#include "penumbra/gl/renderer.h"
+#include "program_cache.h"
+
+namespace penumbra::gl {
+
+class ShadowMapFilter;
+class LightPass;
+
+// What the camera pass reads besides the scene: the shadow maps and how they were made.
+struct ShadowMaps {
+  const LightPass& light;
+  const ShadowMapFilter& filter;
+  const Texture* zmax = nullptr;  // ESM's Z-max pyramid, when built
+  int zmaxLevels = 0;
+  const Buffer& blurCumulative;   // per cascade, cumulativeBlurWeights (2 * kMaxBlurRadius + 1)
+  std::span<const BlurSpec> cascadeBlurs;
+};
+
+// The frame's geometry: camera, light and the cascades (one map: count 1 with an identity box).
+struct FrameGeometry {
+  Camera camera;
+  Light light;
+  Bounds sceneBounds;
+  LightView lightView;  // the light's view and depth metric (one map: also its projection)
+  bool cascaded = false;
+  CascadeFrame cascades;
+  int shadowMapSize = 0;
+};
+
+class CameraPass {
+ public:
+  CameraPass() = default;
+  ~CameraPass();
+  CameraPass(const CameraPass&) = delete;
+  CameraPass& operator=(const CameraPass&) = delete;
+
+  void prepare(int width, int height);
+  void render(ProgramCache& programs, const ParameterBlock& parameters, const GpuScene& scene,
+              const RenderSettings& settings, const FrameGeometry& frame, const ShadowMaps& maps,
+              bool reference);
+
+  // Row 0 at the top.
+  Image readColor() const;
+  Image readVisibility() const;
+  Image readDiagnostic() const;
+  Image readLookup() const;
+  Image readReceiverPlane() const;
+  Image readUvDerivatives() const;
+  Image readCascades() const;
+  uint64_t bytes() const;
+
+  GpuTimer timer;
+
+ private:
+  int width_ = 0, height_ = 0;
+  Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_,
+      depth_;
+  unsigned framebuffer_ = 0;
+};
+
+}  // namespace penumbra::gl

@@ -1,0 +1,59 @@
+// Shader variants by technique and defines; the parameter block.
+#include "program_cache.h"
+
+#include <epoxy/gl.h>
+
+#include <cstring>
+
+namespace penumbra::gl {
+namespace {
+
+std::string variantKey(std::string key, const std::vector<ShaderDefine>& defines) {
+  for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
+  return key;
+}
+
+}  // namespace
+
+std::vector<ShaderDefine> ProgramCache::withTechnique(std::vector<ShaderDefine> defines) const {
+  defines.push_back({"TECHNIQUE_ID", std::to_string(int(technique_))});
+  return defines;
+}
+
+const Program& ProgramCache::graphics(const std::string& vertex, const std::string& fragment,
+                                      const std::vector<ShaderDefine>& defines) {
+  const std::vector<ShaderDefine> all = withTechnique(defines);
+  const std::string key = variantKey(vertex + "|" + fragment, all);
+  auto found = programs_.find(key);
+  if (found == programs_.end()) {
+    found = programs_.emplace(key, Program::graphics(library_, vertex, fragment, all)).first;
+  }
+  return found->second;
+}
+
+const Program& ProgramCache::compute(const std::string& path,
+                                     const std::vector<ShaderDefine>& defines) {
+  const std::vector<ShaderDefine> all = withTechnique(defines);
+  const std::string key = variantKey(path, all);
+  auto found = programs_.find(key);
+  if (found == programs_.end()) {
+    found = programs_.emplace(key, Program::compute(library_, path, all)).first;
+  }
+  return found->second;
+}
+
+ParameterBlock::ParameterBlock() : buffer_(sizeof(TechniqueParams)) {}
+
+void ParameterBlock::upload(const TechniqueParams& params) {
+  // TechniqueParams mirrors a std140 block with explicit padding: bytewise equality is equality.
+  if (valid_ && std::memcmp(&uploaded_, &params, sizeof params) == 0) return;
+  glNamedBufferSubData(buffer_.id(), 0, sizeof params, &params);
+  uploaded_ = params;
+  valid_ = true;
+}
+
+void ParameterBlock::bind() const {
+  buffer_.bindUniform(0);
+}
+
+}  // namespace penumbra::gl

@@ -1,0 +1,429 @@
+// One frame: depth bounds -> light pass per cascade -> auxiliary passes -> encode -> prefilter
+// -> camera pass (or the filtered reference), and the read-backs of the last frame.
+#include <epoxy/gl.h>
+
+#include <limits>
+#include <map>
+#include <memory>
+
+#include "memory_plan.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/shadow_lookup.h"
+#include "renderer_state.h"
+#include "shared/cascade_selection.h"
+#include "shared/shading.h"
+#include "shared/summed_area.h"
+#include "texture_readback.h"
+
+namespace penumbra::gl {
+namespace {
+
+// One map fitted to the scene, as a single cascade whose box is its whole uv square.
+CascadeFrame singleMap(const LightView& view) {
+  CascadeFrame one;
+  one.light = view;
+  one.count = 1;
+  one.start = 0.0f;
+  one.ends.fill(std::numeric_limits<float>::max());
+  one.boxes[0] = glm::vec4(0.0f, 0.0f, 1.0f, 1.0f);
+  one.blendBand = 0.0f;
+  return one;
+}
+
+// Box-averages factor x factor blocks.
+Image downsample(const Image& image, int factor) {
+  if (factor == 1) return image;
+  Image out(image.width() / factor, image.height() / factor, image.channels());
+  const float weight = 1.0f / float(factor * factor);
+  for (int y = 0; y < out.height(); ++y) {
+    for (int x = 0; x < out.width(); ++x) {
+      for (int c = 0; c < image.channels(); ++c) {
+        float sum = 0.0f;
+        for (int j = 0; j < factor; ++j) {
+          for (int i = 0; i < factor; ++i) sum += image.at(x * factor + i, y * factor + j, c);
+        }
+        out.at(x, y, c) = sum * weight;
+      }
+    }
+  }
+  return out;
+}
+
+double failureRatePercent(const Image& diagnostic) {
+  size_t drawn = 0, failed = 0;
+  for (float v : diagnostic.data()) {
+    drawn += v >= 0.0f;
+    failed += v > 0.5f;
+  }
+  return drawn == 0 ? 0.0 : 100.0 * double(failed) / double(drawn);
+}
+
+}  // namespace
+
+void Renderer::setScene(const Scene& scene) {
+  State& s = *state_;
+  const uint64_t fingerprint = sceneFingerprint(scene);
+  if (s.scene && fingerprint == s.sceneFingerprint) {
+    s.sceneDefaults.name = scene.name;
+    s.sceneDefaults.camera = scene.camera;
+    s.sceneDefaults.light = scene.light;
+    return;
+  }
+  if (scene.meshes.empty() || scene.triangleCount() == 0) {
+    throw Error("scene '" + scene.name + "' has no triangles to draw");
+  }
+  s.scene = std::make_unique<GpuScene>(scene);
+  s.sceneFingerprint = fingerprint;
+  s.sceneBounds = scene.bounds();
+  s.sceneDefaults = Scene{};
+  s.sceneDefaults.name = scene.name;
+  s.sceneDefaults.camera = scene.camera;
+  s.sceneDefaults.light = scene.light;
+}
+
+RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings) {
+  setScene(scene);
+  return render(settings, FrameView{scene.camera, scene.light});
+}
+
+RenderResult Renderer::render(const RenderSettings& settings, const FrameView& view) {
+  validate(settings);
+  RenderResult result = renderFrame(settings, view, false);
+  if (settings.technique == Technique::Esm &&
+      result.params.esm.classifier != shaders::kEsmClassifyNone) {
+    result.failureRatePercent = failureRatePercent(result.diagnostic);
+  }
+  return result;
+}
+
+RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings& settings,
+                                       int supersample) {
+  setScene(scene);
+  return renderReference(settings, FrameView{scene.camera, scene.light}, supersample);
+}
+
+RenderResult Renderer::renderReference(const RenderSettings& settings, const FrameView& view,
+                                       int supersample) {
+  checkRange("reference supersampling", supersample, 1, 8);
+  RenderSettings big = settings;
+  big.msaaSamples = 1;
+  big.width = settings.width * supersample;
+  big.height = settings.height * supersample;
+  validate(big);
+  RenderResult full = renderFrame(big, view, true);
+  completeReferenceOnCpu(full);
+  if (supersample == 1) return full;
+  RenderResult result;
+  result.color = downsample(full.color, supersample);
+  result.visibility = downsample(full.visibility, supersample);
+  result.diagnostic = downsample(full.diagnostic, supersample);
+  result.params = full.params;
+  result.cascadeFrame = full.cascadeFrame;
+  result.cascadeBlurs = full.cascadeBlurs;
+  result.depthBounds = full.depthBounds;
+  result.wallTimes = full.wallTimes;
+  result.gpuTimes = full.gpuTimes;
+  result.memory = full.memory;
+  return result;
+}
+
+RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameView& view,
+                                   bool reference) {
+  State& s = *state_;
+  if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
+  s.settings = settings;
+  s.params = settings.params;
+  if (settings.technique == Technique::Lvsm &&
+      s.params.lvsm.placement == shaders::kLayerPlacementUniform) {
+    s.params.lvsm.splits = shaders::uniformLayerSplits(s.params.lvsm.splits.layerCount);
+  }
+  s.programs.setTechnique(settings.technique);
+  s.parameters.upload(s.params);
+
+  // Where the frame is seen from, and the cascades that cover it.
+  FrameGeometry& frame = s.frame;
+  frame.camera = view.camera;
+  frame.light = view.light;
+  frame.sceneBounds = s.sceneBounds;
+  frame.shadowMapSize = settings.shadowMapSize;
+  frame.lightView = fitLightView(view.light, s.sceneBounds);
+  const float aspect = float(settings.width) / float(settings.height);
+  DepthRange range{kCameraNear, cameraFar(view.camera, s.sceneBounds)};
+  s.depthBoundsTimer.reset();
+  if (fitsDepthBounds(settings)) {
+    s.depthBoundsTimer.begin();
+    const glm::mat4 clipFromWorld =
+        clipFromView(view.camera, aspect, s.sceneBounds) * viewFromWorld(view.camera);
+    range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
+                                  settings.height, range);
+    s.depthBoundsTimer.end();
+  }
+  frame.cascaded = settings.cascades.count > 1;
+  frame.cascades = frame.cascaded
+                       ? fitCascades(settings.cascades, view.camera, aspect, range, view.light,
+                                     s.sceneBounds, settings.shadowMapSize)
+                       : singleMap(frame.lightView);
+  const int count = frame.cascades.count;
+  s.cascadeBlurs.assign(1, settings.blur);
+  for (int c = 1; c < count; ++c) {
+    s.cascadeBlurs.push_back(
+        cascadeBlur(settings.blur, frame.cascades.texelWorldSize(0, settings.shadowMapSize),
+                    frame.cascades.texelWorldSize(c, settings.shadowMapSize)));
+  }
+  s.uploadBlurWeights(s.cascadeBlurs);
+
+  // Light pass: one layer per cascade.
+  s.light.prepare({settings.shadowMapSize, reference ? 1 : settings.msaaSamples, count});
+  std::vector<LightLayerView> layers;
+  for (int c = 0; c < count; ++c) {
+    LightLayerView layer;
+    layer.lightFromWorld = frame.lightView.lightFromWorld;
+    layer.clipFromLight =
+        frame.cascaded ? frame.cascades.clipFromLight(c) : frame.lightView.clipFromLight;
+    layer.nearDistance = frame.lightView.nearDistance;
+    layer.farDistance = frame.lightView.farDistance;
+    layer.perspective = frame.lightView.perspective;
+    layers.push_back(layer);
+  }
+  s.light.render(s.programs, *s.scene, layers);
+
+  if (!reference) {
+    s.auxiliaryTimer.begin();
+    if (buildsZmaxPyramid(settings)) {
+      s.zmax.build(s.programs, s.parameters, s.light);
+    } else {
+      s.zmax.release();
+    }
+    if (placesLayersByLloyd(settings)) {
+      s.params.lvsm.splits = s.lloyd.place(s.programs, s.light, s.params.lvsm);
+      s.parameters.upload(s.params);
+    } else {
+      s.lloyd.release();
+    }
+    s.auxiliaryTimer.end();
+    s.filter.prepare(channelShapeFor(settings, count));
+    s.filter.encode(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples);
+    s.filter.prefilter(s.programs, s.parameters, settings.technique, s.cascadeBlurs);
+  } else {
+    s.zmax.release();
+    s.lloyd.release();
+    // The reference reads raw depth only; the camera program still binds a channel texture.
+    if (s.filter.shape().size == 0) s.filter.prepare(channelShapeFor(settings, count));
+  }
+
+  s.camera.prepare(settings.width, settings.height);
+  const ShadowMaps maps{s.light,
+                        s.filter,
+                        s.zmax.built() ? &s.zmax.texture() : nullptr,
+                        s.zmax.levels(),
+                        *s.blurCumulative,
+                        s.cascadeBlurs};
+  s.camera.render(s.programs, s.parameters, *s.scene, settings, frame, maps, reference);
+
+  RenderResult result;
+  result.color = s.camera.readColor();
+  result.visibility = s.camera.readVisibility();
+  result.diagnostic = s.camera.readDiagnostic();
+  result.lookup = s.camera.readLookup();
+  result.receiverPlane = s.camera.readReceiverPlane();
+  result.uvDerivatives = s.camera.readUvDerivatives();
+  result.cascades = s.camera.readCascades();
+  result.cascadeFrame = frame.cascades;
+  result.cascadeBlurs = s.cascadeBlurs;
+  result.depthBounds = range;
+  result.params = s.params;
+  auto times = [&](auto read) {
+    PassTimes t;
+    t.light = read(s.light.timer);
+    t.camera = read(s.camera.timer);
+    t.depthBounds = read(s.depthBoundsTimer);
+    if (!reference) {
+      t.encode = read(s.filter.encodeTimer);
+      t.prefilter = read(s.filter.prefilterTimer);
+      t.mipsOrSat = read(s.filter.mipsTimer);
+      t.auxiliary = read(s.auxiliaryTimer);
+    }
+    return t;
+  };
+  result.gpuTimes = times([](const GpuTimer& t) { return t.gpuMilliseconds(); });
+  result.wallTimes = times([](const GpuTimer& t) { return t.wallMilliseconds(); });
+  result.memory = s.memory();
+  return result;
+}
+
+// Pixels whose reference kernel needs more texel tests than one shader invocation may run are
+// marked -1 by the camera pass (with the albedo in colour and the light amount in the
+// diagnostic); the CPU twin of their cascade evaluates them with the same shared code, the next
+// cascade's lookup re-expressed through the cascades' boxes in the blend band.
+void Renderer::completeReferenceOnCpu(RenderResult& r) const {
+  const State& s = *state_;
+  const RenderSettings& settings = s.settings;
+  const int size = settings.shadowMapSize;
+  std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
+  auto twin = [&](int cascade) -> const CpuShadowLookup& {
+    std::unique_ptr<CpuShadowLookup>& found = twins[cascade];
+    if (!found) {
+      found = std::make_unique<CpuShadowLookup>(
+          readDepthMap(cascade),
+          LookupConfig{Technique::Hard, settings.params, settings.filter,
+                                  s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
+                                  s.limits.halfRounding});
+    }
+    return *found;
+  };
+  const CascadeFrame& cascades = r.cascadeFrame;
+  for (int y = 0; y < r.visibility.height(); ++y) {
+    for (int x = 0; x < r.visibility.width(); ++x) {
+      if (r.visibility.at(x, y) >= 0.0f) continue;
+      const int cascade = int(r.cascades.at(x, y, 0));
+      const float blend = r.cascades.at(x, y, 1);
+      LookupPixel pixel;
+      pixel.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
+      pixel.receiverDepth = r.lookup.at(x, y, 2);
+      pixel.uvDx = {r.uvDerivatives.at(x, y, 0), r.uvDerivatives.at(x, y, 1)};
+      pixel.uvDy = {r.uvDerivatives.at(x, y, 2), r.uvDerivatives.at(x, y, 3)};
+      pixel.depthPerTexel = {r.receiverPlane.at(x, y, 0), r.receiverPlane.at(x, y, 1)};
+      float v = twin(cascade).referenceVisibility(pixel);
+      if (blend > 0.0f) {
+        // The same point on the light's plane in the next cascade (shared/cascade_selection.h).
+        const glm::vec4 box = cascades.boxes[size_t(cascade)];
+        const glm::vec4 next = cascades.boxes[size_t(cascade + 1)];
+        const glm::vec2 extent(box.z, box.w);
+        LookupPixel other = pixel;
+        other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
+        other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
+        other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
+        other.depthPerTexel = shaders::cascadeDepthPerTexel(
+            pixel.depthPerTexel * float(size) / extent, next, size);
+        v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
+      }
+      const glm::vec3 albedo(r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2));
+      const glm::vec3 shaded =
+          shaders::shadeLambert(albedo, settings.ambient, r.diagnostic.at(x, y), v);
+      for (int c = 0; c < 3; ++c) r.color.at(x, y, c) = shaded[c];
+      r.visibility.at(x, y) = v;
+      r.diagnostic.at(x, y) = 0.0f;
+    }
+  }
+}
+
+void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings) {
+  RenderSettings single = settings;
+  single.msaaSamples = 1;
+  single.shadowMapSize = depth.width();
+  single.cascades = CascadeSettings{};
+  if (depth.width() != depth.height() || depth.channels() != 1) {
+    throw Error("filterDepthMap needs a square one-channel depth map");
+  }
+  validate(single);
+  State& s = *state_;
+  s.settings = single;
+  s.params = single.params;
+  s.programs.setTechnique(single.technique);
+  s.parameters.upload(s.params);
+  s.uploadedDepth.emplace(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height(), 1);
+  glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,
+                      GL_FLOAT, depth.data().data());
+  s.filter.prepare(channelShapeFor(single, 1));
+  s.filter.encode(s.programs, s.parameters, s.uploadedDepth->id(), 1);
+  s.cascadeBlurs.assign(1, single.blur);
+  s.filter.prefilter(s.programs, s.parameters, single.technique, s.cascadeBlurs);
+}
+
+Image Renderer::readDepthMap(int cascade) const {
+  return state_->light.readDepth(cascade);
+}
+
+int Renderer::channelMipLevels() const {
+  return state_->filter.shape().levels;
+}
+
+uint64_t Renderer::measuredChannelTextureBytes() const {
+  const State& s = *state_;
+  uint64_t bytes = 0;
+  for (int level = 0; level < s.filter.shape().levels; ++level) {
+    GLint width = 0, height = 0, depth = 0, bits = 0;
+    const GLuint t = s.filter.channels().id();
+    glGetTextureLevelParameteriv(t, level, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(t, level, GL_TEXTURE_HEIGHT, &height);
+    glGetTextureLevelParameteriv(t, level, GL_TEXTURE_DEPTH, &depth);
+    for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE,
+                             GL_TEXTURE_ALPHA_SIZE}) {
+      GLint size = 0;
+      glGetTextureLevelParameteriv(t, level, component, &size);
+      bits += size;
+    }
+    bytes += uint64_t(width) * uint64_t(height) * uint64_t(depth) * uint64_t(bits / 8);
+  }
+  checkErrors("measuring the channel texture");
+  return bytes;
+}
+
+Image Renderer::readChannels(int level) const {
+  const State& s = *state_;
+  const ChannelShape& shape = s.filter.shape();
+  checkRange("mip level", level, 0, shape.levels - 1);
+  const int size = std::max(1, shape.size >> level);
+  const ChannelLayout& layout = shape.layout;
+  const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
+  // Every cascade's layers come back; cascade 0's are the first.
+  Image all = readTexture(s.filter.channels().id(), level, size, size,
+                          layout.layers * shape.cascades, layout.componentsPerTexel,
+                          formats[layout.componentsPerTexel], false);
+  Image trimmed(size, size, layout.channels);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      for (int c = 0; c < layout.channels; ++c) trimmed.at(x, y, c) = all.at(x, y, c);
+    }
+  }
+  return trimmed;
+}
+
+Image Renderer::readZmaxLevel(int level) const {
+  const State& s = *state_;
+  if (!s.zmax.built()) throw Error("no Z-max pyramid: render ESM with classifier=zmax first");
+  checkRange("Z-max level", level, 0, s.zmax.levels() - 1);
+  const int size = std::max(1, s.light.shape().size >> level);
+  Image all = readTexture(s.zmax.texture().id(), level, size, size, s.light.shape().cascades, 1,
+                          GL_RED, false);
+  Image first(size, size, 1);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) first.at(x, y) = all.at(x, y, 0);
+  }
+  return first;
+}
+
+std::vector<SplitSample> Renderer::readSplitSamples() const {
+  if (!state_->lloyd.placed()) throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
+  return state_->lloyd.readSamples();
+}
+
+double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
+  const State& s = *state_;
+  if (!s.filter.hasSummedAreaTable()) {
+    throw Error("no summed-area table: render with the 'sat' filter first");
+  }
+  const int size = s.filter.shape().size;
+  struct Stats {
+    double centre, step;
+  };
+  std::vector<Stats> stats(size_t(s.filter.shape().layout.channels * s.filter.shape().cascades));
+  s.filter.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
+  auto prefix = [&](int x, int y) -> uint64_t {
+    if (x < 0 || y < 0) return 0;
+    uint64_t v = 0;
+    const size_t index = (size_t(channel) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
+    glGetNamedBufferSubData(s.filter.summedAreaSums().id(), GLintptr(index * 8), 8, &v);
+    return v;
+  };
+  const uint64_t wrapped =
+      prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
+  const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
+  return shaders::summedAreaMean(double(int64_t(wrapped)), area, stats[size_t(channel)].step,
+                                 stats[size_t(channel)].centre);
+}
+
+}  // namespace penumbra::gl
