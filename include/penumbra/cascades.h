@@ -33,7 +33,8 @@ struct CascadeSettings {
   CascadeFit fit = CascadeFit::Stabilized;
   // Share of each cascade's depth range, at its far end, blended with the next cascade: [0, 0.5].
   float blendBand = 0.1f;
-  // Shadows end here (view depth, world units); 0: the camera's far plane.
+  // Shadows end here (view depth, world units); 0: the scene's diameter (a distance that does
+  // not move with the camera, so stabilised cascades keep their sizes).
   float maxDistance = 0.0f;
 };
 
@@ -60,14 +61,15 @@ struct CascadeFrame {
   float texelWorldSize(int cascade, int shadowMapSize) const;
 };
 
-// The camera's depth range [near, far] its shadows cover before any depth-bounds fit.
+// A camera depth range: the near plane (where cascade 0 begins) and, with fitted depth bounds,
+// the visible [nearest, farthest] view depth that narrows the shadow distance.
 struct DepthRange {
   float near = 0.05f;
   float far = 1.0f;
 };
 
-// Fits `settings.count` cascades for a directional light over the camera's view of [range]:
-// splits by the settings, then per split either a tight or a stabilised box.
+// Fits `settings.count` cascades for a directional light over the camera's view from range.near
+// to the shadow distance: splits by the settings, then per split a tight or a stabilised box.
 CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, float aspect,
                          DepthRange range, const Light& light, const Bounds& sceneBounds,
                          int shadowMapSize);

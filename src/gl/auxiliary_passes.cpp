@@ -62,6 +62,7 @@ std::vector<SplitSample> LloydPlacement::readSamples() const {
 
 void LloydPlacement::release() {
   samples_.reset();
+  rowSums_.reset();
 }
 
 shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPass& light,
@@ -72,6 +73,7 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPa
     size_ = size;
     layers_ = layers;
     samples_.emplace(lloydSampleBytes(size) * size_t(layers));
+    rowSums_.emplace(lloydRowSumBytes(size, layers));
   }
   const Program& samples =
       programs.compute("passes/split_samples.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
@@ -82,7 +84,7 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPa
   // Each step's sums are gathered on the GPU, row by row (every cascade's rows in turn); the CPU
   // adds the rows and moves the splits, as the thesis reads back its reduction.
   const int rows = (size - 1) * layers;
-  Buffer rowSums(size_t(rows) * 4 * shaders::kMaxLayers * sizeof(float));
+  const Buffer& rowSums = *rowSums_;
   const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);

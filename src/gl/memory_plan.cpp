@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "gl_formats.h"
+#include "shared/constants.h"
 #include "penumbra/channel_layout.h"
 
 namespace penumbra::gl {
@@ -76,6 +77,11 @@ SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
   return {c * n * 16, c * 16, c * n * n * 8};
 }
 
+size_t lloydRowSumBytes(int shadowMapSize, int cascades) {
+  // Per sample row: cluster and layer weights and sums, kMaxLayers floats each.
+  return size_t(shadowMapSize - 1) * size_t(cascades) * 4 * shaders::kMaxLayers * sizeof(float);
+}
+
 size_t lloydSampleBytes(int shadowMapSize) {
   const size_t inner = size_t(shadowMapSize - 1);
   return inner * inner * sizeof(SplitSample);
@@ -97,7 +103,9 @@ MemoryReport estimateMemory(const RenderSettings& s) {
     const ChannelLayout r32f{1, 1, 1, StorageFormat::Float32};
     m.auxiliary += channelTextureBytes(r32f, size, size, true) * cascades;
   }
-  if (placesLayersByLloyd(s)) m.auxiliary += lloydSampleBytes(size) * cascades;
+  if (placesLayersByLloyd(s)) {
+    m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, s.cascades.count);
+  }
   m.frame = frameBytes(s.width, s.height);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);
   return m;

@@ -140,7 +140,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     s.params.lvsm.splits = shaders::uniformLayerSplits(s.params.lvsm.splits.layerCount);
   }
   s.programs.setTechnique(settings.technique);
-  s.parameters.upload(s.params);
+  // Lloyd placement uploads the parameters once it has moved the splits.
+  if (reference || !placesLayersByLloyd(settings)) s.parameters.upload(s.params);
 
   // Where the frame is seen from, and the cascades that cover it.
   FrameGeometry& frame = s.frame;

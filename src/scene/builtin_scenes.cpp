@@ -190,18 +190,51 @@ Scene planar() {
   return s;
 }
 
+// Cascaded shadow maps' case: objects receding to the horizon along a street, seen at eye
+// height. One map over the whole scene gives the near objects a few texels each.
+Scene street() {
+  Scene s = sceneWithGround("street",
+                            "a street of posts, boxes and spheres receding to the horizon: one "
+                            "shadow map is not enough (cascades)",
+                            glm::vec3(0.0f, 0.0f, -110.0f), 120.0f);
+  Mesh posts = makeMesh(kWoodAlbedo);
+  Mesh blocks = makeMesh(kStoneAlbedo);
+  for (int row = 0; row < 45; ++row) {
+    const float z = 2.0f - 5.0f * float(row);
+    for (float side : {-1.0f, 1.0f}) {
+      addCylinder(posts, glm::vec3(side * 3.5f, 0.0f, z), 0.08f, 2.5f, 10);
+      addBox(blocks, glm::vec3(side * 7.0f, 1.5f, z - 2.5f), glm::vec3(1.2f, 1.5f, 1.5f),
+             0.2f * side);
+    }
+    if (row % 3 == 0) addSphere(blocks, glm::vec3(0.8f * float((row / 3) % 3 - 1), 0.5f, z), 0.5f, 16);
+  }
+  // A fence rail along the left: thin shadows that need resolution near the camera.
+  for (int i = 0; i < 60; ++i) {
+    addBox(posts, glm::vec3(-4.5f, 0.6f, 4.0f - 1.0f * float(i)), glm::vec3(0.03f, 0.6f, 0.03f));
+  }
+  s.meshes.push_back(std::move(posts));
+  s.meshes.push_back(std::move(blocks));
+  s.camera = {glm::vec3(0.0f, 1.7f, 8.0f), glm::vec3(0.0f, 1.2f, -30.0f), 50.0f};
+  s.light = directional(glm::vec3(0.55f, -0.6f, -0.35f));
+  s.pathOffset = glm::vec3(0.0f, 0.0f, -0.06f);  // walking down the street: cascade shimmer
+  s.troubleSpots = {{"fence shadow near the camera", {0.0f, 0.6f, 0.4f, 1.0f}},
+                    {"far shadows", {0.4f, 0.45f, 0.6f, 0.55f}}};
+  return s;
+}
+
 struct SceneEntry {
   std::string_view name;
   Scene (*make)();
 };
 
-constexpr std::array<SceneEntry, 7> kScenes{{{"backyard", backyard},
+constexpr std::array<SceneEntry, 8> kScenes{{{"backyard", backyard},
                                              {"bench", bench},
                                              {"contact", contact},
                                              {"spheres", spheres},
                                              {"overlap", overlap},
                                              {"minification", minification},
-                                             {"planar", planar}}};
+                                             {"planar", planar},
+                                             {"street", street}}};
 
 constexpr std::array<std::string_view, 7> kSceneNames{
     "backyard", "bench", "contact", "spheres", "overlap", "minification", "planar"};

@@ -136,9 +136,13 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
   frame.light = fitLightView(light, sceneBounds);
   frame.count = settings.count;
   frame.blendBand = settings.blendBand;
-  const float far = settings.maxDistance > 0.0f ? std::min(settings.maxDistance, range.far)
-                                                : range.far;
-  const float near = std::min(range.near, far * 0.999f);
+  // The shadow distance must not follow the camera, or the splits (and with them the stabilised
+  // boxes' sizes) would change every frame: the setting, else the scene's diameter. Fitted depth
+  // bounds narrow it to what the camera sees (and give up that stability, as SDSM does).
+  float far = settings.maxDistance > 0.0f ? settings.maxDistance : 2.0f * sceneBounds.radius();
+  float near = range.near;
+  if (settings.fitDepthBounds) far = std::min(far, range.far);
+  near = std::min(near, far * 0.999f);
   std::vector<float> ends;
   if (settings.distances.empty()) {
     ends = practicalSplitEnds(near, far, settings.count, settings.lambda);

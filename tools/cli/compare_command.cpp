@@ -19,11 +19,21 @@
 namespace penumbra::cli {
 namespace {
 
+RenderOptions compareRenderDefaults() {
+  RenderOptions o;
+  o.shadowSize = 1024;
+  o.blurKernel = "box";
+  o.filter = "bilinear";
+  o.width = 480;
+  o.height = 270;
+  return o;
+}
+
 struct CompareOptions {
   std::string scene = "backyard";
   TechniqueOptions technique{"all", {}};
   // Sized for a two-core machine without a GPU: the whole report in about 20 s.
-  RenderOptions render{1024, 1, 5, "box", 0.0f, "bilinear", 16, 480, 270, 0.0f};
+  RenderOptions render = compareRenderDefaults();
   int supersample = 4;
   int frames = 4;
   double tau = 0.05;

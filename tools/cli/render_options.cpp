@@ -25,6 +25,29 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--height", o.height, "frame height in pixels")->capture_default_str();
   app.add_option("--normal-offset", o.normalOffset, "normal-offset bias in shadow-map texels")
       ->capture_default_str();
+  app.add_option("--cascades", o.cascades,
+                 "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
+      ->capture_default_str();
+  app.add_option("--cascade-lambda", o.cascadeLambda,
+                 "practical split scheme: 0 uniform .. 1 logarithmic (PSSM)")
+      ->capture_default_str();
+  app.add_option("--cascade-splits", o.cascadeSplits,
+                 "given split distances (view depth, world units): cascades-1 increasing values")
+      ->delimiter(',');
+  app.add_option("--cascade-fit", o.cascadeFit,
+                 "stabilized (bounding sphere, texel snapping) or tight (shimmers)")
+      ->capture_default_str();
+  app.add_option("--cascade-depth", o.cascadeDepth,
+                 "fixed (near plane .. shadow distance) or fitted (visible depth range, GPU reduction)")
+      ->capture_default_str();
+  app.add_option("--cascade-blend", o.cascadeBlend,
+                 "share of each cascade blended into the next, 0..0.5")
+      ->capture_default_str();
+  app.add_option("--shadow-distance", o.shadowDistance,
+                 "where cascaded shadows end (world units; 0: the scene's diameter)")
+      ->capture_default_str();
+  app.add_option("--overlay", o.overlay, "none or cascades (tint pixels by cascade)")
+      ->capture_default_str();
 }
 
 gl::RenderSettings toRenderSettings(const RenderOptions& o) {
@@ -47,6 +70,24 @@ gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   s.width = o.width;
   s.height = o.height;
   s.normalOffsetTexels = o.normalOffset;
+  s.cascades.count = o.cascades;
+  s.cascades.lambda = o.cascadeLambda;
+  s.cascades.distances = o.cascadeSplits;
+  if (o.cascadeFit != "stabilized" && o.cascadeFit != "tight") {
+    throw Error("unknown cascade fit '" + o.cascadeFit + "'; valid fits: stabilized, tight");
+  }
+  s.cascades.fit = o.cascadeFit == "tight" ? CascadeFit::Tight : CascadeFit::Stabilized;
+  if (o.cascadeDepth != "fixed" && o.cascadeDepth != "fitted") {
+    throw Error("unknown cascade depth '" + o.cascadeDepth + "'; valid: fixed, fitted");
+  }
+  s.cascades.fitDepthBounds = o.cascadeDepth == "fitted";
+  s.cascades.blendBand = o.cascadeBlend;
+  s.cascades.maxDistance = o.shadowDistance;
+  if (o.overlay != "none" && o.overlay != "cascades") {
+    throw Error("unknown overlay '" + o.overlay + "'; valid overlays: none, cascades");
+  }
+  s.overlay = o.overlay == "cascades" ? gl::Overlay::Cascades : gl::Overlay::None;
+  validateCascadeSettings(s.cascades);
   return s;
 }
 

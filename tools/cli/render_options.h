@@ -1,9 +1,10 @@
 // Command-line options shared by the subcommands that render (render, compare): shadow-map size,
-// MSAA, prefilter, filter mode, anisotropy, frame size, normal offset.
+// MSAA, prefilter, filter mode, anisotropy, frame size, normal offset, cascades, overlay.
 #pragma once
 
 #include <CLI/CLI.hpp>
 #include <string>
+#include <vector>
 
 #include "penumbra/gl/renderer.h"
 
@@ -20,6 +21,14 @@ struct RenderOptions {
   int width = 960;
   int height = 540;
   float normalOffset = 0.0f;
+  int cascades = 1;
+  float cascadeLambda = 0.5f;
+  std::vector<float> cascadeSplits;
+  std::string cascadeFit = "stabilized";
+  std::string cascadeDepth = "fixed";
+  float cascadeBlend = 0.1f;
+  float shadowDistance = 0.0f;
+  std::string overlay = "none";
 };
 
 // Adds the options with `defaults` as their defaults.
