@@ -1,12 +1,15 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <memory>
 
 #include "output_folder.h"
+#include "penumbra/animation.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/render_record.h"
@@ -24,7 +27,42 @@ struct RenderCommandOptions {
   RenderOptions render;
   std::string outDir = "out/render";
   int repeat = 1;
+  int frames = 1;
+  std::vector<std::string> animate{"orbit"};
 };
+
+// Writes frames/<stem>_NNNN.png for each frame of the animation and encodes <stem>.mp4 with
+// ffmpeg (H.264, yuv420p: plays everywhere). Returns the last frame's result.
+gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
+                                const gl::RenderSettings& settings,
+                                const RenderCommandOptions& options,
+                                const std::filesystem::path& dir, const std::string& stem,
+                                std::map<std::string, std::string>& files) {
+  std::vector<Animation> animations;
+  for (const std::string& name : options.animate) animations.push_back(parseAnimation(name));
+  namespace fs = std::filesystem;
+  fs::create_directories(dir / "frames");
+  gl::RenderResult result;
+  for (int frame = 0; frame < options.frames; ++frame) {
+    const AnimatedView view = animatedView(scene, animations, frame, options.frames);
+    result = renderer.render(settings, gl::FrameView{view.camera, view.light});
+    char name[32];
+    std::snprintf(name, sizeof name, "_%04d.png", frame);
+    writeColorPng(result.color, dir / "frames" / (stem + name));
+  }
+  files["frames"] = "frames/" + stem + "_%04d.png";
+  files["video"] = stem + ".mp4";
+  const std::string command = "ffmpeg -y -loglevel error -framerate 30 -i '" +
+                              (dir / "frames" / (stem + "_%04d.png")).string() +
+                              "' -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '" +
+                              (dir / files.at("video")).string() + "'";
+  if (std::system(command.c_str()) != 0) {
+    throw Error("ffmpeg could not encode " + (dir / files.at("video")).string() +
+                " (is Debian's ffmpeg installed? scripts/install-deps installs it); the frames "
+                "are in " + (dir / "frames").string());
+  }
+  return result;
+}
 
 void runRender(const RenderCommandOptions& options) {
   if (options.scene == "list") {
@@ -36,6 +74,7 @@ void runRender(const RenderCommandOptions& options) {
   if (printTechniqueListIfAsked(options.technique)) return;
   const Scene scene = makeBuiltinScene(options.scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
+  for (const std::string& name : options.animate) parseAnimation(name);  // before any GL work
   gl::RenderSettings settings = toRenderSettings(options.render);
   settings.params = selectedParams(options.technique, techniques);
 
@@ -52,14 +91,18 @@ void runRender(const RenderCommandOptions& options) {
   const fs::path dir = createOutputFolder(options.outDir);
   for (Technique technique : techniques) {
     settings.technique = technique;
-    // Later repetitions time warm passes: shader JIT compilation lands in the first.
-    gl::RenderResult result = renderer.render(scene, settings);
-    for (int i = 1; i < options.repeat; ++i) result = renderer.render(scene, settings);
     const std::string stem = scene.name + "_" + std::string(techniqueId(technique));
     std::map<std::string, std::string> files{{"color", stem + ".png"},
                                              {"visibility_exr", stem + "_visibility.exr"},
                                              {"visibility_png", stem + "_visibility.png"},
                                              {"record", stem + ".json"}};
+    // Later repetitions time warm passes: shader JIT compilation lands in the first.
+    renderer.setScene(scene);
+    gl::RenderResult result = renderer.render(scene, settings);
+    for (int i = 1; i < options.repeat; ++i) result = renderer.render(scene, settings);
+    if (options.frames > 1) {
+      result = renderSequence(renderer, scene, settings, options, dir, stem, files);
+    }
     const bool classified =
         technique == Technique::Esm && result.params.esm.classifier != shaders::kEsmClassifyNone;
     if (classified) {
@@ -95,6 +138,14 @@ void registerRenderCommand(CLI::App& app) {
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
       ->check(CLI::Range(1, 100))
+      ->capture_default_str();
+  cmd->add_option("--frames", o->frames,
+                  "render an animated sequence of N frames into frames/ and an MP4 (ffmpeg)")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cmd->add_option("--animate", o->animate,
+                  "animations for --frames: " + animationNameList() + " (comma-separated)")
+      ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
   cmd->callback([o] { runRender(*o); });
