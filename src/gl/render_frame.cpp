@@ -62,6 +62,16 @@ double failureRatePercent(const Image& diagnostic) {
 
 }  // namespace
 
+LookupPixel lookupPixelAt(const RenderResult& r, int x, int y) {
+  LookupPixel p;
+  p.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
+  p.receiverDepth = r.lookup.at(x, y, 2);
+  p.uvDx = {r.uvDerivatives.at(x, y, 0), r.uvDerivatives.at(x, y, 1)};
+  p.uvDy = {r.uvDerivatives.at(x, y, 2), r.uvDerivatives.at(x, y, 3)};
+  p.depthPerTexel = {r.receiverPlane.at(x, y, 0), r.receiverPlane.at(x, y, 1)};
+  return p;
+}
+
 void Renderer::setScene(const Scene& scene) {
   State& s = *state_;
   const uint64_t fingerprint = sceneFingerprint(scene);
@@ -280,12 +290,7 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
       if (r.visibility.at(x, y) >= 0.0f) continue;
       const int cascade = int(r.cascades.at(x, y, 0));
       const float blend = r.cascades.at(x, y, 1);
-      LookupPixel pixel;
-      pixel.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
-      pixel.receiverDepth = r.lookup.at(x, y, 2);
-      pixel.uvDx = {r.uvDerivatives.at(x, y, 0), r.uvDerivatives.at(x, y, 1)};
-      pixel.uvDy = {r.uvDerivatives.at(x, y, 2), r.uvDerivatives.at(x, y, 3)};
-      pixel.depthPerTexel = {r.receiverPlane.at(x, y, 0), r.receiverPlane.at(x, y, 1)};
+      const LookupPixel pixel = lookupPixelAt(r, x, y);
       float v = twin(cascade).referenceVisibility(pixel);
       if (blend > 0.0f) {
         // The same point on the light's plane in the next cascade (shared/cascade_selection.h).

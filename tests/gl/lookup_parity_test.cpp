@@ -24,16 +24,6 @@ struct ParityCase {
   FilterMode filter;
 };
 
-LookupPixel pixelAt(const gl::RenderResult& r, int x, int y) {
-  LookupPixel p;
-  p.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
-  p.receiverDepth = r.lookup.at(x, y, 2);
-  p.uvDx = {r.uvDerivatives.at(x, y, 0), r.uvDerivatives.at(x, y, 1)};
-  p.uvDy = {r.uvDerivatives.at(x, y, 2), r.uvDerivatives.at(x, y, 3)};
-  p.depthPerTexel = {r.receiverPlane.at(x, y, 0), r.receiverPlane.at(x, y, 1)};
-  return p;
-}
-
 class ReferenceParity : public testing::GlTest {};
 
 // |GPU - CPU| over the pixels inside the shadow map, sorted.
@@ -156,7 +146,7 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
       for (int y = 0; y < s.height; ++y) {
         for (int x = 0; x < s.width; ++x) {
           if (r.lookup.at(x, y, 3) <= 0.0f) continue;  // outside the shadow map
-          const LookupSample cpu = twin.lookup(pixelAt(r, x, y));
+          const LookupSample cpu = twin.lookup(gl::lookupPixelAt(r, x, y));
           d.values.push_back(std::abs(cpu.visibility - r.visibility.at(x, y)));
           diagnosticMismatches += cpu.diagnostic != r.diagnostic.at(x, y);
         }
@@ -211,7 +201,7 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
           // The two sides sum the same fp32 weights, but a tap whose depth lies within fp32
           // rounding of the tie tolerance may flip: the GPU's value must then lie between the
           // CPU's for the receiver moved by kTieRounding either way (more lit in front).
-          LookupPixel px = pixelAt(r, x, y);
+          LookupPixel px = gl::lookupPixelAt(r, x, y);
           const float cpu = twin.referenceVisibility(px);
           const float gpu = r.visibility.at(x, y);
           float error = std::abs(cpu - gpu);
@@ -264,7 +254,7 @@ TEST_F(ReferenceParity, WideMinifiedKernelsAreNeverTruncatedByTheDriver) {
     for (int x = 0; x < s.width; ++x) {
       if (r.lookup.at(x, y, 3) <= 0.0f) continue;
       d.values.push_back(
-          std::abs(twin.referenceVisibility(pixelAt(r, x, y)) - r.visibility.at(x, y)));
+          std::abs(twin.referenceVisibility(gl::lookupPixelAt(r, x, y)) - r.visibility.at(x, y)));
     }
   }
   std::sort(d.values.begin(), d.values.end());

@@ -15,6 +15,7 @@
 #include "penumbra/image.h"
 #include "penumbra/layer_placement.h"
 #include "penumbra/scene.h"
+#include "penumbra/shadow_lookup.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/technique.h"
 
@@ -112,6 +113,10 @@ struct RenderResult {
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
 };
+
+// Pixel (x, y)'s lookup inputs (its cascade's uv, receiver depth, footprint and receiver
+// plane) as the CPU twin (penumbra/shadow_lookup.h) takes them.
+LookupPixel lookupPixelAt(const RenderResult& result, int x, int y);
 
 class Renderer {
  public:
