@@ -8,10 +8,18 @@
 #include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
 #include "renderer_state.h"
+#include "shared/alpha_mask.h"
 #include "shared/filter_weights.h"
 
 namespace penumbra::gl {
 namespace {
+
+// A mesh's material for light_depth.frag and camera.frag (shared/alpha_mask.h).
+void setMaterialUniforms(const Program& program, const Mesh& mesh) {
+  program.set("baseColorAlpha", mesh.opacity);
+  program.set("alphaCutoff", mesh.alphaTested() ? mesh.effectiveAlphaCutoff() : -1.0f);
+  program.set("hasBaseColorTexture", mesh.baseColorTexture >= 0 ? 1 : 0);
+}
 
 void setChannelSampling(Renderer::State& s) {
   const FilterMode mode = s.settings.filter;
@@ -128,7 +136,20 @@ void renderLightPass(Renderer::State& s, const GpuScene& gpuScene, const LightVi
   glClearNamedFramebufferfv(s.lightFramebuffer, GL_COLOR, 0, &far);
   glClearNamedFramebufferfi(s.lightFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   s.lightTimer.begin();
-  gpuScene.draw(nullptr);
+  gpuScene.draw(
+      [&](const Mesh& mesh) {
+        setMaterialUniforms(program, mesh);
+        // MSAA: a masked caster is tested per sample, so each sample's coverage follows the
+        // texture's alpha edge (per-pixel discard would drop or keep all samples at once).
+        if (s.msaaSamples > 1 && mesh.alphaTested()) {
+          glEnable(GL_SAMPLE_SHADING);
+          glMinSampleShading(1.0f);
+        } else {
+          glDisable(GL_SAMPLE_SHADING);
+        }
+      },
+      PENUMBRA_BASE_COLOR_TEXTURE_UNIT);
+  glDisable(GL_SAMPLE_SHADING);
   s.lightTimer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("light pass");
@@ -182,7 +203,20 @@ void renderCameraPass(Renderer::State& s, const Scene& scene, const GpuScene& gp
   glClearNamedFramebufferfv(s.frameFramebuffer, GL_COLOR, 2, nothing);
   glClearNamedFramebufferfi(s.frameFramebuffer, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   s.cameraTimer.begin();
-  gpuScene.draw([&](const Mesh& mesh) { program.set("albedo", mesh.albedo); });
+  gpuScene.draw(
+      [&](const Mesh& mesh) {
+        program.set("albedo", mesh.albedo);
+        setMaterialUniforms(program, mesh);
+        // glTF doubleSided: false culls back faces from the camera (shadows are cast by both).
+        if (mesh.doubleSided) {
+          glDisable(GL_CULL_FACE);
+        } else {
+          glEnable(GL_CULL_FACE);
+          glCullFace(GL_BACK);
+        }
+      },
+      PENUMBRA_BASE_COLOR_TEXTURE_UNIT);
+  glDisable(GL_CULL_FACE);
   s.cameraTimer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("camera pass");

@@ -412,6 +412,7 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
                       s.prefilterTimer.wallMilliseconds(), s.mipsTimer.wallMilliseconds(),
                       s.auxiliaryTimer.wallMilliseconds(), s.cameraTimer.wallMilliseconds()};
   result.memory = memoryReport(s);
+  result.memory.geometry = gpuScene.bytes();
   return result;
 }
 
@@ -525,6 +526,7 @@ RenderResult Renderer::renderReference(const Scene& scene, const RenderSettings&
   result.gpuTimes.light = s.lightTimer.gpuMilliseconds();
   result.gpuTimes.camera = s.cameraTimer.gpuMilliseconds();
   result.memory = memoryReport(s);
+  result.memory.geometry = gpuScene.bytes();
   return result;
 }
 

@@ -14,13 +14,14 @@
 #include "penumbra/params.h"
 #include "progress_bar.h"
 #include "render_options.h"
+#include "scene_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
 namespace {
 
 struct CompareOptions {
-  std::string scene = "backyard";
+  SceneOptions scene;
   TechniqueOptions technique{"all", {}};
   // Sized for a two-core machine without a GPU: the whole report in about 20 s.
   RenderOptions render{1024, 1, 5, "box", 0.0f, "bilinear", 16, 480, 270, 0.0f};
@@ -35,8 +36,9 @@ struct CompareOptions {
 void runCompare(const CompareOptions& o) {
   if (printTechniqueListIfAsked(o.technique)) return;
   compare::ComparisonRequest request;
-  request.scene = o.scene;
-  makeBuiltinScene(o.scene);  // unknown scenes fail before anything else
+  request.scene = o.scene.scene;
+  checkSceneSource(o.scene.scene);  // unknown scenes and missing files fail before anything else
+  request.view = sceneOverrides(o.scene);
   request.techniques = selectedTechniques(o.technique);
   request.settings.params = selectedParams(o.technique, request.techniques);
   // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
@@ -70,6 +72,7 @@ void runCompare(const CompareOptions& o) {
         request, renderer,
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
+  printSceneWarnings(result.scene);
   compare::writeReportFiles(result, folder.staging());
   interrupt.uninterrupted([&] {
     folder.commit();
@@ -88,7 +91,7 @@ void registerCompareCommand(CLI::App& app) {
       "compare",
       "Measure techniques against the exact filtered reference and a supersampled ground truth; "
       "writes an HTML report with images, error maps, metrics and plots.");
-  cmd->add_option("-s,--scene", o->scene, "built-in scene")->capture_default_str();
+  addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")

@@ -13,13 +13,14 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
 #include "render_options.h"
+#include "scene_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
 namespace {
 
 struct RenderCommandOptions {
-  std::string scene = "backyard";
+  SceneOptions scene;
   TechniqueOptions technique{"evsm4", {}};
   RenderOptions render;
   std::string outDir = "out/render";
@@ -27,14 +28,17 @@ struct RenderCommandOptions {
 };
 
 void runRender(const RenderCommandOptions& options) {
-  if (options.scene == "list") {
+  if (options.scene.scene == "list") {
     for (std::string_view name : builtinSceneNames()) {
       std::cout << name << "  " << makeBuiltinScene(name).description << "\n";
     }
     return;
   }
   if (printTechniqueListIfAsked(options.technique)) return;
-  const Scene scene = makeBuiltinScene(options.scene);
+  const SceneOverrides overrides = sceneOverrides(options.scene);
+  Scene scene = loadScene(options.scene.scene);
+  applyOverrides(scene, overrides);
+  printSceneWarnings(scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
   gl::RenderSettings settings = toRenderSettings(options.render);
   settings.params = selectedParams(options.technique, techniques);
@@ -89,8 +93,9 @@ void runRender(const RenderCommandOptions& options) {
 void registerRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render a built-in scene with shadow-map techniques through OpenGL 4.5 (EGL).");
-  cmd->add_option("-s,--scene", o->scene, "built-in scene, or 'list'")->capture_default_str();
+      "render",
+      "Render a built-in or glTF / OBJ scene with shadow-map techniques through OpenGL 4.5 (EGL).");
+  addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")

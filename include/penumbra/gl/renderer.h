@@ -53,9 +53,13 @@ struct MemoryReport {       // exact bytes allocated
   uint64_t scratch = 0;     // the blur's intermediate texture
   uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
   uint64_t frame = 0;       // camera-pass colour, visibility, diagnostic and depth targets
+  // The shadow pipeline's bytes, which the settings decide (estimateMemory's figure).
   uint64_t total() const {
     return lightPass + technique + summedArea + scratch + auxiliary + frame;
   }
+  // The scene's vertex, index and texture storage (mips included), beside total(): it depends
+  // on the scene, not on the settings.
+  uint64_t geometry = 0;
 };
 
 // The bytes render() allocates for these settings (its RenderResult::memory), computed up front

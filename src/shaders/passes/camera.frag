@@ -1,5 +1,6 @@
 // Camera pass: receiver depth in light space (with normal offset), the technique's visibility,
-// and Lambert + ambient shading. Writes colour and the float visibility.
+// and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour and the
+// float visibility. Alpha-masked surfaces are cut out by the same test as in the light pass.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -13,10 +14,12 @@
 #define MSAA 0
 #endif
 #include "../lib/lookup_access.glsl"
+#include "../shared/alpha_mask.h"
 #include "../shared/shading.h"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
+in vec2 baseColorTexcoord;
 
 uniform mat4 lightViewFromWorld;
 uniform mat4 lightClipFromView;
@@ -29,7 +32,11 @@ uniform vec3 spotAxis;        // spot: unit direction from the light to its targ
 uniform float spotCosine;     // spot: cos(half cone angle)
 uniform float normalOffset;   // world units per unit light distance (spot) or absolute
 uniform float texelWorldSize;  // one shadow-map texel in world units (per unit distance, spot)
-uniform vec3 albedo;
+uniform vec3 albedo;            // base-colour factor, linear
+uniform float baseColorAlpha;   // its alpha
+uniform float alphaCutoff;      // < 0: opaque, no test
+uniform int hasBaseColorTexture;
+layout(binding = PENUMBRA_BASE_COLOR_TEXTURE_UNIT) uniform sampler2D baseColorTexture;
 uniform float ambient;
 
 layout(location = 0) out vec4 color;
@@ -121,13 +128,17 @@ void main() {
 #endif
   }
 
+  // The sRGB texture reads linear; sampled in uniform control flow (its mip level needs
+  // derivatives), the test comes last.
+  vec4 baseColor = vec4(albedo, baseColorAlpha);
+  if (hasBaseColorTexture != 0) baseColor *= texture(baseColorTexture, baseColorTexcoord);
   float lightAmount = cosine;
   if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
-  color = vec4(shadeLambert(albedo, ambient, lightAmount, visibility), 1.0f);
+  color = vec4(shadeLambert(baseColor.rgb, ambient, lightAmount, visibility), 1.0f);
 #if REFERENCE
   if (visibility < 0.0f) {
     // Left to the CPU: the albedo and the light amount let it shade the pixel (shading.h).
-    color = vec4(albedo, 1.0f);
+    color = vec4(baseColor.rgb, 1.0f);
     diagnostic = lightAmount;
   }
 #endif
@@ -138,4 +149,5 @@ void main() {
   lookupOut = vec4(uv, receiver, inside ? (cosine > kGrazingCosine ? 1.0f : 0.5f) : 0.0f);
   depthPerTexelOut = depthPerTexel;
   uvDerivativesOut = vec4(uvDx, uvDy);
+  if (!alphaCovers(baseColor.a, alphaCutoff)) discard;
 }
