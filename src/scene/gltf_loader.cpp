@@ -14,6 +14,7 @@
 #include <map>
 
 #include "file_scene.h"
+#include "gltf_json_types.h"
 #include "image_decoding.h"
 #include "penumbra/error.h"
 
@@ -27,6 +28,7 @@ struct LoadContext {
   std::string name;
   bool readFiles = false;
   std::vector<std::string> warnings;
+  const tinygltf::Model* model = nullptr;  // the one being parsed: its buffers are read by now
 };
 
 bool fileExists(const std::string& path, void* user) {
@@ -63,9 +65,25 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
 
 // tinygltf's image callback: an image that fails to decode is left empty, and the material
 // falls back to its factor with a warning (an unreadable texture is no reason to refuse a scene).
-bool loadImage(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
   auto* context = static_cast<LoadContext*>(user);
+  // tinygltf 2.7 hands over an image's buffer view without checking it against its buffer
+  // (found by the fuzzer: stb_image then read past the buffer).
+  if (image->bufferView >= 0) {
+    const tinygltf::BufferView& view = context->model->bufferViews[size_t(image->bufferView)];
+    const size_t available = context->model->buffers[size_t(view.buffer)].data.size();
+    if (view.byteOffset > available || view.byteLength > available - view.byteOffset ||
+        size_t(std::max(size, 0)) != view.byteLength) {
+      if (err) {
+        *err += "image " + std::to_string(index) + "'s buffer view " +
+                std::to_string(image->bufferView) + " (bytes " + std::to_string(view.byteOffset) +
+                " + " + std::to_string(view.byteLength) + ") runs past the end of its buffer (" +
+                std::to_string(available) + " bytes)\n";
+      }
+      return false;
+    }
+  }
   std::string why;
   const std::string name = image->uri.empty() ? "image " + std::to_string(index) : image->uri;
   std::optional<TextureImage> decoded =
@@ -432,7 +450,11 @@ int Importer::sceneTexture(int texture, const std::string& where) {
 
 void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where, int& texcoordSet) {
   texcoordSet = -1;
-  if (material < 0) return;  // glTF's default material: white, opaque, single-sided
+  if (material < 0) {  // glTF's default material (§3.9.6): white, opaque, single-sided
+    mesh.albedo = glm::vec3(1.0f);
+    mesh.doubleSided = false;
+    return;
+  }
   if (size_t(material) >= model_.materials.size()) {
     fail(where + " names material " + std::to_string(material) + ", but the file has " +
          std::to_string(model_.materials.size()));
@@ -597,6 +619,12 @@ void Importer::noteLight(int node, const glm::mat4& world) {
 
 Scene Importer::run(std::vector<std::string> warnings) {
   scene_.warnings = std::move(warnings);
+  for (const std::string& extension : model_.extensionsRequired) {
+    if (extension != "KHR_lights_punctual") {
+      fail("the file requires extension " + extension +
+           ", which penumbra does not read (it reads KHR_lights_punctual)");
+    }
+  }
   parentCount_.assign(model_.nodes.size(), 0);
   if (model_.scenes.empty()) fail("the file has no scene");
   int sceneIndex = model_.defaultScene;
@@ -673,8 +701,10 @@ Scene loadGltf(std::span<const uint8_t> bytes, const std::string& name,
   parser.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &context});
   parser.SetImageLoader(loadImage, &context);
   tinygltf::Model model;
+  context.model = &model;
   std::string err, warn;
   if (bytes.size() > size_t(UINT32_MAX)) throw Error(name + ": larger than 4 GiB");
+  checkGltfJsonTypes(bytes, name);
   const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
   const bool ok = binary
                       ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),

@@ -233,7 +233,10 @@ Scene loadObjFile(const fs::path& path) {
   if (in.bad()) throw Error("cannot read scene file " + path.string());
   const fs::path folder = path.parent_path();
   const ObjFileReader read = [&](const std::string& name) -> std::optional<std::vector<uint8_t>> {
-    std::ifstream file(folder / name, std::ios::binary);
+    // Files written on Windows name textures with backslashes (".\\bark.jpg").
+    std::string portable = name;
+    std::replace(portable.begin(), portable.end(), '\\', '/');
+    std::ifstream file(folder / portable, std::ios::binary);
     if (!file) return std::nullopt;
     return std::vector<uint8_t>((std::istreambuf_iterator<char>(file)),
                                 std::istreambuf_iterator<char>());
