@@ -1,6 +1,7 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -36,7 +37,13 @@ void runRender(const RenderCommandOptions& options) {
   }
   if (printTechniqueListIfAsked(options.technique)) return;
   const SceneOverrides overrides = sceneOverrides(options.scene);
+  const auto loadStart = std::chrono::steady_clock::now();
   Scene scene = loadScene(options.scene.scene);
+  const double loadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
+          .count();
+  std::cout << "loaded " << scene.name << ": " << scene.triangleCount() << " triangles in "
+            << loadMs << " ms\n";
   applyOverrides(scene, overrides);
   printSceneWarnings(scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
