@@ -42,8 +42,7 @@ void runRender(const RenderCommandOptions& options) {
   const double loadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
           .count();
-  std::cout << "loaded " << scene.name << ": " << scene.triangleCount() << " triangles in "
-            << loadMs << " ms\n";
+
   applyOverrides(scene, overrides);
   printSceneWarnings(scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
@@ -58,6 +57,8 @@ void runRender(const RenderCommandOptions& options) {
     settings.technique = technique;
     renderer.validate(settings);
   }
+  std::cout << "loaded " << scene.name << ": " << scene.triangleCount() << " triangles in "
+            << loadMs << " ms\n";
   // Only once every technique is known to fit, so that a refused request leaves no folder.
   namespace fs = std::filesystem;
   const fs::path dir = createOutputFolder(options.outDir);
