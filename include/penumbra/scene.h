@@ -1,10 +1,12 @@
-// Built-in procedural scenes that recreate the papers' test cases, each with a default camera
-// and light; geometry is generated in code, with normals, in world units (metres, +y up).
+// Scenes: the built-in procedural ones that recreate the papers' test cases and scenes loaded
+// from glTF 2.0 and OBJ files, each with a camera and a light; geometry with normals, texture
+// coordinates and materials, in world units (metres, +y up).
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -14,13 +16,38 @@ namespace penumbra {
 
 struct Vertex {
   glm::vec3 position;
-  glm::vec3 normal;
+  glm::vec3 normal;  // unit length
+  // glTF's convention: (0,0) is the texture image's first (top) row's first texel.
+  glm::vec2 texcoord{0.0f};
 };
+
+// An RGBA8 image, row 0 at the top: colour in sRGB, alpha linear (glTF 2.0 §3.9.2).
+struct TextureImage {
+  std::string name;  // where it came from, for messages
+  int width = 0;
+  int height = 0;
+  std::vector<uint8_t> rgba;  // width * height * 4
+};
+
+// How a material's alpha (texture alpha x factor alpha) decides coverage. The light and camera
+// passes test Mask against alphaCutoff; Blend is treated as Mask at 0.5 (the loaders warn):
+// shadow maps hold one depth per texel, there is nothing to blend into.
+enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Mesh {
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;  // triangles, counter-clockwise seen from outside
-  glm::vec3 albedo{0.8f};
+  glm::vec3 albedo{0.8f};         // base-colour factor, linear RGB
+  float opacity = 1.0f;           // base-colour factor's alpha
+  int baseColorTexture = -1;      // index into Scene::textures (multiplies albedo and opacity)
+  AlphaMode alphaMode = AlphaMode::Opaque;
+  float alphaCutoff = 0.5f;  // Mask: covered where alpha >= alphaCutoff
+  // Single-sided meshes are culled from behind in the camera pass (glTF's doubleSided: false);
+  // every mesh casts shadows from both sides.
+  bool doubleSided = true;
+
+  bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
+  float effectiveAlphaCutoff() const { return alphaMode == AlphaMode::Blend ? 0.5f : alphaCutoff; }
 };
 
 struct Bounds {
@@ -56,12 +83,16 @@ struct Scene {
   std::string name;
   std::string description;
   std::vector<Mesh> meshes;
+  std::vector<TextureImage> textures;  // referenced by Mesh::baseColorTexture
   Camera camera;
   Light light;
   // The camera path moves the camera by this in total: about a pixel per frame at the default
   // view, so pixels keep their surfaces and frame-to-frame change is shadow instability.
   glm::vec3 pathOffset{0.03f, 0.0f, 0.0f};
-  std::vector<TroubleSpot> troubleSpots;
+  std::vector<TroubleSpot> troubleSpots;  // none known for scenes from files
+  // What a loader accepted with a caveat (a texture that failed to load, BLEND as a mask, ...),
+  // for the front ends to print.
+  std::vector<std::string> warnings;
 
   // The camera path for temporal measurements: `frames` cameras from the default one to the
   // default one moved by pathOffset, the target moving alike (frame 0 is the default camera).
@@ -101,5 +132,34 @@ std::span<const std::string_view> builtinSceneNames();
 std::string builtinSceneNameList();
 // Throws Error naming the valid scenes when the name is unknown.
 Scene makeBuiltinScene(std::string_view name);
+
+// A built-in scene's name, or a path to a .gltf, .glb or .obj file (scene_loaders.cpp). A file
+// scene is named after its file and keeps the file's first camera and light
+// (KHR_lights_punctual) where it has them, else a camera framing its bounds and a directional
+// light from above. Throws Error naming the file and the fault for malformed files, and the
+// valid names and extensions for anything else.
+Scene loadScene(std::string_view nameOrPath);
+// Checks, without loading, that loadScene can try `nameOrPath`: a built-in name or an existing
+// file with a supported extension. Throws Error as loadScene does.
+void checkSceneSource(std::string_view nameOrPath);
+
+// Camera and light set from outside the scene (command line, settings file), for built-in and
+// file scenes alike; unset fields keep the scene's own.
+struct SceneOverrides {
+  std::optional<glm::vec3> lightDirection;  // makes the light directional: the way it travels
+  std::optional<glm::vec3> lightPosition;   // makes the light a spot light at this position
+  std::optional<glm::vec3> lightTarget;     // spot: where it points (default: the scene centre)
+  std::optional<float> spotAngleDegrees;    // spot: full cone angle, (0, 170]
+  std::optional<glm::vec3> cameraPosition;
+  std::optional<glm::vec3> cameraTarget;
+  std::optional<float> cameraFovDegrees;  // vertical, (0, 170]
+
+  bool empty() const;
+};
+
+// Applies the overrides; throws Error for non-finite values, a zero light direction, both a
+// light direction and a light position, a camera or spot light looking at its own position,
+// or angles out of range.
+void applyOverrides(Scene& scene, const SceneOverrides& overrides);
 
 }  // namespace penumbra

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "penumbra/compare/error_regions.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
@@ -70,7 +71,7 @@ std::vector<DepthSample> referenceRegion(const Image& depth, const Image& lookup
 }  // namespace
 
 void validateRequest(const ComparisonRequest& request, const gl::Renderer& renderer) {
-  makeBuiltinScene(request.scene);  // throws for an unknown scene
+  checkSceneSource(request.scene);  // throws for an unknown scene or a missing file
   if (request.techniques.empty()) throw Error("no technique selected for the comparison");
   if (request.supersample < 1 || request.supersample > 8) {
     throw Error("ground-truth supersampling " + std::to_string(request.supersample) +
@@ -111,7 +112,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
                                const Progress& progress) {
   validateRequest(request, renderer);
   ComparisonResult result;
-  result.scene = makeBuiltinScene(request.scene);
+  result.scene = loadScene(request.scene);
+  applyOverrides(result.scene, request.view);
   result.request = request;
   result.device = renderer.deviceDescription();
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
@@ -191,6 +193,14 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   }
   for (size_t k = 0; k < request.techniques.size(); ++k) {
     result.techniques[k].flicker = temporalFlicker(visibilities[k], references, masks[k]);
+  }
+  if (result.scene.troubleSpots.empty()) {
+    std::vector<Image> errors;
+    for (const TechniqueResult& t : result.techniques) {
+      const bool pcfIsReference = t.technique == Technique::Pcf && request.matchPcfKernel;
+      if (!pcfIsReference) errors.push_back(t.error);
+    }
+    result.scene.troubleSpots = largestErrorRegions(errors, 3);
   }
   if (progress) progress(total, total, "measured");
   return result;

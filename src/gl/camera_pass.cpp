@@ -177,7 +177,11 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 6, nothing);
   glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   timer.begin();
-  scene.draw([&](const GpuScene::Material& m) { program.set("albedo", m.albedo); });
+  scene.draw([&](const GpuScene::Material& material) {
+    setMaterialUniforms(program, material);
+    setCameraFaceCulling(material);
+  });
+  glDisable(GL_CULL_FACE);
   timer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("camera pass");

@@ -44,7 +44,11 @@ DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scen
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
-  scene.draw(nullptr);
+  scene.draw([&](const GpuScene::Material& material) {  // what the camera pass will see
+    setMaterialUniforms(draw, material);
+    setCameraFaceCulling(material);
+  });
+  glDisable(GL_CULL_FACE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
   // Positive floats order like their bit patterns: atomic min/max on the bits.

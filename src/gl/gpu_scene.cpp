@@ -3,35 +3,104 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <bit>
+
+#include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "shared/alpha_mask.h"
 
 namespace penumbra::gl {
+namespace {
+
+// sRGB8_ALPHA8 with a full mip chain: alpha-tested cards seen from far read the averaged alpha
+// of their footprint instead of aliasing.
+unsigned uploadTexture(const TextureImage& image, uint64_t& bytes) {
+  const int levels = std::bit_width(unsigned(std::max(image.width, image.height)));
+  unsigned texture = 0;
+  glCreateTextures(GL_TEXTURE_2D, 1, &texture);
+  glTextureStorage2D(texture, levels, GL_SRGB8_ALPHA8, image.width, image.height);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTextureSubImage2D(texture, 0, 0, 0, image.width, image.height, GL_RGBA, GL_UNSIGNED_BYTE,
+                      image.rgba.data());
+  glGenerateTextureMipmap(texture);
+  glTextureParameteri(texture, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_S, GL_REPEAT);
+  glTextureParameteri(texture, GL_TEXTURE_WRAP_T, GL_REPEAT);
+  for (int level = 0; level < levels; ++level) {
+    bytes += uint64_t(std::max(image.width >> level, 1)) *
+             uint64_t(std::max(image.height >> level, 1)) * 4;
+  }
+  return texture;
+}
+
+}  // namespace
+
+void setMaterialUniforms(const Program& program, const GpuScene::Material& material) {
+  program.set("albedo", material.albedo);
+  program.set("baseColorAlpha", material.opacity);
+  program.set("alphaCutoff", material.alphaCutoff);
+  program.set("hasBaseColorTexture", material.texture != 0 ? 1 : 0);
+}
+
+void setCameraFaceCulling(const GpuScene::Material& material) {
+  if (material.doubleSided) {
+    glDisable(GL_CULL_FACE);
+  } else {
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+  }
+}
 
 GpuScene::GpuScene(const Scene& scene) {
+  size_t vertexCount = 0, indexCount = 0;
+  for (const Mesh& m : scene.meshes) {
+    vertexCount += m.vertices.size();
+    indexCount += m.indices.size();
+  }
+  if (vertexCount > size_t(INT32_MAX)) {
+    throw Error("scene '" + scene.name + "' has " + std::to_string(vertexCount) +
+                " vertices; the renderer draws at most 2^31 - 1");
+  }
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;
+  vertices.reserve(vertexCount);
+  indices.reserve(indexCount);
   for (const Mesh& m : scene.meshes) {
     ranges_.push_back({indices.size(), m.indices.size(), int(vertices.size())});
-    materials_.push_back({m.albedo});
     vertices.insert(vertices.end(), m.vertices.begin(), m.vertices.end());
     indices.insert(indices.end(), m.indices.begin(), m.indices.end());
   }
+  const auto vertexBytes = GLsizeiptr(vertices.size() * sizeof(Vertex));
+  const auto indexBytes = GLsizeiptr(indices.size() * sizeof(uint32_t));
   glCreateBuffers(1, &vertexBuffer_);
-  glNamedBufferStorage(vertexBuffer_, GLsizeiptr(vertices.size() * sizeof(Vertex)), vertices.data(),
-                       0);
+  glNamedBufferStorage(vertexBuffer_, vertexBytes, vertices.data(), 0);
   glCreateBuffers(1, &indexBuffer_);
-  glNamedBufferStorage(indexBuffer_, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(),
-                       0);
-  bytes_ = vertices.size() * sizeof(Vertex) + indices.size() * sizeof(uint32_t);
+  glNamedBufferStorage(indexBuffer_, indexBytes, indices.data(), 0);
+  bytes_ = uint64_t(vertexBytes) + uint64_t(indexBytes);
   glCreateVertexArrays(1, &vertexArray_);
   glVertexArrayVertexBuffer(vertexArray_, 0, vertexBuffer_, 0, sizeof(Vertex));
   glVertexArrayElementBuffer(vertexArray_, indexBuffer_);
-  glEnableVertexArrayAttrib(vertexArray_, 0);
-  glVertexArrayAttribFormat(vertexArray_, 0, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, position));
-  glVertexArrayAttribBinding(vertexArray_, 0, 0);
-  glEnableVertexArrayAttrib(vertexArray_, 1);
-  glVertexArrayAttribFormat(vertexArray_, 1, 3, GL_FLOAT, GL_FALSE, offsetof(Vertex, normal));
-  glVertexArrayAttribBinding(vertexArray_, 1, 0);
+  const struct {
+    int components;
+    size_t offset;
+  } attributes[] = {{3, offsetof(Vertex, position)},
+                    {3, offsetof(Vertex, normal)},
+                    {2, offsetof(Vertex, texcoord)}};
+  for (GLuint a = 0; a < 3; ++a) {
+    glEnableVertexArrayAttrib(vertexArray_, a);
+    glVertexArrayAttribFormat(vertexArray_, a, attributes[a].components, GL_FLOAT, GL_FALSE,
+                              GLuint(attributes[a].offset));
+    glVertexArrayAttribBinding(vertexArray_, a, 0);
+  }
+  for (const TextureImage& image : scene.textures)
+    textures_.push_back(uploadTexture(image, bytes_));
+  for (const Mesh& m : scene.meshes) {
+    const bool textured = m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < textures_.size();
+    materials_.push_back({m.albedo, m.opacity, m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f,
+                          textured ? textures_[size_t(m.baseColorTexture)] : 0u, m.doubleSided});
+  }
   checkErrors("uploading the scene");
 }
 
@@ -39,12 +108,15 @@ GpuScene::~GpuScene() {
   glDeleteVertexArrays(1, &vertexArray_);
   glDeleteBuffers(1, &vertexBuffer_);
   glDeleteBuffers(1, &indexBuffer_);
+  if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
 }
 
 void GpuScene::draw(const std::function<void(const Material&)>& beforeMesh) const {
   glBindVertexArray(vertexArray_);
   for (size_t i = 0; i < ranges_.size(); ++i) {
-    if (beforeMesh) beforeMesh(materials_[i]);
+    const Material& material = materials_[i];
+    if (beforeMesh) beforeMesh(material);
+    if (material.texture != 0) glBindTextureUnit(PENUMBRA_BASE_COLOR_TEXTURE_UNIT, material.texture);
     glDrawElementsBaseVertex(
         GL_TRIANGLES, GLsizei(ranges_[i].indexCount), GL_UNSIGNED_INT,
         reinterpret_cast<const void*>(ranges_[i].firstIndex * sizeof(uint32_t)),
@@ -70,7 +142,16 @@ uint64_t sceneFingerprint(const Scene& scene) {
     hash = hashBytes(hash, counts, sizeof counts);
     hash = hashBytes(hash, m.vertices.data(), m.vertices.size() * sizeof(Vertex));
     hash = hashBytes(hash, m.indices.data(), m.indices.size() * sizeof(uint32_t));
-    hash = hashBytes(hash, &m.albedo, sizeof m.albedo);
+    const float material[5] = {m.albedo.r, m.albedo.g, m.albedo.b, m.opacity,
+                               m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f};
+    const int flags[2] = {m.baseColorTexture, m.doubleSided ? 1 : 0};
+    hash = hashBytes(hash, material, sizeof material);
+    hash = hashBytes(hash, flags, sizeof flags);
+  }
+  for (const TextureImage& t : scene.textures) {
+    const int size[2] = {t.width, t.height};
+    hash = hashBytes(hash, size, sizeof size);
+    hash = hashBytes(hash, t.rgba.data(), t.rgba.size());
   }
   return hash;
 }

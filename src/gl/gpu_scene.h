@@ -1,19 +1,26 @@
-// A scene's meshes in GL buffers, uploaded once: one vertex array, drawn mesh by mesh with each
-// mesh's material.
+// A scene in GL objects, uploaded once: one vertex and one index buffer for all meshes, each
+// base-colour texture as sRGB with mipmaps, and a copy of each mesh's material; drawn mesh by
+// mesh.
 #pragma once
 
 #include <cstdint>
 #include <functional>
 #include <vector>
 
+#include "penumbra/gl/program.h"
 #include "penumbra/scene.h"
 
 namespace penumbra::gl {
 
 class GpuScene {
  public:
+  // What the passes need of a mesh's material (a copy: the Scene need not outlive the upload).
   struct Material {
-    glm::vec3 albedo{0.8f};
+    glm::vec3 albedo{0.8f};     // base-colour factor, linear
+    float opacity = 1.0f;       // its alpha
+    float alphaCutoff = -1.0f;  // < 0: opaque, no test (shared/alpha_mask.h)
+    unsigned texture = 0;       // the base-colour texture, 0 for none
+    bool doubleSided = true;    // false: the camera pass culls back faces
   };
 
   explicit GpuScene(const Scene& scene);
@@ -21,8 +28,11 @@ class GpuScene {
   GpuScene(const GpuScene&) = delete;
   GpuScene& operator=(const GpuScene&) = delete;
 
-  // Draws every mesh; `beforeMesh` runs first for each (to set its material).
+  // Draws every mesh; `beforeMesh` runs first for each (to set its material, setMaterialUniforms)
+  // with the mesh's base-colour texture, if any, bound to PENUMBRA_BASE_COLOR_TEXTURE_UNIT.
   void draw(const std::function<void(const Material&)>& beforeMesh) const;
+
+  // Bytes of the vertex, index and texture storage (textures with their full mip chains).
   uint64_t bytes() const { return bytes_; }
 
  private:
@@ -34,10 +44,17 @@ class GpuScene {
   unsigned vertexArray_ = 0;
   unsigned vertexBuffer_ = 0;
   unsigned indexBuffer_ = 0;
+  std::vector<unsigned> textures_;
   std::vector<Range> ranges_;
   std::vector<Material> materials_;
   uint64_t bytes_ = 0;
 };
+
+// The material's uniforms of lib/material.glsl (albedo, alpha and texture switch).
+void setMaterialUniforms(const Program& program, const GpuScene::Material& material);
+
+// Seen from the camera, glTF's doubleSided: false culls back faces (shadows are cast by both).
+void setCameraFaceCulling(const GpuScene::Material& material);
 
 // A 64-bit FNV-1a hash of what GpuScene uploads (geometry and materials): equal scenes hash
 // equal, so a renderer re-uploads only a scene whose content changed.

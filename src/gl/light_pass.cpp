@@ -76,8 +76,19 @@ void LightPass::render(ProgramCache& programs, const GpuScene& scene,
     program.set("lightNear", view.nearDistance);
     program.set("lightFar", view.farDistance);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffers_[size_t(layer)]);
-    scene.draw(nullptr);
+    scene.draw([&](const GpuScene::Material& material) {
+      setMaterialUniforms(program, material);
+      // MSAA: a masked caster is tested per sample, so each sample's coverage follows the
+      // texture's alpha edge (a per-pixel discard would drop or keep all samples at once).
+      if (multisampled() && material.alphaCutoff >= 0.0f) {
+        glEnable(GL_SAMPLE_SHADING);
+        glMinSampleShading(1.0f);
+      } else {
+        glDisable(GL_SAMPLE_SHADING);
+      }
+    });
   }
+  glDisable(GL_SAMPLE_SHADING);
   timer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("light pass");

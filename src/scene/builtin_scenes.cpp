@@ -2,6 +2,7 @@
 #include <array>
 #include <cmath>
 
+#include "foliage_scene.h"
 #include "mesh_builder.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -227,17 +228,19 @@ struct SceneEntry {
   Scene (*make)();
 };
 
-constexpr std::array<SceneEntry, 8> kScenes{{{"backyard", backyard},
+constexpr std::array<SceneEntry, 9> kScenes{{{"backyard", backyard},
                                              {"bench", bench},
                                              {"contact", contact},
                                              {"spheres", spheres},
                                              {"overlap", overlap},
                                              {"minification", minification},
                                              {"planar", planar},
-                                             {"street", street}}};
+                                             {"street", street},
+                                             {"foliage", scene::makeFoliageScene}}};
 
-constexpr std::array<std::string_view, 7> kSceneNames{
-    "backyard", "bench", "contact", "spheres", "overlap", "minification", "planar"};
+constexpr std::array<std::string_view, 9> kSceneNames{
+    "backyard", "bench",  "contact", "spheres", "overlap",
+    "minification", "planar", "street",  "foliage"};
 
 }  // namespace
 

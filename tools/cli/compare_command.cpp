@@ -14,6 +14,7 @@
 #include "penumbra/params.h"
 #include "progress_bar.h"
 #include "render_options.h"
+#include "scene_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
@@ -30,7 +31,7 @@ RenderOptions compareRenderDefaults() {
 }
 
 struct CompareOptions {
-  std::string scene = "backyard";
+  SceneOptions scene;
   TechniqueOptions technique{"all", {}};
   // Sized for a two-core machine without a GPU: the whole report in about 20 s.
   RenderOptions render = compareRenderDefaults();
@@ -45,8 +46,9 @@ struct CompareOptions {
 void runCompare(const CompareOptions& o) {
   if (printTechniqueListIfAsked(o.technique)) return;
   compare::ComparisonRequest request;
-  request.scene = o.scene;
-  makeBuiltinScene(o.scene);  // unknown scenes fail before anything else
+  request.scene = o.scene.scene;
+  checkSceneSource(o.scene.scene);  // unknown scenes and missing files fail before anything else
+  request.view = sceneOverrides(o.scene);
   request.techniques = selectedTechniques(o.technique);
   request.settings.params = selectedParams(o.technique, request.techniques);
   // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
@@ -80,6 +82,7 @@ void runCompare(const CompareOptions& o) {
         request, renderer,
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
+  printSceneWarnings(result.scene);
   compare::writeReportFiles(result, folder.staging());
   interrupt.uninterrupted([&] {
     folder.commit();
@@ -98,7 +101,7 @@ void registerCompareCommand(CLI::App& app) {
       "compare",
       "Measure techniques against the exact filtered reference and a supersampled ground truth; "
       "writes an HTML report with images, error maps, metrics and plots.");
-  cmd->add_option("-s,--scene", o->scene, "built-in scene")->capture_default_str();
+  addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")

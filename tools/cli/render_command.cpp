@@ -1,6 +1,7 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -16,13 +17,14 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
 #include "render_options.h"
+#include "scene_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
 namespace {
 
 struct RenderCommandOptions {
-  std::string scene = "backyard";
+  SceneOptions scene;
   TechniqueOptions technique{"evsm4", {}};
   RenderOptions render;
   std::string outDir = "out/render";
@@ -65,14 +67,22 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
 }
 
 void runRender(const RenderCommandOptions& options) {
-  if (options.scene == "list") {
+  if (options.scene.scene == "list") {
     for (std::string_view name : builtinSceneNames()) {
       std::cout << name << "  " << makeBuiltinScene(name).description << "\n";
     }
     return;
   }
   if (printTechniqueListIfAsked(options.technique)) return;
-  const Scene scene = makeBuiltinScene(options.scene);
+  const SceneOverrides overrides = sceneOverrides(options.scene);
+  const auto loadStart = std::chrono::steady_clock::now();
+  Scene scene = loadScene(options.scene.scene);
+  const double loadMs =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
+          .count();
+
+  applyOverrides(scene, overrides);
+  printSceneWarnings(scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
   for (const std::string& name : options.animate) parseAnimation(name);  // before any GL work
   gl::RenderSettings settings = toRenderSettings(options.render);
@@ -86,6 +96,8 @@ void runRender(const RenderCommandOptions& options) {
     settings.technique = technique;
     renderer.validate(settings);
   }
+  std::cout << "loaded " << scene.name << ": " << scene.triangleCount() << " triangles in "
+            << loadMs << " ms\n";
   // Only once every technique is known to fit, so that a refused request leaves no folder.
   namespace fs = std::filesystem;
   const fs::path dir = createOutputFolder(options.outDir);
@@ -132,8 +144,9 @@ void runRender(const RenderCommandOptions& options) {
 void registerRenderCommand(CLI::App& app) {
   auto o = std::make_shared<RenderCommandOptions>();
   CLI::App* cmd = app.add_subcommand(
-      "render", "Render a built-in scene with shadow-map techniques through OpenGL 4.5 (EGL).");
-  cmd->add_option("-s,--scene", o->scene, "built-in scene, or 'list'")->capture_default_str();
+      "render",
+      "Render a built-in or glTF / OBJ scene with shadow-map techniques through OpenGL 4.5 (EGL).");
+  addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")

@@ -15,7 +15,8 @@
 namespace penumbra::compare {
 
 struct ComparisonRequest {
-  std::string scene = "backyard";
+  std::string scene = "backyard";  // a built-in scene's name or a scene file (loadScene)
+  SceneOverrides view;             // camera and light set from outside the scene
   std::vector<Technique> techniques;
   gl::RenderSettings settings;  // shared by every technique (its `technique` field is ignored)
   int supersample = 4;          // ground-truth sub-pixels per side, [1, 8]
@@ -45,6 +46,8 @@ struct TechniqueResult {
 };
 
 struct ComparisonResult {
+  // As rendered: overrides applied; its warnings are the loader's. Scenes without trouble spots
+  // of their own get the regions of largest error (error_regions.h).
   Scene scene;
   ComparisonRequest request;
   std::string device;

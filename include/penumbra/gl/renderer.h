@@ -75,7 +75,9 @@ struct MemoryReport {       // exact bytes allocated
   uint64_t scratch = 0;     // the blur's intermediate texture
   uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
   uint64_t frame = 0;       // camera-pass targets (and the depth-bounds pass's)
-  uint64_t geometry = 0;    // the scene's vertex and index buffers
+  // The scene's vertex, index and texture storage (mips included): it depends on the scene, not
+  // on the settings, so estimateMemory leaves it 0.
+  uint64_t geometry = 0;
   uint64_t total() const {
     return lightPass + technique + summedArea + scratch + auxiliary + frame + geometry;
   }

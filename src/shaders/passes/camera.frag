@@ -1,7 +1,8 @@
 // Camera pass: the pixel's cascade (shared/cascade_selection.h), receiver depth in light space
 // (with normal offset), the technique's visibility (blended with the next cascade in the blend
-// band), and Lambert + ambient shading. Writes colour, the float visibility and the lookup's
-// inputs for the CPU twin.
+// band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour,
+// the float visibility and the lookup's inputs for the CPU twin. Alpha-masked surfaces are cut
+// out by the same test as in the light pass.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -15,10 +16,12 @@
 #define MSAA 0
 #endif
 #include "../lib/lookup_access.glsl"
+#include "../lib/material.glsl"
 #include "../shared/shading.h"
 
 in vec3 worldPosition;
 in vec3 worldNormal;
+in vec2 baseColorTexcoord;
 
 uniform mat4 cameraViewFromWorld;  // view depth selects the cascade
 uniform mat4 lightViewFromWorld;
@@ -41,7 +44,6 @@ uniform vec4 cascadeEnds0;
 uniform vec4 cascadeEnds1;
 uniform float cascadeBlendBand;
 uniform int cascadeOverlay;  // 1: tint each pixel by its cascade
-uniform vec3 albedo;
 uniform float ambient;
 
 layout(location = 0) out vec4 color;
@@ -172,9 +174,12 @@ void main() {
     }
   }
 
+  // The sRGB texture reads linear; sampled in uniform control flow (its mip level needs
+  // derivatives), the test comes last.
+  vec4 baseColor = materialBaseColor(baseColorTexcoord);
   float lightAmount = cosine;
   if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
-  vec3 surface = albedo;
+  vec3 surface = baseColor.rgb;
   if (cascadeOverlay != 0 && choice.index < cascadeCount) {
     vec3 tint = cascadeTint(cascade);
     if (choice.blend > 0.0f) tint = mix(tint, cascadeTint(cascade + 1), choice.blend);
@@ -196,4 +201,5 @@ void main() {
   depthPerTexelOut = depthPerTexel;
   uvDerivativesOut = vec4(uvDx, uvDy);
   cascadeOut = vec2(inside ? float(cascade) : -1.0f, inside ? choice.blend : 0.0f);
+  if (!alphaCovers(baseColor.a, alphaCutoff)) discard;
 }

@@ -1,6 +1,11 @@
 // Light pass: the linear depth metric in [0,1] (distance along the light direction for
 // directional lights, Euclidean distance for spot lights, thesis §4.1.3), mapped from [near, far].
+// Alpha-masked casters are tested against their base colour's alpha, so leaves cast the shadow
+// of their shape, not of their cards; with MSAA the renderer runs masked draws per sample.
+#include "../lib/material.glsl"
+
 in vec3 lightViewPosition;
+in vec2 baseColorTexcoord;
 
 uniform int lightPerspective;
 uniform float lightNear;
@@ -9,6 +14,7 @@ uniform float lightFar;
 layout(location = 0) out float linearDepth;
 
 void main() {
+  if (!materialCovers(baseColorTexcoord)) discard;
   float distance = lightPerspective != 0 ? length(lightViewPosition) : -lightViewPosition.z;
   linearDepth = clamp((distance - lightNear) / (lightFar - lightNear), 0.0f, 1.0f);
 }

@@ -1,0 +1,27 @@
+// What every file loader does once it has the meshes: checks the geometry, repairs bad normals,
+// and gives the scene a camera and a light where the file has none.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "penumbra/scene.h"
+
+namespace penumbra::scene {
+
+// The camera and light a file asked for, if any.
+struct FileView {
+  std::optional<Camera> camera;
+  std::optional<Light> light;
+};
+
+// Throws Error "<source>: ..." for an empty scene or non-finite positions or texture
+// coordinates; replaces non-finite or zero normals by their triangles' normals (with a warning);
+// sets the camera (framing the bounds) and light (from above) the file did not give.
+void finishFileScene(Scene& scene, const std::string& source, const FileView& view);
+
+// Flat normals for triangles without normals: each triangle gets its own three vertices
+// (glTF 2.0 §3.7.2.1: "client implementations MUST calculate flat normals").
+void computeFlatNormals(Mesh& mesh);
+
+}  // namespace penumbra::scene

@@ -1,0 +1,21 @@
+// A mesh's material as the light, depth-only and camera passes read it (GpuScene::Material, set
+// by setMaterialUniforms): base colour = factor x sRGB texture (read linear), and the alpha mask
+// of glTF 2.0 §3.9.4 (shared/alpha_mask.h).
+#include "../shared/alpha_mask.h"
+
+uniform vec3 albedo;            // base-colour factor, linear
+uniform float baseColorAlpha;   // its alpha
+uniform float alphaCutoff;      // < 0: opaque, no test
+uniform int hasBaseColorTexture;
+layout(binding = PENUMBRA_BASE_COLOR_TEXTURE_UNIT) uniform sampler2D baseColorTexture;
+
+// Call in uniform control flow: the texture's mip level needs derivatives.
+vec4 materialBaseColor(vec2 texcoord) {
+  vec4 baseColor = vec4(albedo, baseColorAlpha);
+  if (hasBaseColorTexture != 0) baseColor *= texture(baseColorTexture, texcoord);
+  return baseColor;
+}
+
+bool materialCovers(vec2 texcoord) {
+  return alphaCutoff < 0.0f || alphaCovers(materialBaseColor(texcoord).a, alphaCutoff);
+}

@@ -1,0 +1,130 @@
+// Scene and view options. The view file is JSON (docs/scenes.md):
+//   {"light": {"direction": [x, y, z]} or {"position": [...], "target": [...], "spot_angle": deg},
+//    "camera": {"position": [x, y, z], "target": [x, y, z], "fov": deg}}
+#include "scene_options.h"
+
+#include <fstream>
+#include <iostream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "penumbra/error.h"
+
+namespace penumbra::cli {
+namespace {
+
+glm::vec3 parseVector(const std::string& text, const std::string& option) {
+  std::istringstream in(text);
+  glm::vec3 v;
+  char comma1 = 0, comma2 = 0;
+  in >> v.x >> comma1 >> v.y >> comma2 >> v.z;
+  if (!in || comma1 != ',' || comma2 != ',' || !(in >> std::ws).eof()) {
+    throw Error(option + " '" + text + "' must be three numbers X,Y,Z");
+  }
+  return v;
+}
+
+glm::vec3 jsonVector(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
+      !value[2].is_number()) {
+    throw Error(where + " must be an array of three numbers");
+  }
+  return {value[0].get<float>(), value[1].get<float>(), value[2].get<float>()};
+}
+
+float jsonNumber(const nlohmann::json& value, const std::string& where) {
+  if (!value.is_number()) throw Error(where + " must be a number");
+  return value.get<float>();
+}
+
+void readViewFile(const std::string& path, SceneOverrides& o) {
+  std::ifstream in(path);
+  if (!in) throw Error("cannot open view file " + path);
+  nlohmann::json j;
+  try {
+    j = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw Error("view file " + path + " is not valid JSON: " + e.what());
+  }
+  if (!j.is_object()) throw Error("view file " + path + " must hold a JSON object");
+  for (const auto& [key, value] : j.items()) {
+    const std::string where = path + ": \"" + key + "\"";
+    if (!value.is_object()) throw Error(where + " must be an object");
+    for (const auto& [field, v] : value.items()) {
+      const std::string at = where + "." + field;
+      if (key == "light" && field == "direction") {
+        o.lightDirection = jsonVector(v, at);
+      } else if (key == "light" && field == "position") {
+        o.lightPosition = jsonVector(v, at);
+      } else if (key == "light" && field == "target") {
+        o.lightTarget = jsonVector(v, at);
+      } else if (key == "light" && field == "spot_angle") {
+        o.spotAngleDegrees = jsonNumber(v, at);
+      } else if (key == "camera" && field == "position") {
+        o.cameraPosition = jsonVector(v, at);
+      } else if (key == "camera" && field == "target") {
+        o.cameraTarget = jsonVector(v, at);
+      } else if (key == "camera" && field == "fov") {
+        o.cameraFovDegrees = jsonNumber(v, at);
+      } else if (key == "light" || key == "camera") {
+        throw Error(
+            at + " is not a setting; " + key + " takes " +
+            (key == "light" ? "direction, position, target, spot_angle" : "position, target, fov"));
+      } else {
+        throw Error(where + " is not a setting; the file takes \"light\" and \"camera\"");
+      }
+    }
+  }
+}
+
+}  // namespace
+
+void addSceneOptions(CLI::App& app, SceneOptions& o) {
+  app.add_option("-s,--scene", o.scene,
+                 "built-in scene ('list' names them), or a .gltf, .glb or .obj file")
+      ->capture_default_str();
+  app.add_option("--view", o.viewFile,
+                 "JSON file with the light and camera: {\"light\": {\"direction\": [x,y,z]}, "
+                 "\"camera\": {\"position\": [x,y,z], \"target\": [x,y,z]}} (docs/scenes.md)");
+  app.add_option("--light-dir", o.lightDirection,
+                 "X,Y,Z: a directional light travelling this way (replaces the scene's light)");
+  app.add_option("--light-pos", o.lightPosition,
+                 "X,Y,Z: a spot light here, aimed at --light-target or the scene's centre");
+  app.add_option("--light-target", o.lightTarget, "X,Y,Z: where the spot light points");
+  app.add_option("--spot-angle", o.spotAngle, "spot light's full cone angle in degrees, (0, 170]");
+  app.add_option("--camera-pos", o.cameraPosition, "X,Y,Z: the camera's position");
+  app.add_option("--camera-target", o.cameraTarget, "X,Y,Z: the point the camera looks at");
+  app.add_option("--camera-fov", o.cameraFov, "vertical field of view in degrees, (0, 170]");
+}
+
+SceneOverrides sceneOverrides(const SceneOptions& o) {
+  SceneOverrides overrides;
+  if (!o.viewFile.empty()) readViewFile(o.viewFile, overrides);
+  // A light kind given on the command line replaces the file's light entirely.
+  if (!o.lightDirection.empty()) {
+    overrides.lightPosition.reset();
+    overrides.lightTarget.reset();
+    overrides.spotAngleDegrees.reset();
+    overrides.lightDirection = parseVector(o.lightDirection, "--light-dir");
+  }
+  if (!o.lightPosition.empty()) {
+    overrides.lightDirection.reset();
+    overrides.lightPosition = parseVector(o.lightPosition, "--light-pos");
+  }
+  if (!o.lightTarget.empty()) overrides.lightTarget = parseVector(o.lightTarget, "--light-target");
+  if (o.spotAngle != 0.0f) overrides.spotAngleDegrees = o.spotAngle;
+  if (!o.cameraPosition.empty()) {
+    overrides.cameraPosition = parseVector(o.cameraPosition, "--camera-pos");
+  }
+  if (!o.cameraTarget.empty()) {
+    overrides.cameraTarget = parseVector(o.cameraTarget, "--camera-target");
+  }
+  if (o.cameraFov != 0.0f) overrides.cameraFovDegrees = o.cameraFov;
+  return overrides;
+}
+
+void printSceneWarnings(const Scene& scene) {
+  for (const std::string& w : scene.warnings) std::cerr << "penumbra: warning: " << w << "\n";
+}
+
+}  // namespace penumbra::cli

@@ -1,0 +1,30 @@
+// Command-line options that choose the scene and set its camera and light (render, compare):
+// --scene NAME|PATH, --light-dir, --light-pos, --light-target, --spot-angle, --camera-pos,
+// --camera-target, --camera-fov and --view FILE.json holding the same settings.
+#pragma once
+
+#include <CLI/CLI.hpp>
+#include <string>
+
+#include "penumbra/scene.h"
+
+namespace penumbra::cli {
+
+struct SceneOptions {
+  std::string scene = "backyard";
+  std::string viewFile;  // JSON; the command-line options take precedence over it
+  std::string lightDirection, lightPosition, lightTarget, cameraPosition, cameraTarget;  // "x,y,z"
+  float spotAngle = 0.0f;  // 0: not given
+  float cameraFov = 0.0f;
+};
+
+void addSceneOptions(CLI::App& app, SceneOptions& options);
+
+// The overrides from the view file, then the command line; throws Error naming the option or the
+// file's key that is malformed.
+SceneOverrides sceneOverrides(const SceneOptions& options);
+
+// Prints the scene's warnings to stderr, one line each.
+void printSceneWarnings(const Scene& scene);
+
+}  // namespace penumbra::cli
