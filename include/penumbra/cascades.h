@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <string_view>
 #include <glm/glm.hpp>
 #include <vector>
 
@@ -18,6 +19,10 @@ enum class CascadeFit {
   Tight,       // the light-view bounding box of the split's frustum corners: sharpest, shimmers
   Stabilized,  // bounding sphere of the split (rotation-invariant size) snapped to whole texels
 };
+
+// "stabilized" or "tight"; parseCascadeFit throws Error listing the valid names.
+std::string_view cascadeFitName(CascadeFit fit);
+CascadeFit parseCascadeFit(std::string_view name);
 
 struct CascadeSettings {
   int count = 1;  // [1, 8]; 1: one shadow map fitted to the whole scene (any light type)

@@ -33,6 +33,13 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
 double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
                        std::span<const Image> masks);
 
+// Shimmer along a camera path: the mean frame-to-frame change of the visibility itself,
+//   mean_t mean_p |v_t - v_{t-1}|,
+// over pixels covered in both frames. Along a path of sub-pixel camera steps the true shadows
+// barely move, so what is left is the shadow map's own instability; comparing two settings on
+// one path (stabilised against tight cascades) isolates it. Needs at least two frames.
+double frameToFrameChange(std::span<const Image> estimates, std::span<const Image> masks);
+
 // The pixels whose shading the shadow test decides — inside the shadow map, on surfaces facing
 // the light beyond grazing — from a renderer lookup image (channel 3 == 1).
 Image litSurfaceMask(const Image& lookup);

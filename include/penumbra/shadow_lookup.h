@@ -27,6 +27,9 @@ struct LookupConfig {
   BlurSpec blur{BlurKernel::Box, 2, 1.0f};  // prefilter; with `SummedArea`, the smallest box
   int anisotropy = 16;                      // [1, 16]
   HalfRounding halfRounding = HalfRounding::Nearest;  // the device's (Renderer::halfFloatRounding)
+  // Cascades: cascade 0's texel over this cascade's, so PCF keeps its kernel's world width
+  // (shared/cascade_selection.h); 1 for one map or cascade 0.
+  float kernelScale = 1.0f;
 };
 
 // One pixel's lookup inputs, as the camera pass computes them (RenderResult::lookup,

@@ -117,7 +117,10 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   result.request = request;
   result.device = renderer.deviceDescription();
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
-  const int total = request.pathFrames * (1 + int(request.techniques.size())) + 1;
+  const bool measuresShimmer = request.settings.cascades.count > 1 &&
+                               result.scene.light.kind == LightKind::Directional;
+  const int total = request.pathFrames * (1 + int(request.techniques.size()) *
+                                                  (measuresShimmer ? 3 : 1)) + 1;
   int done = 0;
   auto step = [&](const std::string& what) {
     if (progress) progress(done, total, what);
@@ -193,6 +196,31 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   }
   for (size_t k = 0; k < request.techniques.size(); ++k) {
     result.techniques[k].flicker = temporalFlicker(visibilities[k], references, masks[k]);
+  }
+  if (measuresShimmer) {
+    // Both fits side by side: the view holds at the path's first camera while the cascades
+    // follow the path (FrameView::shadowCamera), so the picture changes only where the maps do.
+    renderer.setScene(result.scene);
+    for (size_t k = 0; k < request.techniques.size(); ++k) {
+      const Technique t = request.techniques[k];
+      CascadeShimmer shimmer;
+      for (CascadeFit fit : {CascadeFit::Stabilized, CascadeFit::Tight}) {
+        gl::RenderSettings settings = settingsFor(request, t);
+        settings.cascades.fit = fit;
+        std::vector<Image> frames, covered;
+        for (size_t frame = 0; frame < path.size(); ++frame) {
+          step(std::string(techniqueId(t)) + ", shimmer with " + std::string(cascadeFitName(fit)) +
+               " cascades, frame " + std::to_string(frame + 1));
+          const gl::RenderResult r = renderer.render(
+              settings, gl::FrameView{path.front(), result.scene.light, path[frame]});
+          frames.push_back(r.visibility);
+          covered.push_back(litSurfaceMask(r.lookup));
+        }
+        (fit == CascadeFit::Stabilized ? shimmer.stabilized : shimmer.tight) =
+            frameToFrameChange(frames, covered);
+      }
+      result.techniques[k].shimmer = shimmer;
+    }
   }
   if (result.scene.troubleSpots.empty()) {
     std::vector<Image> errors;

@@ -9,6 +9,7 @@
 
 #include "penumbra/curves.h"
 #include "penumbra/error.h"
+#include "penumbra/gl/render_record.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
 #include "report_plots.h"
@@ -111,7 +112,8 @@ ordered_json settingsJson(const ComparisonRequest& r) {
           {"ground_truth_supersampling", r.supersample},
           {"camera_path_frames", r.pathFrames},
           {"tau", r.tau},
-          {"pcf_kernel_matched_to_prefilter", r.matchPcfKernel}};
+          {"pcf_kernel_matched_to_prefilter", r.matchPcfKernel},
+          {"cascades", ordered_json::parse(gl::cascadeSettingsJson(s.cascades))}};
 }
 
 ordered_json paramsJson(Technique t, const TechniqueParams& p) {
@@ -119,6 +121,11 @@ ordered_json paramsJson(Technique t, const TechniqueParams& p) {
   for (const ParamSpec& spec : techniqueParamSpecs(t))
     out[std::string(spec.name)] = formatParam(t, p, spec.name);
   return out;
+}
+
+ordered_json shimmerJson(const TechniqueResult& t) {
+  if (!t.shimmer) return nullptr;
+  return {{"stabilized", t.shimmer->stabilized}, {"tight", t.shimmer->tight}};
 }
 
 void writeText(const fs::path& path, const std::string& text) {
@@ -136,6 +143,7 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
                           {"vs_filtered_reference", errorsJson(t.filtered)},
                           {"vs_ground_truth", errorsJson(t.groundTruth)},
                           {"temporal_flicker", t.flicker},
+                          {"shimmer", shimmerJson(t)},
                           {"esm_failure_rate_percent", t.failureRatePercent},
                           {"gpu_ms", timesJson(t.gpuTimes)},
                           {"wall_ms", timesJson(t.wallTimes)},
@@ -155,7 +163,9 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
         {"columns",
          "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
          "including minification aliasing; temporal_flicker: along the camera path against the "
-         "filtered reference's own change"}}},
+         "filtered reference's own change; shimmer (cascades only): the visibility's mean "
+         "frame-to-frame change with the view held at the path's first camera while stabilised "
+         "or tight cascades follow the path"}}},
       {"worst_pixel",
        {{"technique", r.worstTechnique},
         {"x", r.worstX},
@@ -167,15 +177,17 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   std::ostringstream csv;
   csv << std::setprecision(8)
       << "technique,rmse,mean_absolute,max_absolute,psnr_db,leak_share,leak_mean_excess,dark_share,"
-         "dark_mean_excess,rmse_ground_truth,temporal_flicker,esm_failure_rate_percent,wall_ms,gpu_"
-         "ms,"
-         "technique_memory_bytes\n";
+         "dark_mean_excess,rmse_ground_truth,temporal_flicker,shimmer_stabilized,shimmer_tight,"
+         "esm_failure_rate_percent,wall_ms,gpu_ms,technique_memory_bytes\n";
   for (const TechniqueResult& t : r.techniques) {
     const VisibilityErrors& e = t.filtered;
     csv << techniqueId(t.technique) << "," << e.rmse << "," << e.meanAbsolute << ","
         << e.maxAbsolute << "," << e.psnr << "," << e.leakShare << "," << e.leakMeanExcess << ","
         << e.darkShare << "," << e.darkMeanExcess << "," << t.groundTruth.rmse << "," << t.flicker
-        << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
+        << ",";
+    if (t.shimmer) csv << t.shimmer->stabilized << "," << t.shimmer->tight;  // else both empty
+    else csv << ",";
+    csv << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
         << "," << techniqueBytes(t) << "\n";
   }
   writeText(dir / "metrics.csv", csv.str());
@@ -195,6 +207,35 @@ std::string pcfNote(const ComparisonResult& r) {
   }
   return "<p><b>PCF is not matched to the prefilter</b>: it runs with the parameters given on the "
          "command line, so it is measured like any other technique, not as the reference.</p>\n";
+}
+
+// Cascaded runs: each technique's shimmer with stabilised and tight fits, side by side.
+std::string shimmerSection(const ComparisonResult& r) {
+  const bool measured = std::any_of(r.techniques.begin(), r.techniques.end(),
+                                    [](const TechniqueResult& t) { return t.shimmer.has_value(); });
+  if (!measured) return {};
+  const CascadeSettings& c = r.request.settings.cascades;
+  std::ostringstream h;
+  h << std::setprecision(4) << "<h2>Shimmer</h2>\n<p>" << c.count
+    << " cascades follow the " << r.request.pathFrames
+    << "-frame camera path while the view holds at its first camera, so the picture changes "
+       "only where the shadow maps do. Shimmer: the mean frame-to-frame change of the "
+       "visibility on lit surfaces, with the cascades fitted stabilised (bounding sphere, "
+       "texel snapping) and tight (bounding box of each split), rendered side by side. Tight "
+       "boxes follow the camera, so the maps are resampled every frame and edges crawl; "
+       "stabilised maps move by whole texels only.</p>\n"
+    << "<table id=\"shimmer\"><thead><tr><th>technique</th><th>stabilised</th><th>tight</th>"
+       "<th>tight / stabilised</th></tr></thead><tbody>\n";
+  for (const TechniqueResult& t : r.techniques) {
+    if (!t.shimmer) continue;
+    h << "<tr><td>" << techniqueId(t.technique) << "</td><td>" << t.shimmer->stabilized
+      << "</td><td>" << t.shimmer->tight << "</td><td>";
+    if (t.shimmer->stabilized > 0.0) h << t.shimmer->tight / t.shimmer->stabilized;
+    else h << "—";
+    h << "</td></tr>\n";
+  }
+  h << "</tbody></table>\n";
+  return h.str();
 }
 
 void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
@@ -220,7 +261,15 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     << filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width
     << "×" << r.request.settings.height << ", ground truth " << r.request.supersample << "×"
     << r.request.supersample << " sub-pixels, flicker over " << r.request.pathFrames
-    << " camera-path frames, τ = " << r.request.tau << ".</p>\n"
+    << " camera-path frames, τ = " << r.request.tau;
+  const CascadeSettings& cascades = r.request.settings.cascades;
+  if (cascades.count > 1) {
+    h << ", " << cascades.count << " " << cascadeFitName(cascades.fit) << " cascades ("
+      << (cascades.distances.empty() ? "practical splits" : "given splits") << ", "
+      << (cascades.fitDepthBounds ? "fitted" : "fixed") << " depth bounds, blend band "
+      << cascades.blendBand << "; the reference is evaluated in each pixel's cascade)";
+  }
+  h << ".</p>\n"
     << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's "
        "effective kernel "
        "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the "
@@ -256,7 +305,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << "</td><td>" << t.failureRatePercent << "</td><td>" << t.wallTimes.total() << "</td><td>"
       << t.gpuTimes.total() << "</td><td>" << mib(techniqueBytes(t)) << "</td></tr>\n";
   }
-  h << "</tbody></table>\n<h2>Error against cost</h2>\n<div class=\"row\">"
+  h << "</tbody></table>\n" << shimmerSection(r) << "<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
     << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";
   if (hasCurves) {

@@ -60,26 +60,48 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
   return e;
 }
 
-double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
-                       std::span<const Image> masks) {
-  if (estimates.size() < 2 || estimates.size() != references.size() ||
+namespace {
+
+// mean_t mean_p |(v_t - v_{t-1}) - (r_t - r_{t-1})| over pixels covered in both frames; without
+// references, r = 0.
+double meanFrameStep(std::span<const Image> estimates, std::span<const Image> references,
+                     std::span<const Image> masks, const char* what) {
+  const bool referenced = !references.empty();
+  if (estimates.size() < 2 || (referenced && estimates.size() != references.size()) ||
       estimates.size() != masks.size()) {
-    throw Error("temporal flicker needs two or more frames, with a reference and mask for each");
+    throw Error(std::string(what) + " needs two or more frames, with " +
+                (referenced ? "a reference and " : "") + "a mask for each");
   }
   double change = 0.0;
   size_t pixels = 0;
   for (size_t t = 1; t < estimates.size(); ++t) {
-    requireSameShape(estimates[t], estimates[t - 1], "temporal flicker");
-    requireSameShape(estimates[t], references[t], "temporal flicker");
+    requireSameShape(estimates[t], estimates[t - 1], what);
+    requireSameShape(estimates[t], masks[t], what);
+    if (referenced) requireSameShape(estimates[t], references[t], what);
     for (size_t i = 0; i < estimates[t].data().size(); ++i) {
       if (masks[t].data()[i] <= 0.5f || masks[t - 1].data()[i] <= 0.5f) continue;
       const double estimateStep = double(estimates[t].data()[i]) - estimates[t - 1].data()[i];
-      const double referenceStep = double(references[t].data()[i]) - references[t - 1].data()[i];
+      const double referenceStep =
+          referenced ? double(references[t].data()[i]) - references[t - 1].data()[i] : 0.0;
       change += std::abs(estimateStep - referenceStep);
       ++pixels;
     }
   }
   return pixels == 0 ? 0.0 : change / double(pixels);
+}
+
+}  // namespace
+
+double temporalFlicker(std::span<const Image> estimates, std::span<const Image> references,
+                       std::span<const Image> masks) {
+  if (references.empty()) {
+    throw Error("temporal flicker needs two or more frames, with a reference and a mask for each");
+  }
+  return meanFrameStep(estimates, references, masks, "temporal flicker");
+}
+
+double frameToFrameChange(std::span<const Image> estimates, std::span<const Image> masks) {
+  return meanFrameStep(estimates, {}, masks, "frame-to-frame change");
 }
 
 Image litSurfaceMask(const Image& lookup) {

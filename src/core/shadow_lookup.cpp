@@ -176,6 +176,7 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   t.settings.blurRadius = config.blur.radius;
   t.settings.blurSigma = config.blur.sigma;
   t.settings.zmaxLevels = int(t.zmax.size());
+  t.settings.kernelScale = config.kernelScale;
 }
 
 CpuShadowLookup::~CpuShadowLookup() = default;

@@ -76,6 +76,9 @@ void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
   }
   glProgramUniform1fv(program.id(), location(program, "cascadeTexelWorldSize"), c.count,
                       texel.data());
+  std::vector<float> kernelScale;
+  for (int i = 0; i < c.count; ++i) kernelScale.push_back(texel[0] / texel[size_t(i)]);
+  glProgramUniform1fv(program.id(), location(program, "kernelScale"), c.count, kernelScale.data());
   program.set("cascadeStart", c.start);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds0"), 1, &c.ends[0]);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds1"), 1, &c.ends[4]);
@@ -136,7 +139,7 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   const float aspect = float(width_) / float(height_);
   const glm::mat4 view = viewFromWorld(frame.camera);
   program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.sceneBounds) * view);
-  program.set("cameraViewFromWorld", view);
+  program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
   program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
   program.set("lightClipFromView", frame.lightView.clipFromLight);
   program.set("lightPerspective", frame.lightView.perspective ? 1 : 0);

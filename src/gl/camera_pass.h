@@ -31,6 +31,7 @@ struct ShadowMaps {
 // The frame's geometry: camera, light and the cascades (one map: count 1 with an identity box).
 struct FrameGeometry {
   Camera camera;
+  Camera shadowCamera;  // the cascades' (FrameView::shadowCamera): its view depth selects them
   Light light;
   Bounds sceneBounds;
   LightView lightView;  // the light's view and depth metric (one map: also its projection)

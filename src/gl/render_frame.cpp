@@ -156,24 +156,25 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   // Where the frame is seen from, and the cascades that cover it.
   FrameGeometry& frame = s.frame;
   frame.camera = view.camera;
+  frame.shadowCamera = view.shadowCamera.value_or(view.camera);
   frame.light = view.light;
   frame.sceneBounds = s.sceneBounds;
   frame.shadowMapSize = settings.shadowMapSize;
   frame.lightView = fitLightView(view.light, s.sceneBounds);
   const float aspect = float(settings.width) / float(settings.height);
-  DepthRange range{kCameraNear, cameraFar(view.camera, s.sceneBounds)};
+  DepthRange range{kCameraNear, cameraFar(frame.shadowCamera, s.sceneBounds)};
   s.depthBoundsTimer.reset();
   if (fitsDepthBounds(settings)) {
     s.depthBoundsTimer.begin();
     const glm::mat4 clipFromWorld =
-        clipFromView(view.camera, aspect, s.sceneBounds) * viewFromWorld(view.camera);
+        clipFromView(frame.shadowCamera, aspect, s.sceneBounds) * viewFromWorld(frame.shadowCamera);
     range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
                                   settings.height, range);
     s.depthBoundsTimer.end();
   }
   frame.cascaded = settings.cascades.count > 1;
   frame.cascades = frame.cascaded
-                       ? fitCascades(settings.cascades, view.camera, aspect, range, view.light,
+                       ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range, view.light,
                                      s.sceneBounds, settings.shadowMapSize)
                        : singleMap(frame.lightView);
   const int count = frame.cascades.count;
@@ -279,8 +280,10 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
       found = std::make_unique<CpuShadowLookup>(
           readDepthMap(cascade),
           LookupConfig{Technique::Hard, settings.params, settings.filter,
-                                  s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
-                                  s.limits.halfRounding});
+                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
+                       s.limits.halfRounding,
+                       r.cascadeFrame.texelWorldSize(0, size) /
+                           r.cascadeFrame.texelWorldSize(cascade, size)});
     }
     return *found;
   };

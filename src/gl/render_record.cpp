@@ -8,6 +8,32 @@
 #include "penumbra/params.h"
 
 namespace penumbra::gl {
+namespace {
+
+// The view depths where this frame's cascades begin and end: [start, end 0, end 1, ...].
+std::vector<float> cascadeEnds(const CascadeFrame& frame) {
+  std::vector<float> ends{frame.start};
+  for (int i = 0; i < frame.count; ++i) ends.push_back(frame.ends[size_t(i)]);
+  return ends;
+}
+
+}  // namespace
+
+std::string cascadeSettingsJson(const CascadeSettings& c) {
+  nlohmann::ordered_json out = {{"count", c.count}};
+  if (c.distances.empty()) {
+    out["split_scheme"] = "practical";
+    out["lambda"] = c.lambda;
+  } else {
+    out["split_scheme"] = "given";
+    out["split_distances"] = c.distances;
+  }
+  out["fit"] = cascadeFitName(c.fit);
+  out["depth_bounds"] = c.fitDepthBounds ? "fitted" : "fixed";
+  out["blend_band"] = c.blendBand;
+  out["shadow_distance"] = c.maxDistance;  // 0: the scene's diameter
+  return out.dump();
+}
 
 std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
                              const RenderResult& result, const std::string& device,
@@ -49,7 +75,8 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
         {"width", settings.width},
         {"height", settings.height},
         {"normal_offset_texels", settings.normalOffsetTexels},
-        {"ambient", settings.ambient}}},
+        {"ambient", settings.ambient},
+        {"cascades", ordered_json::parse(cascadeSettingsJson(settings.cascades))}}},
       {"channels",
        {{"count", layout.channels},
         {"layers", layout.layers},
@@ -73,6 +100,7 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
       {"device", device},
       {"files", files},
   };
+  if (settings.cascades.count > 1) record["cascade_view_depths"] = cascadeEnds(result.cascadeFrame);
   return record.dump(2) + "\n";
 }
 

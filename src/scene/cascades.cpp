@@ -6,8 +6,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 #include <sstream>
+#include <string>
 
 #include "penumbra/error.h"
+#include "shared/cascade_selection.h"
 #include "shared/filter_weights.h"
 
 namespace penumbra {
@@ -71,6 +73,17 @@ glm::vec4 stabilizedBox(const LightView& light, const Camera& camera, float aspe
 }
 
 }  // namespace
+
+std::string_view cascadeFitName(CascadeFit fit) {
+  return fit == CascadeFit::Tight ? "tight" : "stabilized";
+}
+
+CascadeFit parseCascadeFit(std::string_view name) {
+  for (CascadeFit fit : {CascadeFit::Stabilized, CascadeFit::Tight}) {
+    if (name == cascadeFitName(fit)) return fit;
+  }
+  throw Error("unknown cascade fit '" + std::string(name) + "'; valid fits: stabilized, tight");
+}
 
 void validateCascadeSettings(const CascadeSettings& s) {
   if (s.count < 1 || s.count > kMaxCascadeCount) {
@@ -169,11 +182,10 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
 }
 
 BlurSpec cascadeBlur(const BlurSpec& nearest, float nearestTexelWorld, float texelWorld) {
-  const float ratio = nearestTexelWorld / texelWorld;
+  const float scale = nearestTexelWorld / texelWorld;
   BlurSpec b = nearest;
-  const float taps = float(2 * nearest.radius + 1) * ratio;
-  b.radius = std::clamp(int(std::lround((taps - 1.0f) * 0.5f)), 0, shaders::kMaxBlurRadius);
-  b.sigma = std::max(0.01f, nearest.sigma * ratio);
+  b.radius = shaders::worldConstantKernelRadius(nearest.radius, scale);
+  b.sigma = shaders::worldConstantKernelSigma(nearest.sigma, scale);
   return b;
 }
 

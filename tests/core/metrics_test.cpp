@@ -69,6 +69,22 @@ TEST(Metrics, FlickerIsTheChangeBeyondTheReferencesOwn) {
                Error);
 }
 
+TEST(Metrics, FrameToFrameChangeIsTheMeanStepOfTheVisibilityItself) {
+  Image mask = filled(2, 2, 1.0f);
+  mask.at(1, 1) = 0.0f;  // uncovered in every frame: its jump of 1 must not count
+  std::vector<Image> frames{filled(2, 2, 0.5f), filled(2, 2, 0.7f), filled(2, 2, 0.4f)};
+  frames[1].at(1, 1) = 1.0f;
+  frames[1].at(0, 0) = 0.9f;
+  const std::vector<Image> masks(3, mask);
+  // Steps of 0.4, 0.2, 0.2 then 0.5, 0.3, 0.3 on the three covered pixels.
+  EXPECT_NEAR(frameToFrameChange(frames, masks), (0.8 + 1.1) / 6.0, 1e-6);
+  // A pixel uncovered in the middle frame counts for neither step.
+  std::vector<Image> partly = masks;
+  partly[1].at(0, 0) = 0.0f;
+  EXPECT_NEAR(frameToFrameChange(frames, partly), (0.2 * 2 + 0.3 * 2) / 4.0, 1e-6);
+  EXPECT_THROW(frameToFrameChange(std::span(frames).first(1), std::span(masks).first(1)), Error);
+}
+
 TEST(Metrics, MismatchedImagesAreRejected) {
   EXPECT_THROW(measureVisibilityErrors(filled(2, 2, 0.0f), filled(3, 2, 0.0f), filled(2, 2, 1.0f)),
                Error);

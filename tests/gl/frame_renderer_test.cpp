@@ -4,12 +4,15 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "gl_test_context.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/metrics.h"
 #include "penumbra/scene.h"
+#include "shared/shadow_lookup.h"
 
 namespace penumbra {
 namespace {
@@ -146,6 +149,46 @@ TEST_F(FrameRenderer, EveryCascadeOfAPlanarSceneMatchesTheFilteredReference) {
   }
 }
 
+TEST_F(FrameRenderer, PcfKeepsItsKernelsWorldWidthInEveryCascade) {
+  // PCF with the prefilter's kernel is the filtered reference itself for bilinear lookups
+  // (compare's matched PCF); the reference widens the kernel per cascade to a constant world
+  // width, so PCF must too, or every cascade beyond the first filters a different region.
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("street");
+  gl::RenderSettings s = smallSettings(Technique::Pcf);
+  s.width = 192;
+  s.height = 108;
+  s.filter = FilterMode::Bilinear;
+  s.blur = {BlurKernel::Box, 4, 1.0f};  // 9 taps in cascade 0, fewer farther out
+  s.cascades.count = 2;
+  s.cascades.distances = {15.0f};  // the second cascade from 15 m: much of the street
+  shaders::LookupSettings lookup{};
+  lookup.filterMode = int(s.filter);
+  lookup.blurKernel = blurKernelId(s.blur.kernel);
+  lookup.blurRadius = s.blur.radius;
+  lookup.blurSigma = s.blur.sigma;
+  s.params.pcf = shaders::pcfMatchingPrefilter(lookup);
+  const gl::RenderResult r = renderer.render(scene, s);
+  const gl::RenderResult ref = renderer.renderReference(scene, s, 1);
+  ASSERT_LT(r.cascadeBlurs[1].radius, s.blur.radius) << "the far cascade's kernel is narrower";
+  std::vector<double> worst(2, 0.0);
+  std::vector<int> pixels(2, 0);
+  for (int y = 0; y < s.height; ++y) {
+    for (int x = 0; x < s.width; ++x) {
+      const int c = int(r.cascades.at(x, y, 0));
+      if (c < 0 || r.lookup.at(x, y, 3) < 1.0f) continue;  // blend bands too
+      worst[size_t(c)] =
+          std::max(worst[size_t(c)], double(std::abs(r.visibility.at(x, y) - ref.visibility.at(x, y))));
+      ++pixels[size_t(c)];
+    }
+  }
+  for (int c = 0; c < 2; ++c) {
+    ASSERT_GT(pixels[size_t(c)], 100) << "cascade " << c << " must cover part of the frame";
+    // Both sum the same taps with fp32 weights in the same order (renderer_test's PCF bound).
+    EXPECT_LT(worst[size_t(c)], 1e-5) << "cascade " << c;
+  }
+}
+
 TEST_F(FrameRenderer, StabilizedCascadesRasteriseAStaticSceneIdenticallyAsTheCameraCreeps) {
   gl::Renderer renderer(*context);
   const Scene scene = makeBuiltinScene("street");
@@ -179,6 +222,36 @@ TEST_F(FrameRenderer, StabilizedCascadesRasteriseAStaticSceneIdenticallyAsTheCam
       EXPECT_EQ(identical, 0) << "tight boxes follow the camera: every map changes";
     }
   }
+}
+
+TEST_F(FrameRenderer, StabilisedCascadesShimmerLessAlongTheCameraPath) {
+  // The cascades follow the street's camera path (sub-pixel steps down the street) while the view
+  // holds still at its first camera, so the picture changes only where the shadow maps do.
+  // Tight boxes follow the camera and resample the shadow edges every frame; stabilised boxes
+  // keep their texel grid.
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("street");
+  renderer.setScene(scene);
+  const std::vector<Camera> path = scene.cameraPath(5);
+  double shimmer[2] = {0.0, 0.0};
+  for (CascadeFit fit : {CascadeFit::Stabilized, CascadeFit::Tight}) {
+    gl::RenderSettings s = smallSettings(Technique::Hard);
+    s.width = 192;
+    s.height = 108;
+    s.cascades.count = 3;
+    s.cascades.fit = fit;
+    std::vector<Image> visibilities, masks;
+    for (const Camera& camera : path) {
+      const gl::RenderResult r = renderer.render(s, gl::FrameView{path[0], scene.light, camera});
+      visibilities.push_back(r.visibility);
+      masks.push_back(litSurfaceMask(r.lookup));
+    }
+    shimmer[fit == CascadeFit::Tight] = frameToFrameChange(visibilities, masks);
+  }
+  RecordProperty("shimmer_stabilized", std::to_string(shimmer[0]));
+  RecordProperty("shimmer_tight", std::to_string(shimmer[1]));
+  EXPECT_LT(shimmer[0], 0.5 * shimmer[1]) << "stabilised " << shimmer[0] << ", tight "
+                                          << shimmer[1];
 }
 
 }  // namespace

@@ -73,10 +73,7 @@ gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   s.cascades.count = o.cascades;
   s.cascades.lambda = o.cascadeLambda;
   s.cascades.distances = o.cascadeSplits;
-  if (o.cascadeFit != "stabilized" && o.cascadeFit != "tight") {
-    throw Error("unknown cascade fit '" + o.cascadeFit + "'; valid fits: stabilized, tight");
-  }
-  s.cascades.fit = o.cascadeFit == "tight" ? CascadeFit::Tight : CascadeFit::Stabilized;
+  s.cascades.fit = parseCascadeFit(o.cascadeFit);
   if (o.cascadeDepth != "fixed" && o.cascadeDepth != "fitted") {
     throw Error("unknown cascade depth '" + o.cascadeDepth + "'; valid: fixed, fitted");
   }

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -30,12 +31,22 @@ struct ComparisonRequest {
   bool matchPcfKernel = true;
 };
 
+// Shimmer (frameToFrameChange) of one technique with cascades fitted both ways, measured side by
+// side: the cascades follow the camera path while the view holds at its first camera, so every
+// change of the picture is the shadow maps' own (docs/cascades.md).
+struct CascadeShimmer {
+  double stabilized = 0.0;
+  double tight = 0.0;
+};
+
 struct TechniqueResult {
   Technique technique = Technique::Vsm;
   TechniqueParams params;           // as used (LVSM splits placed for frame 0)
   VisibilityErrors filtered;        // frame 0 against the filtered reference
   VisibilityErrors groundTruth;     // frame 0 against the supersampled ground truth
   double flicker = 0.0;             // along the camera path, beyond the reference's own
+  // Cascaded directional lights only: shimmer with stabilised and with tight cascades.
+  std::optional<CascadeShimmer> shimmer;
   double failureRatePercent = 0.0;  // ESM classification; 0 otherwise
   gl::PassTimes gpuTimes;           // the last frame (warm: no first-use shader compilation)
   gl::PassTimes wallTimes;

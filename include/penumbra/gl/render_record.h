@@ -13,4 +13,8 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
                              const RenderResult& result, const std::string& device,
                              const std::map<std::string, std::string>& files);
 
+// The cascade settings as a compact JSON object (count, split scheme or distances, fit, depth
+// bounds, blend band, shadow distance), for the render record and compare's metrics.
+std::string cascadeSettingsJson(const CascadeSettings& cascades);
+
 }  // namespace penumbra::gl

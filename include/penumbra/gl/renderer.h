@@ -6,6 +6,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -53,6 +54,10 @@ struct RenderSettings {
 struct FrameView {
   Camera camera;
   Light light;
+  // The camera the cascades are fitted to, when it is not `camera`: holding the view still while
+  // the cascades follow a moving camera shows (and measures) exactly what the shadow maps do,
+  // like engines' frozen-shadow-camera debug views. Unset: `camera`.
+  std::optional<Camera> shadowCamera = std::nullopt;
 };
 
 struct PassTimes {  // milliseconds per pass

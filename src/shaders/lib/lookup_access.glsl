@@ -34,6 +34,7 @@ uniform int anisotropy;
 uniform int blurKernel;
 uniform int blurRadius[kMaxCascades];  // per cascade: the kernel is constant in world units
 uniform float blurSigma[kMaxCascades];
+uniform float kernelScale[kMaxCascades];  // cascade 0's texel over cascade c's
 uniform int zmaxLevels;
 uniform int layersPerCascade;
 uniform int channelsPerCascade;
@@ -48,6 +49,7 @@ LookupSettings lookupSettings(int cascade) {
   s.blurRadius = blurRadius[cascade];
   s.blurSigma = blurSigma[cascade];
   s.zmaxLevels = zmaxLevels;
+  s.kernelScale = kernelScale[cascade];
   return s;
 }
 

@@ -8,6 +8,7 @@
 // receiver depth and the technique's parameters mean the same in each.
 #ifndef PENUMBRA_SHARED_CASCADE_SELECTION_H
 #define PENUMBRA_SHARED_CASCADE_SELECTION_H
+#include "filter_weights.h"
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
@@ -43,6 +44,17 @@ PENUMBRA_INLINE CascadeChoice selectCascade(float viewDepth, float start, vec4 e
 }
 
 // A light-view-plane position (or its derivative, with `derivative` 1) in a cascade's map's uv.
+// A filter kernel kept constant in world width across cascades: `scale` is cascade 0's texel
+// over this cascade's (<= 1 farther out). (2r + 1) taps scale to the nearest odd count; sigma
+// scales exactly. The prefilter's blur (cascadeBlur) and PCF's kernel both follow it.
+PENUMBRA_INLINE int worldConstantKernelRadius(int radius, float scale) {
+  float taps = float(2 * radius + 1) * scale;
+  return clamp(int(floor((taps - 1.0f) * 0.5f + 0.5f)), 0, kMaxBlurRadius);
+}
+PENUMBRA_INLINE float worldConstantKernelSigma(float sigma, float scale) {
+  return max(0.01f, sigma * scale);
+}
+
 PENUMBRA_INLINE vec2 cascadeUv(vec2 lightPlane, vec4 box, int derivative) {
   vec2 origin = vec2(box[0], box[1]);
   vec2 size = vec2(box[2], box[3]);

@@ -23,6 +23,9 @@ struct LookupSettings {
   int blurRadius;     // taps each side; also the smallest summed-area box
   float blurSigma;    // Gaussian standard deviation in texels
   int zmaxLevels;     // levels of ESM's Z-max pyramid (0 without it)
+  // Cascade 0's texel over this cascade's (1: one map or cascade 0): PCF's kernel keeps its
+  // world width across cascades like the prefilter's (cascade_selection.h).
+  float kernelScale;
 };
 
 // Clamp-to-edge addressing.

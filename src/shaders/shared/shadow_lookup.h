@@ -4,6 +4,7 @@
 // Only texture access differs between the two sides (lookup_access.h).
 #ifndef PENUMBRA_SHARED_SHADOW_LOOKUP_H
 #define PENUMBRA_SHARED_SHADOW_LOOKUP_H
+#include "cascade_selection.h"
 #include "channel_reduction.h"
 #include "lookup_access.h"
 #include "lookup_footprint.h"
@@ -268,6 +269,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
   float d = clamp(receiverDepth, 0.0f, 1.0f);
   if (technique == kTechniquePcf || technique == kTechniqueHard) {
     PcfParams pcf = p.pcf;
+    pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
+    pcf.sigma = worldConstantKernelSigma(pcf.sigma, ls.kernelScale);
     if (technique == kTechniqueHard) {
       pcf.kernel = kKernelBox;
       pcf.radius = 0;
