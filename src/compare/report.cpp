@@ -91,9 +91,7 @@ ordered_json errorsJson(const VisibilityErrors& e) {
 }
 
 ordered_json timesJson(const gl::PassTimes& t) {
-  return {{"light", t.light},           {"encode", t.encode},       {"prefilter", t.prefilter},
-          {"mips_or_sat", t.mipsOrSat}, {"auxiliary", t.auxiliary}, {"camera", t.camera},
-          {"total", t.total()}};
+  return ordered_json::parse(gl::passTimesJson(t));
 }
 
 ordered_json settingsJson(const ComparisonRequest& r) {

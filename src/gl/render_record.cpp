@@ -19,6 +19,18 @@ std::vector<float> cascadeEnds(const CascadeFrame& frame) {
 
 }  // namespace
 
+std::string passTimesJson(const PassTimes& t) {
+  return nlohmann::ordered_json{{"light", t.light},
+                                {"encode", t.encode},
+                                {"prefilter", t.prefilter},
+                                {"mips_or_sat", t.mipsOrSat},
+                                {"auxiliary", t.auxiliary},
+                                {"camera", t.camera},
+                                {"depth_bounds", t.depthBounds},
+                                {"total", t.total()}}
+      .dump();
+}
+
 std::string cascadeSettingsJson(const CascadeSettings& c) {
   nlohmann::ordered_json out = {{"count", c.count}};
   if (c.distances.empty()) {
@@ -51,12 +63,7 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
     hi = std::max(hi, double(v));
   }
   const MemoryReport& m = result.memory;
-  auto times = [](const PassTimes& t) {
-    return ordered_json{{"light", t.light},         {"encode", t.encode},
-                        {"prefilter", t.prefilter}, {"mips_or_sat", t.mipsOrSat},
-                        {"auxiliary", t.auxiliary}, {"camera", t.camera},
-                        {"total", t.total()}};
-  };
+  auto times = [](const PassTimes& t) { return ordered_json::parse(passTimesJson(t)); };
   ordered_json record = {
       {"scene", scene.name},
       {"technique", techniqueId(settings.technique)},

@@ -13,6 +13,9 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
                              const RenderResult& result, const std::string& device,
                              const std::map<std::string, std::string>& files);
 
+// Milliseconds per pass as a compact JSON object, for the render record and compare's metrics.
+std::string passTimesJson(const PassTimes& times);
+
 // The cascade settings as a compact JSON object (count, split scheme or distances, fit, depth
 // bounds, blend band, shadow distance), for the render record and compare's metrics.
 std::string cascadeSettingsJson(const CascadeSettings& cascades);
