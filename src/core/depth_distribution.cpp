@@ -104,7 +104,7 @@ std::vector<float> filterRegion(Technique technique, const TechniqueParams& para
     for (size_t i = 0; i < region.size(); ++i) {
       acc = shaders::accumulateTap(acc, encoded[i][size_t(c)], region[i].weight / total);
     }
-    filtered[size_t(c)] = quantizeToStorage(acc.value, storage);
+    filtered[size_t(c)] = quantizeToStorage(shaders::reductionResult(acc), storage);
   }
   return filtered;
 }

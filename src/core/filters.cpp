@@ -43,7 +43,7 @@ Image filterPass(const Image& in, std::span<const float> weights, bool horizonta
           float v = horizontal ? in.clamped(x + i, y, c) : in.clamped(x, y + i, c);
           acc = shaders::accumulateTap(acc, v, weights[size_t(i + radius)]);
         }
-        out.at(x, y, c) = acc.value;
+        out.at(x, y, c) = shaders::reductionResult(acc);
       }
     }
   });
@@ -129,7 +129,7 @@ Image reduceMipLevel(const Image& image, std::span<const ChannelReduction> reduc
           for (int sx = x0; sx <= x1; ++sx)
             acc = shaders::accumulateTap(acc, image.at(sx, sy, c), weight);
         }
-        out.at(x, y, c) = acc.value;
+        out.at(x, y, c) = shaders::reductionResult(acc);
       }
     }
   });

@@ -49,7 +49,7 @@ vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
                            1.0f - levels.fraction);
     a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.next, mipLevelSize(size, levels.next),
                            levels.fraction);
-    v[k] = a.value;
+    v[k] = reductionResult(a);
   }
   return v;
 }

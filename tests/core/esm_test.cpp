@@ -83,12 +83,22 @@ TEST(Esm, LogSpaceAndLinearSpaceFilteringAgreeWhereBothAreFinite) {
 
 TEST(Esm, LogSpaceHelpersStayFiniteFarBeyondFp32ExpRange) {
   const float c = 5000.0f;  // exp(5000 z) overflows fp32 for any z > 0.0178
-  const float sum = shaders::esmLogSpaceAdd(shaders::esmLogSpaceWeighted(0.9f, 0.5f, c),
-                                            shaders::esmLogSpaceWeighted(0.2f, 0.5f, c), c);
-  ASSERT_TRUE(std::isfinite(sum));
-  EXPECT_NEAR(sum, 0.9f + std::log(0.5f) / c, 1e-6f);  // the far term dominates completely
+  // Both orders: the second term below the peak, and above it (the peak moves).
+  for (const auto& [first, second] : {std::pair{0.2f, 0.9f}, std::pair{0.9f, 0.2f}}) {
+    const glm::vec2 sum = shaders::esmLogSumAdd(shaders::esmLogSumStart(first, 0.5f), second, 0.5f, c);
+    const float value = shaders::esmLogSumValue(sum, c);
+    ASSERT_TRUE(std::isfinite(value));
+    EXPECT_NEAR(value, 0.9f + std::log(0.5f) / c, 1e-6f);  // the far term dominates completely
+  }
   // Equal terms add to twice the weight: ln 2 / c above.
-  EXPECT_NEAR(shaders::esmLogSpaceAdd(0.5f, 0.5f, c), 0.5f + std::log(2.0f) / c, 1e-7f);
+  const glm::vec2 equal = shaders::esmLogSumAdd(shaders::esmLogSumStart(0.5f, 1.0f), 0.5f, 1.0f, c);
+  EXPECT_NEAR(shaders::esmLogSumValue(equal, c), 0.5f + std::log(2.0f) / c, 1e-7f);
+  // Terms within fp32 exp range combine exactly: ln(0.25 e^{c 0.3} + 0.75 e^{c 0.31}) / c.
+  const float small = 40.0f;
+  const glm::vec2 mixed =
+      shaders::esmLogSumAdd(shaders::esmLogSumStart(0.3f, 0.25f), 0.31f, 0.75f, small);
+  EXPECT_NEAR(shaders::esmLogSumValue(mixed, small),
+              std::log(0.25 * std::exp(40.0 * 0.3) + 0.75 * std::exp(40.0 * 0.31)) / 40.0, 1e-6);
   TechniqueParams params = float32Params();
   params.esm.filterSpace = shaders::kEsmFilterLog;
   params.esm.exponent = c;

@@ -20,18 +20,22 @@ void main() {
   if (p.x >= size.x || p.y >= size.y) return;
   int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
-    vec4 result = vec4(0.0f);
+    // Each tap's texel is fetched once for all four channels; a layer's unused components
+    // (beyond the technique's channels) are blurred as means and never read.
+    ChannelAccumulator acc[4];
     for (int c = 0; c < 4; ++c) {
       int channel = 4 * layer + c;
-      if (channel >= count) continue;
-      ChannelAccumulator acc =
-          startReduction(channelReduction(technique, channel, params), params.esm.exponent);
-      for (int i = -radius; i <= radius; ++i) {
-        ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
-        acc = accumulateTap(acc, texelFetch(source, ivec3(q, layerBase + layer), 0)[c], weights[i + radius]);
-      }
-      result[c] = acc.value;
+      int reduction = channel < count ? channelReduction(technique, channel, params) : kReduceMean;
+      acc[c] = startReduction(reduction, params.esm.exponent);
     }
-    imageStore(target, ivec3(p, layerBase + layer), result);
+    for (int i = -radius; i <= radius; ++i) {
+      ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
+      vec4 texel = texelFetch(source, ivec3(q, layerBase + layer), 0);
+      float weight = weights[i + radius];
+      for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
+    }
+    imageStore(target, ivec3(p, layerBase + layer),
+               vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
+                    reductionResult(acc[3])));
   }
 }

@@ -24,7 +24,7 @@ float encodeTexel(ivec3 p, int channel) {
     float v = encodeChannel(technique, texelFetch(depthMap, p, s).x, channel, params);
     acc = accumulateTap(acc, v, 1.0f / float(sampleCount));
   }
-  return acc.value;
+  return reductionResult(acc);
 #else
   return encodeChannel(technique, texelFetch(depthMap, p, 0).x, channel, params);
 #endif

@@ -37,7 +37,7 @@ void main() {
           acc = accumulateTap(acc, texelFetch(source, ivec3(x, y, layer), sourceLevel)[c], weight);
         }
       }
-      result[c] = acc.value;
+      result[c] = reductionResult(acc);
     }
     imageStore(target, ivec3(p, layer), result);
   }

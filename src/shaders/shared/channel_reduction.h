@@ -12,8 +12,9 @@ PENUMBRA_BEGIN_SHARED
 struct ChannelAccumulator {
   int reduction;
   float logExponent;  // c of the log-space reduction
-  float value;
-  int taps;  // taps with positive weight so far
+  float value;        // sum, min or max (read through reductionResult)
+  vec2 logSum;        // the log-space reduction's running (peak, scale): esm.h esmLogSum*
+  int taps;           // taps with positive weight so far
 };
 
 PENUMBRA_INLINE ChannelAccumulator startReduction(int reduction, float logExponent) {
@@ -23,6 +24,7 @@ PENUMBRA_INLINE ChannelAccumulator startReduction(int reduction, float logExpone
   a.value = 0.0f;
   if (reduction == kReduceMin) a.value = 3.402823e38f;
   if (reduction == kReduceMax) a.value = -3.402823e38f;
+  a.logSum = vec2(0.0f);
   a.taps = 0;
   return a;
 }
@@ -36,13 +38,21 @@ PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float val
   } else if (a.reduction == kReduceMax) {
     a.value = max(a.value, value);
   } else if (a.reduction == kReduceLogMeanExp) {
-    float term = esmLogSpaceWeighted(value, weight, a.logExponent);
-    a.value = a.taps == 0 ? term : esmLogSpaceAdd(a.value, term, a.logExponent);
+    a.logSum = a.taps == 0 ? esmLogSumStart(value, weight)
+                           : esmLogSumAdd(a.logSum, value, weight, a.logExponent);
   } else {
     a.value = a.value + weight * value;
   }
   a.taps = a.taps + 1;
   return a;
+}
+
+// The reduced value of the taps so far (0 before any tap).
+PENUMBRA_INLINE float reductionResult(ChannelAccumulator a) {
+  if (a.reduction == kReduceLogMeanExp) {
+    return a.taps == 0 ? 0.0f : esmLogSumValue(a.logSum, a.logExponent);
+  }
+  return a.value;
 }
 
 PENUMBRA_END_SHARED

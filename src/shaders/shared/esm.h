@@ -53,15 +53,20 @@ PENUMBRA_INLINE float esmEncode(float depth, EsmParams p) {
   return p.filterSpace == kEsmFilterLog ? depth : exp(p.exponent * depth);
 }
 
-// Log-space filtering (Salvi). A log-space value v stands for exp(c v); these keep sums of such
-// terms as log-space values without ever forming exp(c v). Weights must be > 0.
-PENUMBRA_INLINE float esmLogSpaceWeighted(float value, float weight, float exponent) {
-  return value + log(weight) / exponent;
+// Log-space filtering (Salvi). A log-space value v stands for exp(c v); a weighted sum of such
+// terms is kept as (peak, scale): the largest value so far and sum_i w_i exp(c (v_i - peak)),
+// which lies in (0, sum of weights], so nothing overflows for any c. One exp per term (the
+// pairwise log-add it replaced took three transcendentals). Weights must be > 0.
+PENUMBRA_INLINE vec2 esmLogSumStart(float value, float weight) {
+  return vec2(value, weight);
 }
-
-// The log-space value of exp(c a) + exp(c b): max + ln(1 + exp(-c |a - b|)) / c.
-PENUMBRA_INLINE float esmLogSpaceAdd(float a, float b, float exponent) {
-  return max(a, b) + log(1.0f + exp(-exponent * abs(a - b))) / exponent;
+PENUMBRA_INLINE vec2 esmLogSumAdd(vec2 sum, float value, float weight, float exponent) {
+  if (value <= sum.x) return vec2(sum.x, sum.y + weight * exp(exponent * (value - sum.x)));
+  return vec2(value, sum.y * exp(exponent * (sum.x - value)) + weight);
+}
+// The log-space value of the sum: ln(sum_i w_i exp(c v_i)) / c.
+PENUMBRA_INLINE float esmLogSumValue(vec2 sum, float exponent) {
+  return sum.x + log(sum.y) / exponent;
 }
 
 // ln of the filtered test exp(c (z - d)) summed over the kernel: ln E / exp(c d), where E is the

@@ -50,7 +50,7 @@ PENUMBRA_INLINE float filterChannelByTaps(LookupSources s, LookupSettings ls, in
   }
   ChannelAccumulator a = startReduction(reduction, logExponent);
   if (ls.filterMode == kFilterBilinear || ls.channelLevels == 1) {
-    return accumulateBilinear(s, a, channel, uv, 0, size, 1.0f).value;
+    return reductionResult(accumulateBilinear(s, a, channel, uv, 0, size, 1.0f));
   }
   LookupProbes probes = lookupProbes(uvDx, uvDy, ls);
   TrilinearLevels levels = trilinearLevels(probes.lod, ls.channelLevels);
@@ -62,7 +62,7 @@ PENUMBRA_INLINE float filterChannelByTaps(LookupSources s, LookupSettings ls, in
     a = accumulateBilinear(s, a, channel, at, levels.next, mipLevelSize(size, levels.next),
                            share * levels.fraction);
   }
-  return a.value;
+  return reductionResult(a);
 }
 
 #if PENUMBRA_SUMMED_AREA
