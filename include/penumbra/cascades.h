@@ -45,6 +45,9 @@ struct CascadeSettings {
 
 // Throws Error naming the setting and its range.
 void validateCascadeSettings(const CascadeSettings& settings);
+// Cascades split a directional light's view; throws Error (naming --cascades) for more than one
+// cascade with any other light.
+void requireCascadableLight(const CascadeSettings& settings, const Light& light);
 
 // The view depths where cascades 0..count-1 end, by the practical scheme (PSSM eq. 7-9):
 // lambda * near * (far/near)^(i/count) + (1 - lambda) * (near + (far - near) * i/count).
@@ -64,6 +67,10 @@ struct CascadeFrame {
   glm::mat4 clipFromLight(int cascade) const;
   // World size of one texel of cascade i's map (its larger axis).
   float texelWorldSize(int cascade, int shadowMapSize) const;
+  // Cascade 0's texel over cascade i's: how filter kernels scale to keep their world width.
+  float kernelScale(int cascade, int shadowMapSize) const {
+    return texelWorldSize(0, shadowMapSize) / texelWorldSize(cascade, shadowMapSize);
+  }
 };
 
 // A camera depth range: the near plane (where cascade 0 begins) and, with fitted depth bounds,
@@ -79,9 +86,9 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
                          DepthRange range, const Light& light, const Bounds& sceneBounds,
                          int shadowMapSize);
 
-// The prefilter kernel of a cascade whose texels are `texelWorld` wide, given the kernel of
-// cascade 0 (texels `nearestTexelWorld` wide): the same world-space width, (2r + 1) texels
-// rounded to the nearest odd count, and sigma scaled exactly.
-BlurSpec cascadeBlur(const BlurSpec& nearest, float nearestTexelWorld, float texelWorld);
+// The prefilter kernel of a cascade given cascade 0's and `scale` = cascade 0's texel over this
+// cascade's (CascadeFrame::kernelScale): the same world-space width, (2r + 1) texels rounded to
+// the nearest odd count, and sigma scaled exactly (shared/cascade_selection.h).
+BlurSpec cascadeBlur(const BlurSpec& nearest, float scale);
 
 }  // namespace penumbra

@@ -1,7 +1,9 @@
 // Rendering every technique and the references, and measuring them.
 #include "penumbra/compare/comparison.h"
 
+#include <algorithm>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "penumbra/compare/error_regions.h"
 #include "penumbra/error.h"
@@ -114,11 +116,11 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   ComparisonResult result;
   result.scene = loadScene(request.scene);
   applyOverrides(result.scene, request.view);
+  requireCascadableLight(request.settings.cascades, result.scene.light);
   result.request = request;
   result.device = renderer.deviceDescription();
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
-  const bool measuresShimmer = request.settings.cascades.count > 1 &&
-                               result.scene.light.kind == LightKind::Directional;
+  const bool measuresShimmer = request.settings.cascades.count > 1;
   const int total = request.pathFrames * (1 + int(request.techniques.size()) *
                                                   (measuresShimmer ? 3 : 1)) + 1;
   int done = 0;
@@ -130,28 +132,31 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   std::vector<std::vector<Image>> visibilities(request.techniques.size());
   std::vector<std::vector<Image>> masks(request.techniques.size());
   std::vector<Image> references;
+  renderer.setScene(result.scene);  // uploaded once; each frame is a view of it
   for (size_t frame = 0; frame < path.size(); ++frame) {
-    Scene scene = result.scene;
-    scene.camera = path[frame];
+    const gl::FrameView view{path[frame], result.scene.light};
     step("reference, frame " + std::to_string(frame + 1));
-    const gl::RenderResult reference = renderer.renderReference(scene, request.settings, 1);
+    const gl::RenderResult reference = renderer.renderReference(request.settings, view, 1);
     references.push_back(reference.visibility);
     if (frame == 0) {
       result.referenceColor = reference.color;
       result.referenceVisibility = reference.visibility;
       result.coverage = litSurfaceMask(reference.lookup);
-      const Image depth = renderer.readDepthMap();
+      // Every cascade's depth (the worst pixel may lie in any), read before the techniques'
+      // light passes (which may be multisampled) replace them.
+      std::vector<Image> depths;
+      for (int c = 0; c < reference.cascadeFrame.count; ++c) depths.push_back(renderer.readDepthMap(c));
       // Kept for the worst pixel's curves, found once every technique is measured.
       result.worstRegion.clear();
       step("supersampled ground truth");
       result.groundTruthVisibility =
-          renderer.renderReference(scene, request.settings, request.supersample).visibility;
+          renderer.renderReference(request.settings, view, request.supersample).visibility;
       result.techniques.resize(request.techniques.size());
       double worst = -1.0;
       for (size_t k = 0; k < request.techniques.size(); ++k) {
         const Technique t = request.techniques[k];
         step(std::string(techniqueId(t)) + ", frame 1");
-        const gl::RenderResult r = renderer.render(scene, settingsFor(request, t));
+        const gl::RenderResult r = renderer.render(settingsFor(request, t), view);
         TechniqueResult& out = result.techniques[k];
         out.technique = t;
         out.params = r.params;
@@ -178,15 +183,20 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       }
       if (result.worstX >= 0) {
         result.worstReceiverDepth = reference.lookup.at(result.worstX, result.worstY, 2);
-        result.worstRegion = referenceRegion(depth, reference.lookup, reference.receiverPlane,
-                                             result.worstX, result.worstY, request.settings.blur);
+        // The pixel's own cascade and its kernel (in a blend band the reference also mixes in
+        // the next cascade; the curves show the deciding one).
+        const int cascade =
+            std::max(0, int(reference.cascades.at(result.worstX, result.worstY, 0)));
+        result.worstRegion =
+            referenceRegion(depths[size_t(cascade)], reference.lookup, reference.receiverPlane,
+                            result.worstX, result.worstY, reference.cascadeBlurs[size_t(cascade)]);
       }
       continue;
     }
     for (size_t k = 0; k < request.techniques.size(); ++k) {
       const Technique t = request.techniques[k];
       step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
-      const gl::RenderResult r = renderer.render(scene, settingsFor(request, t));
+      const gl::RenderResult r = renderer.render(settingsFor(request, t), view);
       visibilities[k].push_back(r.visibility);
       masks[k].push_back(litSurfaceMask(r.lookup));
       // Times of the last frame: warm, without the driver's first-use shader compilation.
@@ -200,7 +210,16 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   if (measuresShimmer) {
     // Both fits side by side: the view holds at the path's first camera while the cascades
     // follow the path (FrameView::shadowCamera), so the picture changes only where the maps do.
+    // The shadow camera also turns (a quarter degree a frame): tight boxes change size as it
+    // turns, which is what the stabilised fit's bounding sphere is for.
     renderer.setScene(result.scene);
+    std::vector<Camera> shadowPath = path;
+    for (size_t frame = 0; frame < shadowPath.size(); ++frame) {
+      Camera& c = shadowPath[frame];
+      const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(kShimmerTurnDegrees * float(frame)),
+                                         glm::vec3(0.0f, 1.0f, 0.0f));
+      c.target = c.position + glm::vec3(turn * glm::vec4(c.target - c.position, 0.0f));
+    }
     for (size_t k = 0; k < request.techniques.size(); ++k) {
       const Technique t = request.techniques[k];
       CascadeShimmer shimmer;
@@ -212,7 +231,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
           step(std::string(techniqueId(t)) + ", shimmer with " + std::string(cascadeFitName(fit)) +
                " cascades, frame " + std::to_string(frame + 1));
           const gl::RenderResult r = renderer.render(
-              settings, gl::FrameView{path.front(), result.scene.light, path[frame]});
+              settings, gl::FrameView{path.front(), result.scene.light, shadowPath[frame]});
           frames.push_back(r.visibility);
           covered.push_back(litSurfaceMask(r.lookup));
         }

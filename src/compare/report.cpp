@@ -215,13 +215,20 @@ std::string shimmerSection(const ComparisonResult& r) {
   const CascadeSettings& c = r.request.settings.cascades;
   std::ostringstream h;
   h << std::setprecision(4) << "<h2>Shimmer</h2>\n<p>" << c.count
-    << " cascades follow the " << r.request.pathFrames
-    << "-frame camera path while the view holds at its first camera, so the picture changes "
-       "only where the shadow maps do. Shimmer: the mean frame-to-frame change of the "
-       "visibility on lit surfaces, with the cascades fitted stabilised (bounding sphere, "
-       "texel snapping) and tight (bounding box of each split), rendered side by side. Tight "
-       "boxes follow the camera, so the maps are resampled every frame and edges crawl; "
-       "stabilised maps move by whole texels only.</p>\n"
+    << " cascades follow the " << r.request.pathFrames << "-frame camera path, turning "
+    << kShimmerTurnDegrees
+    << "° a frame, while the view holds at its first camera, so the picture changes only where "
+       "the shadow maps do. Shimmer: the mean frame-to-frame change of the visibility on lit "
+       "surfaces, with the cascades fitted stabilised (bounding sphere, texel snapping) and "
+       "tight (bounding box of each split), rendered side by side. Tight boxes follow the "
+       "camera, so the maps are resampled every frame and edges crawl; stabilised maps keep "
+       "their size and move by whole texels.";
+  if (c.fitDepthBounds) {
+    h << " Here the depth bounds are fitted to what the shadow camera sees, so the splits move "
+         "every frame and the stabilised maps change size too (the sample-distribution "
+         "trade-off).";
+  }
+  h << "</p>\n"
     << "<table id=\"shimmer\"><thead><tr><th>technique</th><th>stabilised</th><th>tight</th>"
        "<th>tight / stabilised</th></tr></thead><tbody>\n";
   for (const TechniqueResult& t : r.techniques) {

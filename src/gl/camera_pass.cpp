@@ -77,7 +77,7 @@ void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
   glProgramUniform1fv(program.id(), location(program, "cascadeTexelWorldSize"), c.count,
                       texel.data());
   std::vector<float> kernelScale;
-  for (int i = 0; i < c.count; ++i) kernelScale.push_back(texel[0] / texel[size_t(i)]);
+  for (int i = 0; i < c.count; ++i) kernelScale.push_back(c.kernelScale(i, frame.shadowMapSize));
   glProgramUniform1fv(program.id(), location(program, "kernelScale"), c.count, kernelScale.data());
   program.set("cascadeStart", c.start);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds0"), 1, &c.ends[0]);

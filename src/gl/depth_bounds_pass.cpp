@@ -15,6 +15,14 @@ DepthBoundsPass::~DepthBoundsPass() {
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
 }
 
+void DepthBoundsPass::release() {
+  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  framebuffer_ = 0;
+  width_ = height_ = 0;
+  depth_ = Texture();
+  bounds_.reset();
+}
+
 uint64_t DepthBoundsPass::bytes() const {
   return framebuffer_ == 0 ? 0 : depthBoundsBytes(width_, height_);
 }

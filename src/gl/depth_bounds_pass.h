@@ -23,6 +23,8 @@ class DepthBoundsPass {
   DepthRange measure(ProgramCache& programs, const GpuScene& scene, const glm::mat4& clipFromWorld,
                      DepthRange projection, int width, int height, DepthRange fallback);
   uint64_t bytes() const;
+  // Frees the target when depth bounds are no longer fitted (the memory report stays exact).
+  void release();
 
  private:
   int width_ = 0, height_ = 0;

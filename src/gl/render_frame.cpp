@@ -171,6 +171,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
                                   settings.height, range);
     s.depthBoundsTimer.end();
+  } else {
+    s.depthBounds.release();
   }
   frame.cascaded = settings.cascades.count > 1;
   frame.cascades = frame.cascaded
@@ -181,8 +183,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   s.cascadeBlurs.assign(1, settings.blur);
   for (int c = 1; c < count; ++c) {
     s.cascadeBlurs.push_back(
-        cascadeBlur(settings.blur, frame.cascades.texelWorldSize(0, settings.shadowMapSize),
-                    frame.cascades.texelWorldSize(c, settings.shadowMapSize)));
+        cascadeBlur(settings.blur, frame.cascades.kernelScale(c, settings.shadowMapSize)));
   }
   s.uploadBlurWeights(s.cascadeBlurs);
 
@@ -221,8 +222,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   } else {
     s.zmax.release();
     s.lloyd.release();
-    // The reference reads raw depth only; the camera program still binds a channel texture.
-    if (s.filter.shape().size == 0) s.filter.prepare(channelShapeFor(settings, count));
+    // The reference reads raw depth only, but the camera pass takes the map's size and levels
+    // from the channel shape (and binds the texture): keep it this frame's (a no-op when equal).
+    s.filter.prepare(channelShapeFor(settings, count));
   }
 
   s.camera.prepare(settings.width, settings.height);
@@ -282,8 +284,7 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
           LookupConfig{Technique::Hard, settings.params, settings.filter,
                        s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
                        s.limits.halfRounding,
-                       r.cascadeFrame.texelWorldSize(0, size) /
-                           r.cascadeFrame.texelWorldSize(cascade, size)});
+                       r.cascadeFrame.kernelScale(cascade, size)});
     }
     return *found;
   };

@@ -161,7 +161,7 @@ MemoryReport Renderer::State::memory() const {
   m.summedArea = filter.summedAreaBytes();
   m.scratch = filter.scratchBytes();
   m.auxiliary = zmax.bytes() + lloyd.bytes();
-  m.frame = camera.bytes() + (fitsDepthBounds(settings) ? depthBounds.bytes() : 0);
+  m.frame = camera.bytes() + depthBounds.bytes();
   m.geometry = scene ? scene->bytes() : 0;
   return m;
 }

@@ -67,9 +67,12 @@ glm::vec4 stabilizedBox(const LightView& light, const Camera& camera, float aspe
                                           (zc - zn) * (zc - zn) + zn * zn * k2));
   const glm::vec3 forward = glm::normalize(camera.target - camera.position);
   const glm::vec2 centre = lightPlane(light, camera.position + forward * zc);
-  const float texel = 2.0f * radius / float(shadowMapSize);
-  const glm::vec2 snapped = glm::floor(centre / texel) * texel;
-  return {snapped - radius, 2.0f * radius, 2.0f * radius};
+  // Snapping moves the box's corner down by up to one texel, so the box is one texel wider than
+  // the sphere: size texels of 2r / (size - 1) cover [c - r, c + r] wherever the corner lands.
+  const float texel = 2.0f * radius / float(shadowMapSize - 1);
+  const glm::vec2 corner = glm::floor((centre - radius) / texel) * texel;
+  const float size = float(shadowMapSize) * texel;
+  return {corner, size, size};
 }
 
 }  // namespace
@@ -87,32 +90,40 @@ CascadeFit parseCascadeFit(std::string_view name) {
 
 void validateCascadeSettings(const CascadeSettings& s) {
   if (s.count < 1 || s.count > kMaxCascadeCount) {
-    throw Error("cascade count " + std::to_string(s.count) + " is out of range [1, " +
+    throw Error("cascade count (--cascades) " + std::to_string(s.count) + " is out of range [1, " +
                 std::to_string(kMaxCascadeCount) + "]");
   }
   if (!(s.lambda >= 0.0f && s.lambda <= 1.0f)) {
-    throw Error("cascade lambda " + str(s.lambda) + " is out of range [0, 1]");
+    throw Error("cascade lambda (--cascade-lambda) " + str(s.lambda) + " is out of range [0, 1]");
   }
   if (!(s.blendBand >= 0.0f && s.blendBand <= 0.5f)) {
-    throw Error("cascade blend band " + str(s.blendBand) + " is out of range [0, 0.5]");
+    throw Error("cascade blend band (--cascade-blend) " + str(s.blendBand) + " is out of range [0, 0.5]");
   }
   if (!(s.maxDistance >= 0.0f && std::isfinite(s.maxDistance))) {
-    throw Error("cascade max distance " + str(s.maxDistance) +
-                " must be finite and >= 0 (0: the camera's far plane)");
+    throw Error("shadow distance (--shadow-distance) " + str(s.maxDistance) +
+                " must be finite and >= 0 (0: the scene's diameter)");
   }
   if (!s.distances.empty()) {
     if (int(s.distances.size()) != s.count - 1) {
-      throw Error("cascade split distances: " + std::to_string(s.count) + " cascades need " +
+      throw Error("cascade split distances (--cascade-splits): " + std::to_string(s.count) + " cascades need " +
                   std::to_string(s.count - 1) + " distances, got " +
                   std::to_string(s.distances.size()));
     }
     for (size_t i = 0; i < s.distances.size(); ++i) {
       const float d = s.distances[i];
       if (!(std::isfinite(d) && d > 0.0f) || (i > 0 && !(d > s.distances[i - 1]))) {
-        throw Error("cascade split distances must be finite, positive and increasing; distance " +
+        throw Error("cascade split distances (--cascade-splits) must be finite, positive and increasing; distance " +
                     std::to_string(i + 1) + " is " + str(d));
       }
     }
+  }
+}
+
+void requireCascadableLight(const CascadeSettings& settings, const Light& light) {
+  if (settings.count > 1 && light.kind != LightKind::Directional) {
+    throw Error("--cascades " + std::to_string(settings.count) +
+                " needs a directional light; this scene's light is a spot light (use 1 cascade, "
+                "or --light-dir for a directional light)");
   }
 }
 
@@ -142,9 +153,7 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
                          DepthRange range, const Light& light, const Bounds& sceneBounds,
                          int shadowMapSize) {
   validateCascadeSettings(settings);
-  if (light.kind != LightKind::Directional) {
-    throw Error("cascades need a directional light; this light is a spot light (use 1 cascade)");
-  }
+  requireCascadableLight(settings, light);
   CascadeFrame frame;
   frame.light = fitLightView(light, sceneBounds);
   frame.count = settings.count;
@@ -160,8 +169,19 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
   if (settings.distances.empty()) {
     ends = practicalSplitEnds(near, far, settings.count, settings.lambda);
   } else {
+    // Given splits must fall strictly inside the range they split: a split outside would leave
+    // an empty cascade, and pushing the shadow distance out would override the user's setting.
+    for (float d : settings.distances) {
+      if (!(d > near && d < far)) {
+        std::ostringstream interval;
+        interval << "(" << near << ", " << far << ")";
+        throw Error("cascade split distance (--cascade-splits) " + str(d) + " is outside the shadow range " +
+                    interval.str() + (settings.fitDepthBounds ? " (fitted to the visible depths)" : "") +
+                    "; give splits inside it or change --shadow-distance");
+      }
+    }
     ends = settings.distances;
-    ends.push_back(std::max(far, settings.distances.back()));
+    ends.push_back(far);
   }
   frame.start = near;
   float start = near;  // where cascade i's own range begins
@@ -175,14 +195,13 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
             : tightBox(frame.light, sliceCorners(camera, aspect, fitFrom, end));
     // Cascade i fades into i+1 over the last blendBand of its range (cascade_selection.h), so
     // i+1's map reaches back over that band.
-    fitFrom = end - settings.blendBand * (end - start);
+    fitFrom = shaders::cascadeBandStart(start, end, settings.blendBand);
     start = end;
   }
   return frame;
 }
 
-BlurSpec cascadeBlur(const BlurSpec& nearest, float nearestTexelWorld, float texelWorld) {
-  const float scale = nearestTexelWorld / texelWorld;
+BlurSpec cascadeBlur(const BlurSpec& nearest, float scale) {
   BlurSpec b = nearest;
   b.radius = shaders::worldConstantKernelRadius(nearest.radius, scale);
   b.sigma = shaders::worldConstantKernelSigma(nearest.sigma, scale);

@@ -147,10 +147,10 @@ TEST(CascadeSettings, RefusesOutOfRangeValuesWithTheRange) {
 TEST(CascadeBlur, KeepsTheKernelsWorldWidth) {
   // Cascade texels twice as wide: a 9-tap kernel (4.5 units of 0.5) becomes 5 taps of 1 unit
   // (nearest odd count to 4.5 rounds up), sigma halves.
-  const BlurSpec b = cascadeBlur({BlurKernel::Gaussian, 4, 2.0f}, 0.5f, 1.0f);
+  const BlurSpec b = cascadeBlur({BlurKernel::Gaussian, 4, 2.0f}, 0.5f);
   EXPECT_EQ(b.radius, 2);
   EXPECT_FLOAT_EQ(b.sigma, 1.0f);
-  EXPECT_EQ(cascadeBlur({BlurKernel::Box, 2, 1.0f}, 1.0f, 1.0f).radius, 2);
+  EXPECT_EQ(cascadeBlur({BlurKernel::Box, 2, 1.0f}, 1.0f).radius, 2);
 }
 
 }  // namespace

@@ -1,9 +1,13 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
+#include <fcntl.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -33,6 +37,33 @@ struct RenderCommandOptions {
   std::vector<std::string> animate{"orbit"};
 };
 
+// Runs a program found on PATH with exactly these arguments (no shell, so any path is safe) and
+// returns its exit status (-1 when it cannot be started). stdout is discarded.
+int runProgram(const std::vector<std::string>& args) {
+  std::vector<char*> argv;
+  std::vector<std::string> copies = args;
+  for (std::string& a : copies) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  posix_spawn_file_actions_t actions;
+  posix_spawn_file_actions_init(&actions);
+  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
+  pid_t pid = 0;
+  const int started = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  posix_spawn_file_actions_destroy(&actions);
+  if (started != 0) return -1;
+  int status = 0;
+  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
+  return WEXITSTATUS(status);
+}
+
+// --frames encodes with Debian's ffmpeg: found missing before anything is rendered.
+void requireFfmpeg() {
+  if (runProgram({"ffmpeg", "-loglevel", "quiet", "-version"}) != 0) {
+    throw Error("--frames encodes an MP4 with ffmpeg, which was not found on PATH "
+                "(scripts/install-deps installs Debian's ffmpeg)");
+  }
+}
+
 // Writes frames/<stem>_NNNN.png for each frame of the animation and encodes <stem>.mp4 with
 // ffmpeg (H.264, yuv420p: plays everywhere). Returns the last frame's result.
 gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
@@ -54,11 +85,12 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
   }
   files["frames"] = "frames/" + stem + "_%04d.png";
   files["video"] = stem + ".mp4";
-  const std::string command = "ffmpeg -y -loglevel error -framerate 30 -i '" +
-                              (dir / "frames" / (stem + "_%04d.png")).string() +
-                              "' -c:v libx264 -pix_fmt yuv420p -vf 'pad=ceil(iw/2)*2:ceil(ih/2)*2' '" +
-                              (dir / files.at("video")).string() + "'";
-  if (std::system(command.c_str()) != 0) {
+  const std::vector<std::string> command{
+      "ffmpeg", "-y", "-loglevel", "error", "-framerate", "30", "-i",
+      (dir / "frames" / (stem + "_%04d.png")).string(), "-c:v", "libx264", "-pix_fmt", "yuv420p",
+      // H.264 in yuv420p needs even sizes.
+      "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", (dir / files.at("video")).string()};
+  if (runProgram(command) != 0) {
     throw Error("ffmpeg could not encode " + (dir / files.at("video")).string() +
                 " (is Debian's ffmpeg installed? scripts/install-deps installs it); the frames "
                 "are in " + (dir / "frames").string());
@@ -85,7 +117,9 @@ void runRender(const RenderCommandOptions& options) {
   printSceneWarnings(scene);
   const std::vector<Technique> techniques = selectedTechniques(options.technique);
   for (const std::string& name : options.animate) parseAnimation(name);  // before any GL work
+  if (options.frames > 1) requireFfmpeg();
   gl::RenderSettings settings = toRenderSettings(options.render);
+  requireCascadableLight(settings.cascades, scene.light);
   settings.params = selectedParams(options.technique, techniques);
 
   checkOutputPath(options.outDir);  // before any GL work
@@ -152,12 +186,13 @@ void registerRenderCommand(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  cmd->add_option("--frames", o->frames,
+  CLI::Option* frames = cmd->add_option("--frames", o->frames,
                   "render an animated sequence of N frames into frames/ and an MP4 (ffmpeg)")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();
   cmd->add_option("--animate", o->animate,
                   "animations for --frames: " + animationNameList() + " (comma-separated)")
+      ->needs(frames)
       ->delimiter(',')
       ->capture_default_str();
   cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();

@@ -25,27 +25,37 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--height", o.height, "frame height in pixels")->capture_default_str();
   app.add_option("--normal-offset", o.normalOffset, "normal-offset bias in shadow-map texels")
       ->capture_default_str();
-  app.add_option("--cascades", o.cascades,
-                 "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
-      ->capture_default_str();
-  app.add_option("--cascade-lambda", o.cascadeLambda,
-                 "practical split scheme: 0 uniform .. 1 logarithmic (PSSM)")
-      ->capture_default_str();
-  app.add_option("--cascade-splits", o.cascadeSplits,
-                 "given split distances (view depth, world units): cascades-1 increasing values")
-      ->delimiter(',');
-  app.add_option("--cascade-fit", o.cascadeFit,
-                 "stabilized (bounding sphere, texel snapping) or tight (shimmers)")
-      ->capture_default_str();
-  app.add_option("--cascade-depth", o.cascadeDepth,
-                 "fixed (near plane .. shadow distance) or fitted (visible depth range, GPU reduction)")
-      ->capture_default_str();
-  app.add_option("--cascade-blend", o.cascadeBlend,
-                 "share of each cascade blended into the next, 0..0.5")
-      ->capture_default_str();
-  app.add_option("--shadow-distance", o.shadowDistance,
-                 "where cascaded shadows end (world units; 0: the scene's diameter)")
-      ->capture_default_str();
+  CLI::Option* cascades =
+      app.add_option("--cascades", o.cascades,
+                     "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
+          ->capture_default_str();
+  // The options that tune cascades need more than one: never silently ignored.
+  auto tunesCascades = [&o, cascades](CLI::Option* option) {
+    option->needs(cascades)->each([&o](const std::string&) { o.cascadesTuned = true; });
+    return option;
+  };
+  CLI::Option* lambda = tunesCascades(
+      app.add_option("--cascade-lambda", o.cascadeLambda,
+                     "practical split scheme: 0 uniform .. 1 logarithmic (PSSM)")
+          ->capture_default_str());
+  tunesCascades(app.add_option("--cascade-splits", o.cascadeSplits,
+                               "given split distances (view depth, world units): cascades-1 "
+                               "increasing values")
+                    ->delimiter(',')
+                    ->excludes(lambda));
+  tunesCascades(app.add_option("--cascade-fit", o.cascadeFit,
+                               "stabilized (bounding sphere, texel snapping) or tight (shimmers)")
+                    ->capture_default_str());
+  tunesCascades(app.add_option("--cascade-depth", o.cascadeDepth,
+                               "fixed (near plane .. shadow distance) or fitted (visible depth "
+                               "range, GPU reduction)")
+                    ->capture_default_str());
+  tunesCascades(app.add_option("--cascade-blend", o.cascadeBlend,
+                               "share of each cascade blended into the next, 0..0.5")
+                    ->capture_default_str());
+  tunesCascades(app.add_option("--shadow-distance", o.shadowDistance,
+                               "where cascaded shadows end (world units; 0: the scene's diameter)")
+                    ->capture_default_str());
   app.add_option("--overlay", o.overlay, "none or cascades (tint pixels by cascade)")
       ->capture_default_str();
 }
@@ -71,6 +81,10 @@ gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   s.height = o.height;
   s.normalOffsetTexels = o.normalOffset;
   s.cascades.count = o.cascades;
+  if (o.cascadesTuned && o.cascades == 1) {
+    throw Error("the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
+                "--cascades 2..8 (1 is one map of the whole scene)");
+  }
   s.cascades.lambda = o.cascadeLambda;
   s.cascades.distances = o.cascadeSplits;
   s.cascades.fit = parseCascadeFit(o.cascadeFit);

@@ -25,6 +25,7 @@ struct RenderOptions {
   float cascadeLambda = 0.5f;
   std::vector<float> cascadeSplits;
   std::string cascadeFit = "stabilized";
+  bool cascadesTuned = false;  // a --cascade-* or --shadow-distance option was given
   std::string cascadeDepth = "fixed";
   float cascadeBlend = 0.1f;
   float shadowDistance = 0.0f;

@@ -34,6 +34,9 @@ struct ComparisonRequest {
 // Shimmer (frameToFrameChange) of one technique with cascades fitted both ways, measured side by
 // side: the cascades follow the camera path while the view holds at its first camera, so every
 // change of the picture is the shadow maps' own (docs/cascades.md).
+// The shadow camera's turn per frame on the shimmer path (on top of the scene's camera path).
+inline constexpr float kShimmerTurnDegrees = 0.25f;
+
 struct CascadeShimmer {
   double stabilized = 0.0;
   double tight = 0.0;

@@ -14,6 +14,11 @@ PENUMBRA_BEGIN_SHARED
 
 const int kMaxCascades = 8;
 
+// Where a cascade covering [start, end) begins to fade into the next: the last `band` of it.
+PENUMBRA_INLINE float cascadeBandStart(float start, float end, float band) {
+  return end - band * (end - start);
+}
+
 struct CascadeChoice {
   int index;    // the cascade whose map decides; cascade count: beyond the last (unshadowed)
   float blend;  // weight of cascade index + 1, in [0, 1): nonzero only in the blend band
@@ -32,7 +37,7 @@ PENUMBRA_INLINE CascadeChoice selectCascade(float viewDepth, float start, vec4 e
     float end = i < 4 ? ends0[i] : ends1[i - 4];
     if (viewDepth < end) {
       choice.index = i;
-      float bandStart = end - band * (end - cascadeStart);
+      float bandStart = cascadeBandStart(cascadeStart, end, band);
       if (i + 1 < count && band > 0.0f && viewDepth > bandStart) {
         choice.blend = clamp((viewDepth - bandStart) / (end - bandStart), 0.0f, 1.0f);
       }
