@@ -3,18 +3,16 @@
 
 #include <epoxy/gl.h>
 
+#include "channel_dispatch.h"
 #include "gl_formats.h"
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
 
 namespace penumbra::gl {
+
 namespace {
-
-constexpr unsigned kGroup = 8;
-
-unsigned groups(int n, unsigned size) {
-  return (unsigned(n) + size - 1) / size;
-}
+constexpr unsigned kGroup = kChannelGroup;
+}  // namespace
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
   return {{"CHANNEL_FORMAT", imageFormatQualifier(layout)}};
@@ -27,8 +25,6 @@ void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int l
 void setSize(const Program& p, const char* name, int size) {
   glProgramUniform2i(p.id(), glGetUniformLocation(p.id(), name), size, size);
 }
-
-}  // namespace
 
 bool ChannelShape::operator==(const ChannelShape& o) const {
   return layout.channels == o.layout.channels && layout.layers == o.layout.layers &&

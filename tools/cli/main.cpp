@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "accuracy_command.h"
+#include "bench_command.h"
 #include "compare_command.h"
 #include "curves_command.h"
 #include "penumbra/error.h"
@@ -14,6 +15,7 @@ int main(int argc, char** argv) {
   CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
   app.require_subcommand(1);
   penumbra::cli::registerAccuracyCommand(app);
+  penumbra::cli::registerBenchCommand(app);
   penumbra::cli::registerCompareCommand(app);
   penumbra::cli::registerCurvesCommand(app);
   penumbra::cli::registerRenderCommand(app);

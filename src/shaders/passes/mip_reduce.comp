@@ -22,23 +22,26 @@ void main() {
   float weight = 1.0f / float((xs.y - xs.x + 1) * (ys.y - ys.x + 1));
   int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
-    vec4 result = vec4(0.0f);
+    // Each source texel is fetched once for all four channels (unused components reduce as
+    // means and are never read).
+    ChannelAccumulator acc[4];
     for (int c = 0; c < 4; ++c) {
       int channel = 4 * layer + c;
-      if (channel >= count) continue;
 #ifdef FORCE_REDUCTION
       int reduction = FORCE_REDUCTION;
 #else
-      int reduction = channelReduction(technique, channel, params);
+      int reduction = channel < count ? channelReduction(technique, channel, params) : kReduceMean;
 #endif
-      ChannelAccumulator acc = startReduction(reduction, params.esm.exponent);
-      for (int y = ys.x; y <= ys.y; ++y) {
-        for (int x = xs.x; x <= xs.y; ++x) {
-          acc = accumulateTap(acc, texelFetch(source, ivec3(x, y, layer), sourceLevel)[c], weight);
-        }
-      }
-      result[c] = reductionResult(acc);
+      acc[c] = startReduction(reduction, params.esm.exponent);
     }
-    imageStore(target, ivec3(p, layer), result);
+    for (int y = ys.x; y <= ys.y; ++y) {
+      for (int x = xs.x; x <= xs.y; ++x) {
+        vec4 texel = texelFetch(source, ivec3(x, y, layer), sourceLevel);
+        for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
+      }
+    }
+    imageStore(target, ivec3(p, layer),
+               vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
+                    reductionResult(acc[3])));
   }
 }

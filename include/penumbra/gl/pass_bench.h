@@ -1,0 +1,33 @@
+// Each prefilter pass beside a minimal kernel with the same reads and writes, timed side by side
+// in one run (`penumbra bench --passes`): how close the passes come to what the device can do.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "penumbra/gl/renderer.h"
+
+namespace penumbra::gl {
+
+struct PassTiming {
+  std::string pass;      // "encode", "prefilter", "mips"
+  double passMs = 0.0;   // the renderer's pass, median wall time of the warm frames
+  std::string baseline;  // what the minimal kernel does
+  double baselineMs = 0.0;
+  double ratio() const { return baselineMs > 0.0 ? passMs / baselineMs : 0.0; }
+};
+
+struct PassBenchResult {
+  Technique technique = Technique::Vsm;
+  std::string format;  // the channel texture's format, e.g. "rgba32f x 1 layer"
+  std::vector<PassTiming> passes;
+};
+
+// Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) and runs the minimal
+// kernels as many times on textures of the channel texture's format, size and layers; medians
+// of wall-clock times (llvmpipe's timer queries see only submission). PCF and the hard test have
+// no prefilter: they are refused.
+PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
+                            int repeats);
+
+}  // namespace penumbra::gl

@@ -1,0 +1,15 @@
+// `penumbra bench --passes`: the minimal kernel beside the encode pass — the same read of the
+// light pass's depth and the same writes to every channel layer, with no technique math.
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(binding = 0) uniform sampler2DArray depth;
+layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
+
+uniform ivec2 size;
+uniform int layerCount;
+
+void main() {
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+  float z = texelFetch(depth, ivec3(p, 0), 0).x;
+  for (int layer = 0; layer < layerCount; ++layer) imageStore(target, ivec3(p, layer), vec4(z));
+}
