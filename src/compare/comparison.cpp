@@ -17,18 +17,7 @@ namespace {
 gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique technique) {
   gl::RenderSettings s = request.settings;
   s.technique = technique;
-  if (technique == Technique::Pcf && request.matchPcfKernel) {
-    // The prefilter's own kernel, the receiver plane and the reference's tie
-    // (shared/shadow_lookup.h): the filtered reference itself for point and bilinear lookups,
-    // the nearest PCF kernel for mip-mapped ones. PCF's ranges cover the blur's, so nothing is
-    // clamped.
-    shaders::LookupSettings lookup{};
-    lookup.filterMode = int(s.filter);
-    lookup.blurKernel = blurKernelId(s.blur.kernel);
-    lookup.blurRadius = s.blur.radius;
-    lookup.blurSigma = s.blur.sigma;
-    s.params.pcf = shaders::pcfMatchingPrefilter(lookup);
-  }
+  if (technique == Technique::Pcf && request.matchPcfKernel) s.params.pcf = pcfMatchingPrefilter(s);
   return s;
 }
 
@@ -71,6 +60,19 @@ std::vector<DepthSample> referenceRegion(const Image& depth, const Image& lookup
 }
 
 }  // namespace
+
+shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings) {
+  // The prefilter's own kernel, the receiver plane and the reference's tie
+  // (shared/shadow_lookup.h): the filtered reference itself for point and bilinear lookups, the
+  // nearest PCF kernel for mip-mapped ones. PCF's ranges cover the blur's, so nothing is clamped.
+  shaders::LookupSettings lookup{};
+  lookup.filterMode = int(settings.filter);
+  lookup.blurKernel = blurKernelId(settings.blur.kernel);
+  lookup.blurRadius = settings.blur.radius;
+  lookup.blurSigma = settings.blur.sigma;
+  lookup.kernelScale = 1.0f;  // cascade 0's kernel; the lookup scales it per cascade
+  return shaders::pcfMatchingPrefilter(lookup);
+}
 
 void validateRequest(const ComparisonRequest& request, const gl::Renderer& renderer) {
   checkSceneSource(request.scene);  // throws for an unknown scene or a missing file

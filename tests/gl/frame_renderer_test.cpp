@@ -12,7 +12,7 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/metrics.h"
 #include "penumbra/scene.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/compare/comparison.h"
 
 namespace penumbra {
 namespace {
@@ -170,12 +170,7 @@ TEST_F(FrameRenderer, PcfKeepsItsKernelsWorldWidthInEveryCascade) {
   s.blur = {BlurKernel::Box, 4, 1.0f};  // 9 taps in cascade 0, fewer farther out
   s.cascades.count = 2;
   s.cascades.distances = {15.0f};  // the second cascade from 15 m: much of the street
-  shaders::LookupSettings lookup{};
-  lookup.filterMode = int(s.filter);
-  lookup.blurKernel = blurKernelId(s.blur.kernel);
-  lookup.blurRadius = s.blur.radius;
-  lookup.blurSigma = s.blur.sigma;
-  s.params.pcf = shaders::pcfMatchingPrefilter(lookup);
+  s.params.pcf = compare::pcfMatchingPrefilter(s);
   const gl::RenderResult r = renderer.render(scene, s);
   const gl::RenderResult ref = renderer.renderReference(scene, s, 1);
   ASSERT_LT(r.cascadeBlurs[1].radius, s.blur.radius) << "the far cascade's kernel is narrower";

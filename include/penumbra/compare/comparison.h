@@ -80,6 +80,10 @@ struct ComparisonResult {
   std::vector<DepthSample> worstRegion;
 };
 
+// PCF parameters that make PCF the filtered reference of these settings' prefilter (box or
+// Gaussian blur x the lookup) where the lookup allows: compare's matched PCF.
+shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings);
+
 // step: what is being done; done/total: steps so far and in all.
 using Progress = std::function<void(int done, int total, const std::string& step)>;
 
