@@ -38,10 +38,15 @@ struct CascadeSettings {
   CascadeFit fit = CascadeFit::Stabilized;
   // Share of each cascade's depth range, at its far end, blended with the next cascade: [0, 0.5].
   float blendBand = 0.1f;
-  // Shadows end here (view depth, world units); 0: the scene's diameter (a distance that does
-  // not move with the camera, so stabilised cascades keep their sizes).
+  // Shadows end here (view depth, world units); 0: defaultShadowDistance.
   float maxDistance = 0.0f;
 };
+
+// The shadow distance when none is set: the distance from the camera to the far side of the
+// scene's bounding sphere, rounded up to whole diameters, so that it covers the scene from
+// wherever the camera is and stays constant while the camera moves within a shell (stabilised
+// cascades keep their sizes).
+float defaultShadowDistance(const Camera& camera, const Bounds& sceneBounds);
 
 // Throws Error naming the setting and its range.
 void validateCascadeSettings(const CascadeSettings& settings);

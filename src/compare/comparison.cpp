@@ -144,6 +144,15 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       result.referenceColor = reference.color;
       result.referenceVisibility = reference.visibility;
       result.coverage = litSurfaceMask(reference.lookup);
+      if (std::none_of(result.coverage.data().begin(), result.coverage.data().end(),
+                       [](float m) { return m > 0.5f; })) {
+        // Every metric would be 0 over no pixels: a silent perfect score.
+        throw Error("scene '" + result.scene.name +
+                    "' shows no lit surface inside the shadow map" +
+                    (request.settings.cascades.count > 1 ? "s (is the view beyond --shadow-distance?)"
+                                                         : " (does the light face the view?)") +
+                    ": nothing to measure");
+      }
       // Every cascade's depth (the worst pixel may lie in any), read before the techniques'
       // light passes (which may be multisampled) replace them.
       std::vector<Image> depths;

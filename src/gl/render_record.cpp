@@ -43,7 +43,7 @@ std::string cascadeSettingsJson(const CascadeSettings& c) {
   out["fit"] = cascadeFitName(c.fit);
   out["depth_bounds"] = c.fitDepthBounds ? "fitted" : "fixed";
   out["blend_band"] = c.blendBand;
-  out["shadow_distance"] = c.maxDistance;  // 0: the scene's diameter
+  out["shadow_distance"] = c.maxDistance;  // 0: defaultShadowDistance (cascade_view_depths)
   return out.dump();
 }
 

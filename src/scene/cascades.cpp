@@ -101,7 +101,7 @@ void validateCascadeSettings(const CascadeSettings& s) {
   }
   if (!(s.maxDistance >= 0.0f && std::isfinite(s.maxDistance))) {
     throw Error("shadow distance (--shadow-distance) " + str(s.maxDistance) +
-                " must be finite and >= 0 (0: the scene's diameter)");
+                " must be finite and >= 0 (0: the far side of the scene, in whole diameters)");
   }
   if (!s.distances.empty()) {
     if (int(s.distances.size()) != s.count - 1) {
@@ -117,6 +117,12 @@ void validateCascadeSettings(const CascadeSettings& s) {
       }
     }
   }
+}
+
+float defaultShadowDistance(const Camera& camera, const Bounds& sceneBounds) {
+  const float diameter = std::max(2.0f * sceneBounds.radius(), 1e-3f);
+  const float farSide = glm::length(camera.position - sceneBounds.centre()) + sceneBounds.radius();
+  return diameter * std::max(1.0f, std::ceil(farSide / diameter));
 }
 
 void requireCascadableLight(const CascadeSettings& settings, const Light& light) {
@@ -159,9 +165,12 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
   frame.count = settings.count;
   frame.blendBand = settings.blendBand;
   // The shadow distance must not follow the camera, or the splits (and with them the stabilised
-  // boxes' sizes) would change every frame: the setting, else the scene's diameter. Fitted depth
-  // bounds narrow it to what the camera sees (and give up that stability, as SDSM does).
-  float far = settings.maxDistance > 0.0f ? settings.maxDistance : 2.0f * sceneBounds.radius();
+  // boxes' sizes) would change every frame: the setting, else the distance to the far side of the
+  // scene's bounding sphere rounded up to whole diameters — it covers the scene from wherever the
+  // camera is, and stays put while the camera moves within a shell. Fitted depth bounds narrow it
+  // to what the camera sees (and give up that stability, as SDSM does).
+  float far = settings.maxDistance > 0.0f ? settings.maxDistance
+                                          : defaultShadowDistance(camera, sceneBounds);
   float near = range.near;
   if (settings.fitDepthBounds) far = std::min(far, range.far);
   near = std::min(near, far * 0.999f);

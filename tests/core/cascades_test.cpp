@@ -125,6 +125,43 @@ TEST_F(CascadeFitTest, StabilizedBoxesKeepTheirSizeAndMoveByWholeTexelsAsTheCame
   EXPECT_NE(ta.boxes[0].z, tb.boxes[0].z);
 }
 
+TEST_F(CascadeFitTest, DefaultShadowDistanceCoversTheSceneFromAfarAndHoldsStill) {
+  // The bounds' sphere: radius sqrt(100² + 5² + 100²) = 141.5, diameter 283.
+  const float diameter = 2.0f * bounds.radius();
+  // Inside the scene: one diameter reaches past its far side.
+  EXPECT_FLOAT_EQ(defaultShadowDistance(camera, bounds), diameter);
+  // Framed from 1000 away (a model's own camera): the far side lies at 1141.5, just past four
+  // diameters (1132), so five.
+  Camera afar = camera;
+  afar.position = bounds.centre() + glm::vec3(0.0f, 0.0f, 1000.0f);
+  EXPECT_FLOAT_EQ(defaultShadowDistance(afar, bounds), 5.0f * diameter);
+  EXPECT_GT(defaultShadowDistance(afar, bounds), 1000.0f + bounds.radius());
+  // A small move does not change it: stabilised cascades keep their sizes.
+  afar.position.x += 0.5f;
+  EXPECT_FLOAT_EQ(defaultShadowDistance(afar, bounds), 5.0f * diameter);
+  CascadeSettings s;
+  s.count = 2;
+  EXPECT_FLOAT_EQ(fitCascades(s, afar, 1.5f, {0.05f, 5000.0f}, light, bounds, 256).ends[1],
+                  5.0f * diameter);
+}
+
+TEST_F(CascadeFitTest, GivenSplitsOutsideTheShadowRangeAreRefusedWithTheRange) {
+  CascadeSettings s;
+  s.count = 3;
+  s.maxDistance = 50.0f;
+  s.distances = {10.0f, 60.0f};
+  try {
+    fitCascades(s, camera, 1.5f, {0.05f, 100.0f}, light, bounds, 256);
+    FAIL() << "a split beyond the shadow distance accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("outside the shadow range (0.05, 50)"), std::string::npos)
+        << e.what();
+  }
+  s.distances = {10.0f, 40.0f};
+  EXPECT_FLOAT_EQ(fitCascades(s, camera, 1.5f, {0.05f, 100.0f}, light, bounds, 256).ends[2],
+                  50.0f);
+}
+
 TEST(CascadeSettings, RefusesOutOfRangeValuesWithTheRange) {
   CascadeSettings s;
   s.count = 9;

@@ -54,7 +54,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
                                "share of each cascade blended into the next, 0..0.5")
                     ->capture_default_str());
   tunesCascades(app.add_option("--shadow-distance", o.shadowDistance,
-                               "where cascaded shadows end (world units; 0: the scene's diameter)")
+                               "where cascaded shadows end (world units; 0: the far side of the scene, in whole "
+                               "diameters)")
                     ->capture_default_str());
   app.add_option("--overlay", o.overlay, "none or cascades (tint pixels by cascade)")
       ->capture_default_str();
