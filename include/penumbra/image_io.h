@@ -1,5 +1,7 @@
-// Image files: PNG through libpng (8-bit colour, 16-bit grey) and OpenEXR (float). Every writer
-// refuses images holding NaN or Inf: they never reach an output file.
+// Image files: PNG through libpng (8-bit sRGB colour, 16-bit grey) and OpenEXR (float). Every
+// writer refuses images holding NaN or Inf: they never reach an output file. Colour images hold
+// linear light in memory; the colour PNG writers encode it to sRGB (penumbra/srgb.h), the only
+// place penumbra does. Grey PNGs and EXRs hold data (visibility) and are written as they are.
 #pragma once
 
 #include <filesystem>
@@ -8,7 +10,8 @@
 
 namespace penumbra {
 
-// 3 or 4 channels in [0,1] (clamped), row 0 at the top: an 8-bit RGB PNG.
+// 3 or 4 channels of linear light in [0,1] (clamped), row 0 at the top: an 8-bit RGB PNG of their
+// sRGB encoding, tagged sRGB. Alpha, if any, is dropped.
 void writeColorPng(const Image& image, const std::filesystem::path& path);
 // One channel in [0,1] (clamped): a 16-bit greyscale PNG.
 void writeGrey16Png(const Image& image, const std::filesystem::path& path);
@@ -24,6 +27,8 @@ void writeLayerIndexPng(const Image& diagnostic, const Image& color,
 
 // Reads back what the writers above wrote (for tests and tools).
 Image readGrey16Png(const std::filesystem::path& path);
+// An 8-bit RGB PNG's samples as stored (sRGB-encoded, not decoded), each / 255: 3 channels.
+Image readEncodedColorPng(const std::filesystem::path& path);
 Image readFloatExr(const std::filesystem::path& path);
 
 // Throws Error naming the first non-finite value's position.

@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 #include <memory>
+#include <vector>
 
 #include "penumbra/filter_mode.h"
 #include "penumbra/filters.h"
@@ -61,6 +62,11 @@ class CpuShadowLookup {
   // The filtered reference for the pixel (docs/reference.md). Mip-mapped filter modes need a
   // power-of-two map size (throws Error otherwise).
   float referenceVisibility(const LookupPixel& pixel) const;
+
+  // The filtered channels the technique's reconstruction reads for the pixel, channel c at index
+  // c (channels it does not read are 0); empty for PCF and the hard test, which filter after the
+  // depth test. What the GPU's texture unit returns for the same lookup, but for rounding.
+  std::vector<float> filteredChannels(const LookupPixel& pixel) const;
 
   // The technique's prefiltered channels at a mip level (row 0 at the bottom).
   const Image& channels(int level) const;

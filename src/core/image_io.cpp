@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "penumbra/error.h"
+#include "penumbra/srgb.h"
 
 namespace penumbra {
 namespace {
@@ -28,7 +29,7 @@ FilePtr open(const std::filesystem::path& path, const char* mode) {
 }
 
 void writePng(const std::filesystem::path& path, int width, int height, int colorType, int bitDepth,
-              const std::vector<png_bytep>& rows) {
+              const std::vector<png_bytep>& rows, bool srgb) {
   FilePtr file = open(path, "wb");
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -40,6 +41,8 @@ void writePng(const std::filesystem::path& path, int width, int height, int colo
   png_init_io(png, file.get());
   png_set_IHDR(png, info, png_uint_32(width), png_uint_32(height), bitDepth, colorType,
                PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+  // The sRGB chunk (with its gAMA and cHRM fallbacks) tells viewers what the samples mean.
+  if (srgb) png_set_sRGB_gAMA_and_cHRM(png, info, PNG_sRGB_INTENT_PERCEPTUAL);
   png_write_info(png, info);
   if (bitDepth == 16) png_set_swap(png);  // our samples are little-endian in memory
   png_write_image(png, const_cast<png_bytepp>(rows.data()));
@@ -68,16 +71,16 @@ void writeColorPng(const Image& image, const std::filesystem::path& path) {
   for (int y = 0; y < image.height(); ++y) {
     for (int x = 0; x < image.width(); ++x) {
       for (int c = 0; c < 3; ++c) {
-        const float v = std::clamp(image.at(x, y, c), 0.0f, 1.0f);
+        const float encoded = srgbFromLinear(image.at(x, y, c));
         pixels[(size_t(y) * size_t(image.width()) + size_t(x)) * 3 + size_t(c)] =
-            uint8_t(std::lround(v * 255.0f));
+            uint8_t(std::lround(encoded * 255.0f));
       }
     }
   }
   std::vector<png_bytep> rows;
   for (int y = 0; y < image.height(); ++y)
     rows.push_back(&pixels[size_t(y) * size_t(image.width()) * 3]);
-  writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_RGB, 8, rows);
+  writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_RGB, 8, rows, true);
 }
 
 void writeGrey16Png(const Image& image, const std::filesystem::path& path) {
@@ -91,7 +94,7 @@ void writeGrey16Png(const Image& image, const std::filesystem::path& path) {
   for (int y = 0; y < image.height(); ++y) {
     rows.push_back(reinterpret_cast<png_bytep>(&pixels[size_t(y) * size_t(image.width())]));
   }
-  writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_GRAY, 16, rows);
+  writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_GRAY, 16, rows, false);
 }
 
 void writeFailureMaskPng(const Image& diagnostic, const Image& color,
@@ -154,6 +157,33 @@ Image readGrey16Png(const std::filesystem::path& path) {
   png_destroy_read_struct(&png, &info, nullptr);
   Image image(width, height, 1);
   for (size_t i = 0; i < pixels.size(); ++i) image.data()[i] = float(pixels[i]) / 65535.0f;
+  return image;
+}
+
+Image readEncodedColorPng(const std::filesystem::path& path) {
+  FilePtr file = open(path, "rb");
+  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+  png_infop info = png ? png_create_info_struct(png) : nullptr;
+  if (!png || !info) throw Error("libpng could not start reading " + path.string());
+  if (setjmp(png_jmpbuf(png))) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw Error(path.string() + " is not a readable PNG");
+  }
+  png_init_io(png, file.get());
+  png_read_info(png, info);
+  const int width = int(png_get_image_width(png, info));
+  const int height = int(png_get_image_height(png, info));
+  if (png_get_color_type(png, info) != PNG_COLOR_TYPE_RGB || png_get_bit_depth(png, info) != 8) {
+    png_destroy_read_struct(&png, &info, nullptr);
+    throw Error(path.string() + " is not an 8-bit RGB PNG");
+  }
+  std::vector<uint8_t> pixels(size_t(width) * size_t(height) * 3);
+  std::vector<png_bytep> rows;
+  for (int y = 0; y < height; ++y) rows.push_back(&pixels[size_t(y) * size_t(width) * 3]);
+  png_read_image(png, rows.data());
+  png_destroy_read_struct(&png, &info, nullptr);
+  Image image(width, height, 3);
+  for (size_t i = 0; i < pixels.size(); ++i) image.data()[i] = float(pixels[i]) / 255.0f;
   return image;
 }
 

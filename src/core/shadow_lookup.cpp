@@ -189,6 +189,16 @@ LookupSample CpuShadowLookup::lookup(const LookupPixel& p) const {
   return {s.visibility, s.diagnostic};
 }
 
+std::vector<float> CpuShadowLookup::filteredChannels(const LookupPixel& p) const {
+  if (filtersAfterTest(config_.technique) || config_.technique == Technique::Hard) return {};
+  const shaders::LookupSources sources{textures_.get()};
+  const shaders::FilteredChannels f =
+      shaders::filterChannels(sources, textures_->settings, int(config_.technique), config_.params,
+                              p.uv, p.uvDx, p.uvDy, std::clamp(p.receiverDepth, 0.0f, 1.0f));
+  const int count = channelCount(config_.technique, config_.params);
+  return std::vector<float>(f.values, f.values + count);
+}
+
 float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
   shaders::LookupSettings settings = textures_->settings;
   const int size = settings.shadowMapSize;

@@ -100,7 +100,7 @@ void CameraPass::prepare(int width, int height) {
     Texture* texture;
     GLenum format;
   };
-  const Target targets[] = {{&color_, GL_RGBA8},         {&visibility_, GL_R32F},
+  const Target targets[] = {{&color_, GL_RGBA16F},       {&visibility_, GL_R32F},
                             {&diagnostic_, GL_R32F},     {&lookup_, GL_RGBA32F},
                             {&receiverPlane_, GL_RG32F}, {&derivatives_, GL_RGBA32F},
                             {&cascade_, GL_RG32F},       {&depth_, GL_DEPTH_COMPONENT32F}};

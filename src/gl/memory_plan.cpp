@@ -20,7 +20,7 @@ struct FrameTarget {
 };
 constexpr FrameTarget kFrameTargets[] = {
     {"frame lookup target", GL_RGBA32F, 16}, {"frame receiver-plane target", GL_RG32F, 8},
-    {"frame colour target", GL_RGBA8, 4},    {"frame visibility target", GL_R32F, 4},
+    {"frame colour target", GL_RGBA16F, 8},  {"frame visibility target", GL_R32F, 4},
     {"frame diagnostic target", GL_R32F, 4}, {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
     {"frame uv-derivatives target", GL_RGBA32F, 16}, {"frame cascade target", GL_RG32F, 8},
 };

@@ -42,6 +42,7 @@ GLuint compileStage(GLenum stage, const ShaderLibrary& library, std::string_view
   if (compiled != GL_TRUE) {
     const std::string log = expanded.translateLog(infoLog(shader, false));
     glDeleteShader(shader);
+    discardPendingErrors();  // the driver's debug log repeats the compile log
     throw Error("compiling " + std::string(path) + " failed:\n" + log);
   }
   return shader;
@@ -57,6 +58,7 @@ GLuint link(std::initializer_list<GLuint> shaders, std::string_view name) {
   if (linked != GL_TRUE) {
     const std::string log = infoLog(program, true);
     glDeleteProgram(program);
+    discardPendingErrors();  // the driver's debug log repeats the link log
     throw Error("linking " + std::string(name) + " failed:\n" + log);
   }
   checkErrors("linking a program");

@@ -165,5 +165,25 @@ TEST(ShadowLookup, MipMappedReferenceRefusesANonPowerOfTwoMap) {
                       .referenceVisibility(flatReceiverAt(10.5f, 10.5f, 48, 0.4f)));
 }
 
+TEST(ShadowLookup, FilteredChannelsAreWhatTheReconstructionReads) {
+  // MSM, float32, no blur, bilinear: halfway between the texel centres either side of the step,
+  // the filtered moments are the mean of the two depths' powers; reconstructing from them is the
+  // lookup. PCF filters after the test: no filtered channels.
+  LookupConfig config = configFor(Technique::Msm, FilterMode::Bilinear, 0);
+  setParam(Technique::Msm, config.params, "storage", "float32");
+  const CpuShadowLookup lookup(stepDepth(16, 8, 0.25f, 0.75f), config);
+  const LookupPixel pixel = flatReceiverAt(8.0f, 4.5f, 16, 0.5f);
+  const std::vector<float> filtered = lookup.filteredChannels(pixel);
+  ASSERT_EQ(filtered.size(), 4u);
+  const float near[4] = {0.25f, 0.0625f, 0.015625f, 0.00390625f};
+  const float far[4] = {0.75f, 0.5625f, 0.421875f, 0.31640625f};
+  for (int c = 0; c < 4; ++c) EXPECT_EQ(filtered[size_t(c)], 0.5f * (near[c] + far[c])) << c;
+  EXPECT_EQ(reconstructVisibility(Technique::Msm, config.params, filtered, pixel.receiverDepth),
+            lookup.lookup(pixel).visibility);
+  config.technique = Technique::Pcf;
+  EXPECT_TRUE(
+      CpuShadowLookup(stepDepth(16, 8, 0.25f, 0.75f), config).filteredChannels(pixel).empty());
+}
+
 }  // namespace
 }  // namespace penumbra

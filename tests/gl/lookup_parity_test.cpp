@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <sstream>
 
 #include "gl_test_context.h"
@@ -85,19 +86,57 @@ std::vector<ParityCase> casesFor(Technique t) {
 }
 
 // The largest |GPU - CPU| allowed on 99.9% of the pixels, and why. Float formats: the two sides
-// round fp32 arithmetic in different orders (and llvmpipe's exp/log are approximations). MSM's
-// Hankel solve amplifies rounding by about 1/alpha (shared_math_parity_test.cpp): with float32's
-// alpha = 3e-6, fp32 rounding (6e-8) becomes ~0.02 (measured p99.9 up to 0.05). Normalized
-// formats: the hardware filters them with fixed-point weights, so a filtered moment differs by a
-// fraction of a storage step, which the Chebyshev and Hamburger bounds amplify where the
-// variance sits at its floor (measured on llvmpipe: VSM 0.029, MSM 0.075, CSM 0.009).
-// Foliage (alpha-tested leaf cards) puts a depth discontinuity in nearly every footprint at
-// 128², where MSM's Hamburger solve amplifies fp32 filtering differences most (measured on
-// llvmpipe, float32 trilinear: p99.9 0.133, max 0.49).
-float pixelTolerance(Technique t, StorageFormat storage, std::string_view scene) {
+// round fp32 arithmetic in different orders (and llvmpipe's exp/log are approximations); MSM's
+// ill-conditioned pixels are held to their rounding envelope instead (below). Normalized formats:
+// the hardware filters them with fixed-point weights, so a filtered moment differs by a fraction
+// of a storage step, which the Chebyshev and Hamburger bounds amplify where the variance sits at
+// its floor (measured on llvmpipe: VSM 0.029, MSM 0.075, CSM 0.009).
+float pixelTolerance(Technique t, StorageFormat storage) {
   const bool normalized = storage == StorageFormat::Unorm16 || storage == StorageFormat::Unorm8;
-  if (t == Technique::Msm) return scene == "foliage" ? 0.15f : 0.1f;
-  return normalized ? 0.05f : 2e-3f;
+  if (!normalized) return 2e-3f;
+  return t == Technique::Msm ? 0.1f : 0.05f;
+}
+
+// MSM's Hankel solve is ill-conditioned where the filtered moments are nearly those of two close
+// depths and the receiver lies among them (a leaf card or sphere shading itself: variance 1e-5,
+// receiver within a standard deviation of the mean): there the visibility is not determined by
+// the fp32 moments at all; one unit in the last place of a moment moves it across most of [0,1].
+// The GPU's texture unit blends the same fp32 texels as the CPU twin (float32 channel textures are
+// equal bit for bit) but in its own order: each side's blend of n <= 8 positive taps is within
+// gamma_8 ~ 8 ulps of the exact sum (Higham, Accuracy and Stability of Numerical Algorithms,
+// §3.1), so the two filtered moments may differ by 16 ulps relative; the solve's own rounding is
+// backward stable (LDL^T), i.e. a perturbation of its inputs of the same kind. A pixel beyond the
+// tolerance must therefore lie within the visibility the CPU reconstructs from its filtered
+// moments moved by up to that much (measured on llvmpipe: 2 ulps cover every such pixel of every
+// scene; point and summed-area lookups, which blend nothing in the texture unit, agree exactly).
+constexpr float kBlendRounding = 16.0f * 0x1.0p-24f;
+
+struct Envelope {
+  float lo;
+  float hi;
+};
+
+Envelope msmRoundingEnvelope(const CpuShadowLookup& twin, const TechniqueParams& params,
+                             const LookupPixel& pixel) {
+  const std::vector<float> filtered = twin.filteredChannels(pixel);
+  const float receiver = std::clamp(pixel.receiverDepth, 0.0f, 1.0f);
+  Envelope e{1.0f, 0.0f};
+  // Every corner, edge and face centre of the perturbation box, then random points inside it.
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<float> inside(-1.0f, 1.0f);
+  for (int trial = 0; trial < 81 + 47; ++trial) {
+    std::vector<float> moved = filtered;
+    for (size_t c = 0; c < moved.size(); ++c) {
+      int step = trial;
+      for (size_t k = 0; k < c; ++k) step /= 3;
+      const float direction = trial < 81 ? float(step % 3 - 1) : inside(rng);
+      moved[c] *= 1.0f + kBlendRounding * direction;
+    }
+    const float v = reconstructVisibility(Technique::Msm, params, moved, receiver);
+    e.lo = std::min(e.lo, v);
+    e.hi = std::max(e.hi, v);
+  }
+  return e;
 }
 
 // The hardware anisotropic filter is the driver's own kernel (llvmpipe: an elliptical weighted
@@ -144,13 +183,23 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
       const CpuShadowLookup twin(
           renderer.readDepthMap(),
           {technique, r.params, c.filter, s.blur, s.anisotropy, renderer.halfFloatRounding()});
+      const float tolerance = pixelTolerance(technique, techniqueStorage(technique, r.params));
+      const bool envelopes = technique == Technique::Msm && c.filter != FilterMode::Anisotropic;
       Differences d;
       size_t diagnosticMismatches = 0;
       for (int y = 0; y < s.height; ++y) {
         for (int x = 0; x < s.width; ++x) {
           if (r.lookup.at(x, y, 3) <= 0.0f) continue;  // outside the shadow map
-          const LookupSample cpu = twin.lookup(gl::lookupPixelAt(r, x, y));
-          d.values.push_back(std::abs(cpu.visibility - r.visibility.at(x, y)));
+          const LookupPixel pixel = gl::lookupPixelAt(r, x, y);
+          const LookupSample cpu = twin.lookup(pixel);
+          const float gpu = r.visibility.at(x, y);
+          float error = std::abs(cpu.visibility - gpu);
+          if (envelopes && error > tolerance) {
+            // How far the GPU lies outside the CPU's rounding envelope.
+            const Envelope e = msmRoundingEnvelope(twin, r.params, pixel);
+            error = std::max({e.lo - gpu, gpu - e.hi, 0.0f});
+          }
+          d.values.push_back(error);
           diagnosticMismatches += cpu.diagnostic != r.diagnostic.at(x, y);
         }
       }
@@ -163,8 +212,6 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         for (float v : d.values) mean += v;
         EXPECT_LE(mean / double(d.values.size()), kAnisotropicMeanTolerance) << where;
       } else {
-        const float tolerance =
-            pixelTolerance(technique, techniqueStorage(technique, r.params), sceneName);
         EXPECT_LE(d.quantile(1.0 - kPixelShare), tolerance) << where;
         // ESM's failure classification and LVSM's layer agree pixel for pixel.
         EXPECT_LE(diagnosticMismatches, allowed) << where << ", diagnostic mismatches";

@@ -175,6 +175,8 @@ TEST_F(ShaderCompilation, ErrorsNameTheOriginalFileAndLine) {
     EXPECT_NE(message.find("compiling tests/broken.comp failed"), std::string::npos) << message;
     EXPECT_NE(message.find("tests/broken.glsl:2"), std::string::npos) << message;
   }
+  // The failure is reported once: the next GL work does not inherit the compile's messages.
+  EXPECT_NO_THROW(gl::checkErrors("the GL work after a failed compile"));
 }
 
 }  // namespace

@@ -26,5 +26,8 @@ class HeadlessContext {
 
 // Throws Error naming `where` if glGetError reports an error or KHR_debug logged one.
 void checkErrors(const char* where);
+// Drops the GL errors and KHR_debug messages pending now, for a failure already reported in full
+// (a shader's compile log): otherwise the next checkErrors would report it again, as its own.
+void discardPendingErrors();
 
 }  // namespace penumbra::gl

@@ -94,7 +94,9 @@ struct MemoryReport {       // exact bytes allocated
 MemoryReport estimateMemory(const RenderSettings& settings);
 
 struct RenderResult {
-  Image color;       // RGBA in [0,1], row 0 at the top
+  // RGBA in [0,1], row 0 at the top: linear light, as the camera pass shades it (sRGB textures
+  // are decoded on sampling). Not display-ready: writeColorPng encodes it to sRGB.
+  Image color;
   Image visibility;  // one float channel in [0,1], row 0 at the top
   // Per pixel, row 0 at the top: -1 where nothing is drawn; ESM: 1 where classification failed
   // (and the 2x2 PCF fallback shaded it), else 0; LVSM: the receiver's layer index; else 0.
