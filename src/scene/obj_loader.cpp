@@ -6,9 +6,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <map>
 #include <sstream>
+#include <string_view>
 #include <unordered_map>
 
 #include "file_scene.h"
@@ -81,6 +83,41 @@ std::optional<TextureImage> materialTexture(const tinyobj::material_t& m, const 
   return out;
 }
 
+// tinyobjloader (Debian's 2.0.0~rc) converts a skin-weight line's joint ids (`vw VERTEX JOINT
+// WEIGHT ...`, its extension) to int unchecked (tiny_obj_loader.h:2669): a joint beyond int's
+// range is undefined behaviour (the fuzzer's "vw 0 6000000000"). Penumbra reads no skin weights;
+// such a line is refused here, before tinyobjloader sees it, tokenised as tinyobjloader does
+// (lines end at \n, \r or \r\n; tokens at spaces, tabs and \r; a number is the longest
+// numeric prefix of its token, which strtod reads the same or larger).
+void refuseSkinJointsBeyondInt(const std::string& objText, const std::string& name) {
+  size_t lineNumber = 0;
+  for (size_t start = 0; start < objText.size();) {
+    const size_t end = std::min(objText.find_first_of("\r\n", start), objText.size());
+    ++lineNumber;
+    const std::string_view line(objText.data() + start, end - start);
+    start = end + (objText.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+    const size_t first = line.find_first_not_of(" \t");
+    if (first == std::string_view::npos || line.size() < first + 3 ||
+        line.compare(first, 2, "vw") != 0 || (line[first + 2] != ' ' && line[first + 2] != '\t'))
+      continue;
+    // Tokens after "vw": the vertex, then joint and weight pairs.
+    int index = 0;
+    for (size_t at = first + 2;;) {
+      at = line.find_first_not_of(" \t", at);
+      if (at == std::string_view::npos) break;
+      const size_t tokenEnd = std::min(line.find_first_of(" \t", at), line.size());
+      const std::string token(line.substr(at, tokenEnd - at));
+      at = tokenEnd;
+      if (index++ % 2 != 1) continue;  // the vertex and the weights
+      const double joint = std::strtod(token.c_str(), nullptr);
+      if (!(joint < 2147483648.0)) {
+        throw Error(name + ": line " + std::to_string(lineNumber) + ": skin weight (vw) joint '" +
+                    token + "' is beyond the largest joint index, 2147483647");
+      }
+    }
+  }
+}
+
 struct VertexKey {
   int position, normal, texcoord, face;  // face: -1, or the face of a flat-normal vertex
   bool operator==(const VertexKey&) const = default;
@@ -101,6 +138,7 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
+  refuseSkinJointsBeyondInt(objText, name);
   std::istringstream in(objText);
   LibraryReader libraries(readFile);
   if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &libraries, true, false)) {

@@ -240,6 +240,41 @@ TEST(ObjLoader, RefusesAFaceNamingAVertexTheFileDoesNotHave) {
   }
 }
 
+TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
+  // The fuzzer's find: tinyobjloader would convert the joint to int, undefined behaviour.
+  const fs::path file = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_vw_joint_beyond_int.obj";
+  try {
+    loadScene(file.string());
+    FAIL();
+  } catch (const Error& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("fuzz_vw_joint_beyond_int.obj: line 1: skin weight (vw) joint "
+                           "'6000000000' is beyond the largest joint index"),
+              std::string::npos)
+        << message;
+  }
+  // In range, with CRLF line ends and tabs: loads (tinyobjloader keeps the weights, penumbra
+  // ignores them).
+  const fs::path valid = testing::writeFile(
+      fs::path(::testing::TempDir()) / "skin_weights.obj",
+      "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvw 1\t0 0.5 2147483647 0.5\r\nf 1 2 3\r\n");
+  EXPECT_EQ(loadScene(valid.string()).triangleCount(), 1u);
+  const fs::path later = testing::writeFile(fs::path(::testing::TempDir()) / "late_joint.obj",
+                                            "v 0 0 0\rv 1 0 0\nvw 1 0 0.5 1e10 0.5\n");
+  EXPECT_THROW(
+      {
+        try {
+          loadScene(later.string());
+        } catch (const Error& e) {
+          EXPECT_NE(std::string(e.what()).find("line 3: skin weight (vw) joint '1e10'"),
+                    std::string::npos)
+              << e.what();
+          throw;
+        }
+      },
+      Error);
+}
+
 TEST(ObjLoader, RefusesNonFinitePositions) {
   const fs::path file = testing::writeFile(fs::path(::testing::TempDir()) / "nan.obj",
                                            "v 0 0 0\nv 1 0 0\nv 1e400 1 0\nf 1 2 3\n");
