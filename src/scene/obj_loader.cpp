@@ -110,9 +110,9 @@ void refuseSkinJointsBeyondInt(const std::string& objText, const std::string& na
       at = tokenEnd;
       if (index++ % 2 != 1) continue;  // the vertex and the weights
       const double joint = std::strtod(token.c_str(), nullptr);
-      if (!(joint < 2147483648.0)) {
+      if (!(joint >= -2147483648.0 && joint < 2147483648.0)) {
         throw Error(name + ": line " + std::to_string(lineNumber) + ": skin weight (vw) joint '" +
-                    token + "' is beyond the largest joint index, 2147483647");
+                    token + "' is outside int's range [-2147483648, 2147483647]");
       }
     }
   }

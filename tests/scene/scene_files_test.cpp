@@ -249,7 +249,7 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
   } catch (const Error& e) {
     const std::string message = e.what();
     EXPECT_NE(message.find("fuzz_vw_joint_beyond_int.obj: line 1: skin weight (vw) joint "
-                           "'6000000000' is beyond the largest joint index"),
+                           "'6000000000' is outside int's range"),
               std::string::npos)
         << message;
   }
@@ -259,6 +259,9 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
       fs::path(::testing::TempDir()) / "skin_weights.obj",
       "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvw 1\t0 0.5 2147483647 0.5\r\nf 1 2 3\r\n");
   EXPECT_EQ(loadScene(valid.string()).triangleCount(), 1u);
+  const fs::path negative = testing::writeFile(fs::path(::testing::TempDir()) / "negative.obj",
+                                               "v 0 0 0\nvw 0 -3e9 1\n");
+  EXPECT_THROW(loadScene(negative.string()), Error) << "below int's range is undefined too";
   const fs::path later = testing::writeFile(fs::path(::testing::TempDir()) / "late_joint.obj",
                                             "v 0 0 0\rv 1 0 0\nvw 1 0 0.5 1e10 0.5\n");
   EXPECT_THROW(
