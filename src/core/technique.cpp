@@ -113,8 +113,11 @@ void encodeDepth(Technique technique, const TechniqueParams& params, float depth
                  std::span<float> channels) {
   const int count = channelCount(technique, params);
   assert(int(channels.size()) >= count);
-  for (int c = 0; c < count; ++c) {
-    channels[size_t(c)] = shaders::encodeChannel(sharedId(technique), depth, c, params);
+  for (int texelLayer = 0; 4 * texelLayer < count; ++texelLayer) {
+    const glm::vec4 v = shaders::encodeTexelLayer(sharedId(technique), depth, texelLayer, params);
+    for (int c = 0; c < 4 && 4 * texelLayer + c < count; ++c) {
+      channels[size_t(4 * texelLayer + c)] = v[c];
+    }
   }
 }
 

@@ -17,6 +17,10 @@ inline unsigned groups(int n, unsigned size) {
 }
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout);
+// How the blur and mip passes reduce the channels, resolved at compile time where possible
+// (src/shaders/lib/layer_reduction.glsl): ALL_MEAN, or a one-layer LAYER_REDUCTIONS table.
+std::vector<ShaderDefine> reductionDefines(Technique technique, const TechniqueParams& params,
+                                           const ChannelLayout& layout);
 void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int level);
 void setSize(const Program& p, const char* name, int size);
 

@@ -218,7 +218,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     s.auxiliaryTimer.end();
     s.filter.prepare(channelShapeFor(settings, count));
     s.filter.encode(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples);
-    s.filter.prefilter(s.programs, s.parameters, settings.technique, s.cascadeBlurs);
+    s.filter.prefilter(s.programs, s.parameters, settings.technique, s.params, s.cascadeBlurs);
   } else {
     s.zmax.release();
     s.lloyd.release();
@@ -340,7 +340,7 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   s.filter.prepare(channelShapeFor(single, 1));
   s.filter.encode(s.programs, s.parameters, s.uploadedDepth->id(), 1);
   s.cascadeBlurs.assign(1, single.blur);
-  s.filter.prefilter(s.programs, s.parameters, single.technique, s.cascadeBlurs);
+  s.filter.prefilter(s.programs, s.parameters, single.technique, s.params, s.cascadeBlurs);
 }
 
 Image Renderer::readDepthMap(int cascade) const {
@@ -372,21 +372,25 @@ uint64_t Renderer::measuredChannelTextureBytes() const {
   return bytes;
 }
 
-Image Renderer::readChannels(int level) const {
+Image Renderer::readChannels(int level, int cascade) const {
   const State& s = *state_;
   const ChannelShape& shape = s.filter.shape();
   checkRange("mip level", level, 0, shape.levels - 1);
+  checkRange("cascade", cascade, 0, shape.cascades - 1);
   const int size = std::max(1, shape.size >> level);
   const ChannelLayout& layout = shape.layout;
   const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
-  // Every cascade's layers come back; cascade 0's are the first.
+  // Every cascade's layers come back, cascade by cascade; channel c of a cascade is component
+  // c of its layers (4 per layer when there are several).
   Image all = readTexture(s.filter.channels().id(), level, size, size,
                           layout.layers * shape.cascades, layout.componentsPerTexel,
                           formats[layout.componentsPerTexel], false);
   Image trimmed(size, size, layout.channels);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
-      for (int c = 0; c < layout.channels; ++c) trimmed.at(x, y, c) = all.at(x, y, c);
+      for (int c = 0; c < layout.channels; ++c) {
+        trimmed.at(x, y, c) = all.at(x, y, cascade * layout.layers * layout.componentsPerTexel + c);
+      }
     }
   }
   return trimmed;

@@ -3,6 +3,9 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
+#include <string>
+
 #include "channel_dispatch.h"
 #include "gl_formats.h"
 #include "memory_plan.h"
@@ -16,6 +19,22 @@ constexpr unsigned kGroup = kChannelGroup;
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
   return {{"CHANNEL_FORMAT", imageFormatQualifier(layout)}};
+}
+
+std::vector<ShaderDefine> reductionDefines(Technique technique, const TechniqueParams& params,
+                                           const ChannelLayout& layout) {
+  // Unused components of the last layer reduce as means (lib/layer_reduction.glsl).
+  std::vector<int> reductions(size_t(4 * layout.layers), int(ChannelReduction::Mean));
+  for (int c = 0; c < layout.channels; ++c) {
+    reductions[size_t(c)] = int(channelReduction(technique, params, c));
+  }
+  const bool allMean = std::all_of(reductions.begin(), reductions.end(),
+                                   [](int r) { return r == int(ChannelReduction::Mean); });
+  if (allMean) return {{"ALL_MEAN", "1"}};
+  if (layout.layers != 1) return {};  // mixed reductions over several layers: resolved per texel
+  std::string table = "ivec4(";
+  for (size_t c = 0; c < 4; ++c) table += std::to_string(reductions[c]) + (c < 3 ? ", " : ")");
+  return {{"LAYER_REDUCTIONS", table}};
 }
 
 void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int level) {
@@ -106,11 +125,16 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
 }
 
 void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& parameters,
-                                Technique technique, std::span<const BlurSpec> cascadeBlurs) {
+                                Technique technique, const TechniqueParams& params,
+                                std::span<const BlurSpec> cascadeBlurs) {
   const bool filtersAfterTest = technique == Technique::Pcf || technique == Technique::Hard;
+  std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
+  for (ShaderDefine& d : reductionDefines(technique, params, shape_.layout)) {
+    defines.push_back(std::move(d));
+  }
   prefilterTimer.begin();
   if (!filtersAfterTest && shape_.scratch) {
-    const Program& blur = programs.compute("passes/blur.comp", formatDefines(shape_.layout));
+    const Program& blur = programs.compute("passes/blur.comp", defines);
     parameters.bind();
     blur.set("layerCount", shape_.layout.layers);
     setSize(blur, "size", shape_.size);
@@ -136,7 +160,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   prefilterTimer.end();
   mipsTimer.begin();
   if (!filtersAfterTest && shape_.levels > 1) {
-    reduceMipLevels(programs.compute("passes/mip_reduce.comp", formatDefines(shape_.layout)),
+    reduceMipLevels(programs.compute("passes/mip_reduce.comp", defines),
                     parameters, channels_, shape_.layout, shape_.layout.layers * shape_.cascades,
                     shape_.size, shape_.levels);
   }

@@ -37,7 +37,7 @@ class ShadowMapFilter {
   // Blurs each cascade with its own kernel, then builds mips or the summed-area table. PCF and
   // the hard test read raw depth: nothing to do for them.
   void prefilter(ProgramCache& programs, const ParameterBlock& parameters, Technique technique,
-                 std::span<const BlurSpec> cascadeBlurs);
+                 const TechniqueParams& params, std::span<const BlurSpec> cascadeBlurs);
 
   const ChannelShape& shape() const { return shape_; }
   const Texture& channels() const { return channels_; }

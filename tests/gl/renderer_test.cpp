@@ -125,6 +125,40 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
   }
 }
 
+// Every cascade's mips reduce each channel by its own reduction: the power CDF's min and max
+// channels stay min and max in the last cascade too, with one texel layer (reductions resolved
+// at compile time) and with several (resolved per texel from the channel within its cascade).
+TEST_F(RendererTest, MipsOfEveryCascadeReduceEachChannelByItsReduction) {
+  const Scene scene = makeBuiltinScene("street");
+  for (const char* layers : {"layers=1", "layers=2"}) {
+    gl::RenderSettings s = small(Technique::PowerCdf);
+    s.shadowMapSize = 64;
+    s.filter = gl::FilterMode::Trilinear;
+    s.cascades.count = 3;
+    const std::vector<Technique> one{Technique::PowerCdf};
+    applyParamAssignment(one, s.params, layers);
+    renderer->render(scene, s);
+    const int channels = channelCount(Technique::PowerCdf, s.params);
+    std::vector<ChannelReduction> reductions;
+    for (int c = 0; c < channels; ++c) {
+      reductions.push_back(channelReduction(Technique::PowerCdf, s.params, c));
+    }
+    const Image base = renderer->readChannels(0, 2);
+    const Image expected = reduceMipLevel(base, reductions);
+    const Image gpu = renderer->readChannels(1, 2);
+    ASSERT_EQ(gpu.channels(), expected.channels());
+    int bad = 0;
+    for (size_t i = 0; i < gpu.data().size(); ++i) {
+      // fp32 storage: min and max are exact, the mean differs by the order of four additions.
+      if (std::abs(gpu.data()[i] - expected.data()[i]) > 1e-6f && ++bad <= 3) {
+        ADD_FAILURE() << layers << " value " << i << " (channel " << i % size_t(channels)
+                      << "): gpu " << gpu.data()[i] << " cpu " << expected.data()[i];
+      }
+    }
+    EXPECT_EQ(bad, 0) << layers;
+  }
+}
+
 TEST_F(RendererTest, SummedAreaTableMatchesTheCpuReference) {
   const Image depth = sceneDepth();
   gl::RenderSettings s = small(Technique::Vsm);

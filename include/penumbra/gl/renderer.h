@@ -165,9 +165,9 @@ class Renderer {
   // A cascade's light-pass linear depth (sample 0 under MSAA) of the last render, row 0 at the
   // bottom.
   Image readDepthMap(int cascade = 0) const;
-  // The technique's channels at a mip level after the last render (encoded and prefiltered),
-  // one image channel per technique channel, row 0 at the bottom.
-  Image readChannels(int level) const;
+  // A cascade's technique channels at a mip level after the last render (encoded and
+  // prefiltered), one image channel per technique channel, row 0 at the bottom.
+  Image readChannels(int level, int cascade = 0) const;
   int channelMipLevels() const;
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.

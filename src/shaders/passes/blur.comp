@@ -1,8 +1,7 @@
 // One axis of the separable prefilter (box or Gaussian weights from shared/filter_weights.h,
 // computed on the CPU and passed in): clamp-to-edge taps, each channel reduced by its technique's
 // reduction. Accumulation is fp32 whatever the storage, so fp16 storage cannot overflow.
-#include "../lib/technique_block.glsl"
-#include "../shared/channel_reduction.h"
+#include "../lib/layer_reduction.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray source;
@@ -18,15 +17,20 @@ uniform int layerBase;   // the cascade's first layer: each cascade has its own 
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= size.x || p.y >= size.y) return;
-  int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
-    // Each tap's texel is fetched once for all four channels; a layer's unused components
-    // (beyond the technique's channels) are blurred as means and never read.
+    // Each tap's texel is fetched once for all four channels.
+#if ALL_MEAN
+    vec4 sum = vec4(0.0f);
+    for (int i = -radius; i <= radius; ++i) {
+      ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
+      sum = accumulateMeanTexel(sum, texelFetch(source, ivec3(q, layerBase + layer), 0),
+                                weights[i + radius]);
+    }
+    imageStore(target, ivec3(p, layerBase + layer), sum);
+#else
     ChannelAccumulator acc[4];
     for (int c = 0; c < 4; ++c) {
-      int channel = 4 * layer + c;
-      int reduction = channel < count ? channelReduction(technique, channel, params) : kReduceMean;
-      acc[c] = startReduction(reduction, params.esm.exponent);
+      acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
     }
     for (int i = -radius; i <= radius; ++i) {
       ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
@@ -37,5 +41,6 @@ void main() {
     imageStore(target, ivec3(p, layerBase + layer),
                vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
                     reductionResult(acc[3])));
+#endif
   }
 }

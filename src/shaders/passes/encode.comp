@@ -1,6 +1,7 @@
-// Encode pass: light-space depth -> the technique's channels (shared encodeChannel), written to
-// its storage format, for every cascade (the dispatch's z) at once. With MSAA every sample is encoded, then the samples are reduced like
-// filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
+// Encode pass: light-space depth -> the technique's channels (shared encodeTexelLayer), written to
+// its storage format, for every cascade (the dispatch's z) at once. Each depth is fetched once and
+// encoded once per texel layer. With MSAA every sample is encoded, then the samples are reduced
+// like filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
 #include "../lib/technique_block.glsl"
 #include "../shared/channel_reduction.h"
 
@@ -15,31 +16,39 @@ layout(binding = 0) uniform sampler2DArray depthMap;
 uniform ivec2 size;
 uniform int layerCount;  // channel layers per cascade
 
-float encodeTexel(ivec3 p, int channel) {
 #if MSAA
+vec4 encodeSamples(ivec3 p, int texelLayer) {
   bool depthOnly = technique == kTechniqueHard || technique == kTechniquePcf;
-  int reduction = depthOnly ? kReduceMin : channelReduction(technique, channel, params);
-  ChannelAccumulator acc = startReduction(reduction, params.esm.exponent);
-  for (int s = 0; s < sampleCount; ++s) {
-    float v = encodeChannel(technique, texelFetch(depthMap, p, s).x, channel, params);
-    acc = accumulateTap(acc, v, 1.0f / float(sampleCount));
+  int count = techniqueChannelCount(technique, params);
+  ChannelAccumulator acc[4];
+  for (int c = 0; c < 4; ++c) {
+    int channel = 4 * texelLayer + c;
+    int reduction = depthOnly ? kReduceMin
+                              : (channel < count ? channelReduction(technique, channel, params)
+                                                 : kReduceMean);
+    acc[c] = startReduction(reduction, params.esm.exponent);
   }
-  return reductionResult(acc);
-#else
-  return encodeChannel(technique, texelFetch(depthMap, p, 0).x, channel, params);
-#endif
+  for (int s = 0; s < sampleCount; ++s) {
+    vec4 v = encodeTexelLayer(technique, texelFetch(depthMap, p, s).x, texelLayer, params);
+    for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], v[c], 1.0f / float(sampleCount));
+  }
+  return vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
+              reductionResult(acc[3]));
 }
+#endif
 
 void main() {
   ivec3 p = ivec3(gl_GlobalInvocationID);  // z: the cascade, its depth layer
   if (p.x >= size.x || p.y >= size.y) return;
-  int count = techniqueChannelCount(technique, params);
+#if !MSAA
+  float depth = texelFetch(depthMap, p, 0).x;
+#endif
   for (int layer = 0; layer < layerCount; ++layer) {
-    vec4 v = vec4(0.0f);
-    for (int c = 0; c < 4; ++c) {
-      int channel = 4 * layer + c;
-      if (channel < count) v[c] = encodeTexel(p, channel);
-    }
+#if MSAA
+    vec4 v = encodeSamples(p, layer);
+#else
+    vec4 v = encodeTexelLayer(technique, depth, layer, params);
+#endif
     imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), v);
   }
 }

@@ -1,8 +1,7 @@
 // One mip level down: each texel reduces the 2x2 block below it by its channel's reduction; with
 // an odd source size the last texel also takes the leftover row/column (shared/mip_span.h).
 // FORCE_REDUCTION overrides the technique's reduction (the Z-max pyramid uses kReduceMax).
-#include "../lib/technique_block.glsl"
-#include "../shared/channel_reduction.h"
+#include "../lib/layer_reduction.glsl"
 #include "../shared/mip_span.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -20,19 +19,21 @@ void main() {
   ivec2 xs = mipSourceSpan(p.x, targetSize.x, sourceSize.x);
   ivec2 ys = mipSourceSpan(p.y, targetSize.y, sourceSize.y);
   float weight = 1.0f / float((xs.y - xs.x + 1) * (ys.y - ys.x + 1));
-  int count = techniqueChannelCount(technique, params);
   for (int layer = 0; layer < layerCount; ++layer) {
-    // Each source texel is fetched once for all four channels (unused components reduce as
-    // means and are never read).
+    // Each source texel is fetched once for all four channels.
+#if ALL_MEAN
+    vec4 sum = vec4(0.0f);
+    for (int y = ys.x; y <= ys.y; ++y) {
+      for (int x = xs.x; x <= xs.y; ++x) {
+        sum = accumulateMeanTexel(sum, texelFetch(source, ivec3(x, y, layer), sourceLevel),
+                                  weight);
+      }
+    }
+    imageStore(target, ivec3(p, layer), sum);
+#else
     ChannelAccumulator acc[4];
     for (int c = 0; c < 4; ++c) {
-      int channel = 4 * layer + c;
-#ifdef FORCE_REDUCTION
-      int reduction = FORCE_REDUCTION;
-#else
-      int reduction = channel < count ? channelReduction(technique, channel, params) : kReduceMean;
-#endif
-      acc[c] = startReduction(reduction, params.esm.exponent);
+      acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
     }
     for (int y = ys.x; y <= ys.y; ++y) {
       for (int x = xs.x; x <= xs.y; ++x) {
@@ -43,5 +44,6 @@ void main() {
     imageStore(target, ivec3(p, layer),
                vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
                     reductionResult(acc[3])));
+#endif
   }
 }

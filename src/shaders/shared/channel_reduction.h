@@ -47,6 +47,14 @@ PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float val
   return a;
 }
 
+// One tap of a texel layer whose channels all reduce as means: the weighted sum of whole texels,
+// the accumulateTap arithmetic of a mean channel on four at once. The prefilter passes take this
+// path where every channel is a mean (decided on the CPU, reductionDefines) so that llvmpipe's
+// masked execution does not run the other reductions' branches for every tap.
+PENUMBRA_INLINE vec4 accumulateMeanTexel(vec4 sum, vec4 texel, float weight) {
+  return sum + weight * texel;
+}
+
 // The reduced value of the taps so far (0 before any tap).
 PENUMBRA_INLINE float reductionResult(ChannelAccumulator a) {
   if (a.reduction == kReduceLogMeanExp) {

@@ -22,19 +22,47 @@ PENUMBRA_INLINE bool techniqueFiltersAfterTest(int technique) {
   return technique == kTechniquePcf;
 }
 
-PENUMBRA_INLINE float encodeChannel(int technique, float depth, int channel, TechniqueParams p) {
-  if (technique == kTechniqueVsm) return vsmEncode(depth)[channel];
-  if (technique == kTechniqueLvsm) return lvsmEncodeLayer(depth, channel / 2, p.lvsm)[channel % 2];
-  if (technique == kTechniqueEvsm2 || technique == kTechniqueEvsm4) {
-    return evsmEncode(depth, p.evsm)[channel];
+// Channels 4*texelLayer .. 4*texelLayer+3 of one depth: one texel of the channel texture's layer
+// `texelLayer`, encoded at once so that a warp's exponentials or the moments' powers are
+// computed once per texel, not once per channel. Components beyond the technique's channels are 0.
+PENUMBRA_INLINE vec4 encodeTexelLayer(int technique, float depth, int texelLayer,
+                                      TechniqueParams p) {
+  vec4 v = vec4(0.0f);
+  if (technique == kTechniqueVsm) {
+    vec2 m = vsmEncode(depth);
+    v = vec4(m.x, m.y, 0.0f, 0.0f);
+  } else if (technique == kTechniqueLvsm) {  // two layers' moments per texel
+    int layers = p.lvsm.splits.layerCount;
+    vec2 a = lvsmEncodeLayer(depth, min(2 * texelLayer, layers - 1), p.lvsm);
+    vec2 b = lvsmEncodeLayer(depth, min(2 * texelLayer + 1, layers - 1), p.lvsm);
+    v = vec4(a.x, a.y, b.x, b.y);
+  } else if (technique == kTechniqueEvsm2 || technique == kTechniqueEvsm4) {
+    v = evsmEncode(depth, p.evsm);
+  } else if (technique == kTechniqueEsm) {
+    v = vec4(esmEncode(depth, p.esm), 0.0f, 0.0f, 0.0f);
+  } else if (technique == kTechniqueCsm) {
+    v = csmEncodeTexture(depth, texelLayer, p.csm);
+  } else if (technique == kTechniquePowerCdf) {
+    // Three channels per layer, four per texel: a texel spans at most two layers.
+    int layers = p.powerCdf.splits.layerCount;
+    int firstLayer = (4 * texelLayer) / 3;
+    vec3 first = powerCdfEncodeLayer(depth, min(firstLayer, layers - 1), p.powerCdf);
+    vec3 second = powerCdfEncodeLayer(depth, min(firstLayer + 1, layers - 1), p.powerCdf);
+    for (int c = 0; c < 4; ++c) {
+      int channel = 4 * texelLayer + c;
+      vec3 layer = channel / 3 == firstLayer ? first : second;
+      v[c] = layer[channel % 3];
+    }
+  } else if (technique == kTechniqueMsm) {
+    v = msmEncode(depth, p.msm);
+  } else {
+    v = vec4(depth, 0.0f, 0.0f, 0.0f);  // hard and PCF store the depth
   }
-  if (technique == kTechniqueEsm) return esmEncode(depth, p.esm);
-  if (technique == kTechniqueCsm) return csmEncodeTexture(depth, channel / 4, p.csm)[channel % 4];
-  if (technique == kTechniquePowerCdf) {
-    return powerCdfEncodeLayer(depth, channel / 3, p.powerCdf)[channel % 3];
+  int count = techniqueChannelCount(technique, p);
+  for (int c = 0; c < 4; ++c) {
+    if (4 * texelLayer + c >= count) v[c] = 0.0f;
   }
-  if (technique == kTechniqueMsm) return msmEncode(depth, p.msm)[channel];
-  return depth;
+  return v;
 }
 
 PENUMBRA_INLINE int channelReduction(int technique, int channel, TechniqueParams p) {
