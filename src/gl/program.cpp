@@ -177,4 +177,19 @@ Texture::~Texture() {
   if (texture_ != 0) glDeleteTextures(1, &texture_);
 }
 
+Sampler::Sampler() {
+  glCreateSamplers(1, &sampler_);
+}
+
+Sampler::Sampler(Sampler&& other) noexcept : sampler_(std::exchange(other.sampler_, 0)) {}
+
+Sampler& Sampler::operator=(Sampler&& other) noexcept {
+  std::swap(sampler_, other.sampler_);
+  return *this;
+}
+
+Sampler::~Sampler() {
+  if (sampler_ != 0) glDeleteSamplers(1, &sampler_);
+}
+
 }  // namespace penumbra::gl

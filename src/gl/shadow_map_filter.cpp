@@ -66,10 +66,11 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
 
 void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
                      const Texture& texture, const ChannelLayout& layout, int layers, int size,
-                     int levels) {
+                     int levels, unsigned sampler) {
   parameters.bind();
   reduce.set("layerCount", layers);
   glBindTextureUnit(0, texture.id());
+  glBindSampler(0, sampler);
   for (int level = 0; level + 1 < levels; ++level) {
     const int source = std::max(1, size >> level);
     const int target = std::max(1, size >> (level + 1));
@@ -79,6 +80,17 @@ void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
     bindChannelImage(texture, layout, level + 1);
     reduce.dispatch(groups(target, kGroup), groups(target, kGroup));
   }
+  glBindSampler(0, 0);
+}
+
+Sampler levelBilinearSampler() {
+  Sampler sampler;
+  // Bilinear within the level textureLod names, never a blend with the next (being written).
+  glSamplerParameteri(sampler.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
+  glSamplerParameteri(sampler.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  return sampler;
 }
 
 void ShadowMapFilter::prepare(const ChannelShape& shape) {
@@ -160,9 +172,17 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   prefilterTimer.end();
   mipsTimer.begin();
   if (!filtersAfterTest && shape_.levels > 1) {
-    reduceMipLevels(programs.compute("passes/mip_reduce.comp", defines),
-                    parameters, channels_, shape_.layout, shape_.layout.layers * shape_.cascades,
-                    shape_.size, shape_.levels);
+    // Mean channels in float or 16-bit storage take one bilinear sample per 2x2 block; 8-bit
+    // unorm storage keeps the exact four-fetch sum (llvmpipe filters it in 8-bit fixed point).
+    std::vector<ShaderDefine> mipDefines = defines;
+    const bool allMean = std::any_of(defines.begin(), defines.end(),
+                                     [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
+    if (allMean && shape_.layout.format != StorageFormat::Unorm8) {
+      mipDefines.push_back({"BILINEAR_MEAN", "1"});
+    }
+    reduceMipLevels(programs.compute("passes/mip_reduce.comp", mipDefines), parameters,
+                    channels_, shape_.layout, shape_.layout.layers * shape_.cascades,
+                    shape_.size, shape_.levels, levelBilinear_.id());
   }
   if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
   mipsTimer.end();

@@ -28,6 +28,9 @@ struct ChannelShape {
 
 ChannelShape channelShapeFor(const RenderSettings& settings, int cascades);
 
+// Bilinear within one named level, clamped to the edge.
+Sampler levelBilinearSampler();
+
 class ShadowMapFilter {
  public:
   void prepare(const ChannelShape& shape);
@@ -57,13 +60,15 @@ class ShadowMapFilter {
   bool prepared_ = false;
   Texture channels_;  // 2D array: layout.layers x cascades layers, `levels` levels
   Texture scratch_;   // 2D array, one level: the blur's intermediate
+  Sampler levelBilinear_ = levelBilinearSampler();  // the mip pass's one-sample 2x2 means
   std::optional<Buffer> satRows_, satStats_, satSums_;
 };
 
 // Fills levels 1..levels-1 of a 2D-array texture (`layers` layers of `size`^2 at level 0) with
-// `reduce` (passes/mip_reduce.comp in the layout's image format).
+// `reduce` (passes/mip_reduce.comp in the layout's image format), `sampler` bound for its
+// bilinear reads (0: the texture's own state, for texelFetch-only variants).
 void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
                      const Texture& texture, const ChannelLayout& layout, int layers, int size,
-                     int levels);
+                     int levels, unsigned sampler = 0);
 
 }  // namespace penumbra::gl

@@ -80,4 +80,20 @@ class Texture {
   unsigned texture_ = 0;
 };
 
+// An owned GL sampler object: filtering state for one pass, independent of the texture's own.
+class Sampler {
+ public:
+  Sampler();  // glCreateSamplers
+  Sampler(Sampler&& other) noexcept;
+  Sampler& operator=(Sampler&& other) noexcept;
+  ~Sampler();
+  Sampler(const Sampler&) = delete;
+  Sampler& operator=(const Sampler&) = delete;
+
+  unsigned id() const { return sampler_; }
+
+ private:
+  unsigned sampler_ = 0;
+};
+
 }  // namespace penumbra::gl

@@ -13,11 +13,28 @@ uniform ivec2 sourceSize;
 uniform ivec2 targetSize;
 uniform int layerCount;
 
+#ifndef BILINEAR_MEAN
+#define BILINEAR_MEAN 0
+#endif
+
 void main() {
   ivec2 p = ivec2(gl_GlobalInvocationID.xy);
   if (p.x >= targetSize.x || p.y >= targetSize.y) return;
   ivec2 xs = mipSourceSpan(p.x, targetSize.x, sourceSize.x);
   ivec2 ys = mipSourceSpan(p.y, targetSize.y, sourceSize.y);
+#if BILINEAR_MEAN
+  // Every channel a mean and a plain 2x2 block: one bilinear sample at the block's shared corner
+  // weighs its four texels 1/4 each (the sampler bound with this pass reads level sourceLevel
+  // only), one fetch instead of four — what the driver's own mipmap generation does.
+  if (xs.y - xs.x == 1 && ys.y - ys.x == 1) {
+    vec2 corner = vec2(xs.y, ys.y) / vec2(sourceSize);
+    for (int layer = 0; layer < layerCount; ++layer) {
+      imageStore(target, ivec3(p, layer),
+                 textureLod(source, vec3(corner, float(layer)), float(sourceLevel)));
+    }
+    return;
+  }
+#endif
   float weight = 1.0f / float((xs.y - xs.x + 1) * (ys.y - ys.x + 1));
   for (int layer = 0; layer < layerCount; ++layer) {
     // Each source texel is fetched once for all four channels.
