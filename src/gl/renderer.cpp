@@ -197,6 +197,14 @@ std::string Renderer::deviceDescription() const {
   return state_->limits.device;
 }
 
+bool Renderer::timerQueriesMeasureExecution() const {
+  const std::string& device = state_->limits.device;
+  for (const char* software : {"llvmpipe", "softpipe", "SWR"}) {
+    if (device.find(software) != std::string::npos) return false;
+  }
+  return true;
+}
+
 void Renderer::validate(const RenderSettings& settings) const {
   const DeviceLimits& s = state_->limits;
   checkRange("shadow-map size", settings.shadowMapSize, 16, s.maxTextureSize);

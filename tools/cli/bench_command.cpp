@@ -1,7 +1,9 @@
-// `penumbra bench --passes`: every prefilter pass beside a minimal kernel with the same reads and
-// writes (penumbra/gl/pass_bench.h), printed as ratios and written as JSON and CSV.
+// `penumbra bench`: the papers' performance experiments (--experiment, penumbra/compare/
+// paper_bench.h) and every prefilter pass beside a minimal kernel with the same reads and writes
+// (--passes, penumbra/gl/pass_bench.h), as ratios measured side by side, in JSON, CSV and HTML.
 #include "bench_command.h"
 
+#include <algorithm>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -10,6 +12,8 @@
 #include <sstream>
 
 #include "output_folder.h"
+#include "penumbra/compare/paper_bench.h"
+#include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/pass_bench.h"
@@ -23,6 +27,8 @@ namespace {
 
 struct BenchOptions {
   bool passes = false;
+  std::vector<std::string> experiments;  // ids, or "all"
+  std::string commandLine;
   SceneOptions scene;
   TechniqueOptions technique{"esm,vsm,evsm4,msm", {}};
   RenderOptions render;
@@ -36,9 +42,55 @@ struct BenchOptions {
   }
 };
 
+std::string experimentList() {
+  std::string list;
+  for (const std::string& id : compare::paperExperimentIds()) list += (list.empty() ? "" : ", ") + id;
+  return list;
+}
+
+void runPaperExperiments(const BenchOptions& o) {
+  std::vector<std::string> ids = o.experiments;
+  if (ids.size() == 1 && ids[0] == "all") ids = compare::paperExperimentIds();
+  compare::BenchSizes sizes;
+  sizes.shadowMapSize = o.render.shadowSize;
+  sizes.scalingShadowMapSize = std::min(o.render.shadowSize, sizes.scalingShadowMapSize);
+  sizes.width = o.render.width;
+  sizes.height = o.render.height;
+  std::vector<compare::Experiment> experiments;
+  for (const std::string& id : ids) experiments.push_back(compare::makePaperExperiment(id, sizes));
+  Scene scene = loadScene(o.scene.scene);
+  applyOverrides(scene, sceneOverrides(o.scene));
+  checkOutputPath(o.outDir);
+  gl::HeadlessContext context;
+  gl::Renderer renderer(context);
+  for (const compare::Experiment& e : experiments) {
+    for (const compare::BenchCase& c : e.cases) renderer.validate(c.settings);
+  }
+  std::vector<compare::ExperimentResult> results;
+  for (const compare::Experiment& e : experiments) {
+    std::cout << e.title << " (" << e.cases.size() << " cases)\n" << std::flush;
+    results.push_back(compare::runPaperExperiment(renderer, scene, e, o.repeat));
+    for (const compare::CaseMeasurement& m : results.back().cases) {
+      std::cout << std::fixed << std::setprecision(1) << "  " << m.benchCase.label << ": "
+                << m.medianMs << " ms, " << std::setprecision(2) << m.timeRatio << "x "
+                << e.baselineSeries << "'s time, " << m.memoryRatio << "x its memory\n";
+    }
+    for (const std::string& f : results.back().findings) std::cout << "  " << f << "\n";
+  }
+  const std::filesystem::path dir = createOutputFolder(o.outDir);
+  compare::writePaperBenchReport(
+      results, {renderer.deviceDescription(), scene.name, o.repeat, o.commandLine}, dir);
+  std::cout << "\nwrote " << (dir / "index.html").string() << ", bench.json and bench.csv\n";
+}
+
 void runBench(const BenchOptions& o) {
+  if (o.passes == !o.experiments.empty()) {
+    throw Error("choose one: --experiment ID[,ID...] or all (" + experimentList() +
+                "), or --passes (each prefilter pass beside a minimal kernel)");
+  }
   if (!o.passes) {
-    throw Error("choose an experiment: --passes (each prefilter pass beside a minimal kernel)");
+    runPaperExperiments(o);
+    return;
   }
   if (printTechniqueListIfAsked(o.technique)) return;
   const std::vector<Technique> techniques = selectedTechniques(o.technique);
@@ -107,6 +159,9 @@ void registerBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
   CLI::App* cmd = app.add_subcommand(
       "bench", "Performance experiments measured side by side in one run.");
+  cmd->add_option("-e,--experiment", o->experiments,
+                  "the papers' experiments to rerun, comma-separated, or all: " + experimentList())
+      ->delimiter(',');
   cmd->add_flag("--passes", o->passes,
                 "each prefilter pass (encode, blur, mips) beside a minimal kernel with the same "
                 "reads and writes, as a ratio");
@@ -117,7 +172,28 @@ void registerBenchCommand(CLI::App& app) {
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
-  cmd->callback([o] { runBench(*o); });
+  cmd->callback([o, cmd] {
+    if (!o->experiments.empty()) {
+      // The experiments fix their techniques, kernels and lookups; only the sizes are the user's.
+      for (const char* fixedByExperiment :
+           {"--technique", "--param", "--blur", "--blur-kernel", "--blur-sigma", "--filter",
+            "--aniso", "--msaa", "--normal-offset", "--cascades", "--overlay"}) {
+        if (cmd->count(fixedByExperiment) > 0) {
+          throw Error(std::string(fixedByExperiment) +
+                      " does not apply to --experiment: each experiment fixes its techniques, "
+                      "kernels and lookups (--shadow-size, --width, --height, --scene and "
+                      "--repeat apply)");
+        }
+      }
+    }
+    o->commandLine = "penumbra bench";
+    for (const CLI::Option* opt : cmd->get_options()) {
+      if (opt->count() == 0 || opt->get_name() == "--help") continue;
+      o->commandLine += " " + opt->get_name(false, true);
+      for (const std::string& v : opt->results()) o->commandLine += " " + v;
+    }
+    runBench(*o);
+  });
 }
 
 }  // namespace penumbra::cli

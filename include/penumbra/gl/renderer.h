@@ -184,6 +184,9 @@ class Renderer {
   double summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const;
 
   std::string deviceDescription() const;
+  // False on software rasterisers (llvmpipe, softpipe), whose GL_TIME_ELAPSED queries see only
+  // command submission: there RenderResult::wallTimes is what a pass costs.
+  bool timerQueriesMeasureExecution() const;
   // How this device rounds floats stored to fp16 textures, measured once at construction.
   HalfRounding halfFloatRounding() const;
 

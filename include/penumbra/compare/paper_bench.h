@@ -1,0 +1,82 @@
+// `penumbra bench`: the seed papers' performance experiments rerun with penumbra, as ratios
+// measured side by side in one run (warm-up, repeats, medians and spread), each beside the
+// paper's own figure. Absolute times on the papers' 2007-2010 GPUs say nothing about ours; the
+// ratios between techniques, and how cost grows with the kernel, are what can be compared.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "penumbra/gl/renderer.h"
+
+namespace penumbra::compare {
+
+// One configuration of an experiment.
+struct BenchCase {
+  std::string label;   // "ESM (threshold), 7x7"
+  std::string series;  // the curve or table column it belongs to: "ESM (threshold)"
+  double x = 0.0;      // the swept quantity (kernel width, layers), 0 where none
+  gl::RenderSettings settings;
+  // The paper's value of this case's time relative to the experiment's baseline (and of its
+  // memory, where the paper gives one), with where it comes from.
+  std::optional<double> paperTimeRatio;
+  std::optional<double> paperMemoryRatio;
+  std::string paperNote;
+};
+
+struct Experiment {
+  std::string id;      // "esm-table1"
+  std::string title;   // "ESM paper, Table 1: ESM, VSM and CSM at 2048²"
+  std::string claim;   // what the paper showed, in a sentence
+  std::string xLabel;  // the swept quantity's name, empty where the cases are a table
+  std::vector<BenchCase> cases;
+  // Each case's ratios are against the case of this series with the same x (or the only one).
+  std::string baselineSeries;
+  // Fit each series' growth with x (time above its x = 1 case against x, log-log): the
+  // kernel-scaling claim.
+  bool fitsExponents = false;
+};
+
+// The sizes the experiments run at: the papers' 2048² maps by default, smaller for tests.
+struct BenchSizes {
+  int shadowMapSize = 2048;
+  int width = 960;
+  int height = 540;
+  int scalingShadowMapSize = 1024;  // kernel-scaling runs 31x31 PCF: kept smaller on llvmpipe
+};
+
+// The experiments' ids in the order they run.
+std::vector<std::string> paperExperimentIds();
+// Throws Error for an unknown id, listing the valid ones.
+Experiment makePaperExperiment(const std::string& id, const BenchSizes& sizes);
+
+struct CaseMeasurement {
+  BenchCase benchCase;
+  std::vector<double> frameMs;  // each timed frame's shadow cost: every pass of the frame
+  double medianMs = 0.0;
+  double minMs = 0.0;
+  double maxMs = 0.0;
+  gl::PassTimes medianPasses;  // per pass, medians over the timed frames
+  uint64_t shadowBytes = 0;    // channel texture, summed-area table, scratch and auxiliary
+  double timeRatio = 0.0;      // median over the baseline's median
+  double memoryRatio = 0.0;
+};
+
+struct ExperimentResult {
+  Experiment experiment;
+  std::vector<CaseMeasurement> cases;
+  std::string timing;  // "GPU timer queries" or "wall clock (glFinish around each pass)"
+  std::vector<std::string> findings;  // the fitted exponents, in words
+};
+
+// Renders every case of the experiment on `scene` (one warm-up frame, then `repeats` timed
+// frames). GPU timer queries where they measure execution, wall clock on software rasterisers.
+ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
+                                    const Experiment& experiment, int repeats);
+
+// The fitted exponent b of time = a k^b over a series (least squares in log-log), for the
+// kernel-scaling claim (PCF k², separable blur k, summed-area table flat).
+double fittedExponent(const std::vector<double>& k, const std::vector<double>& ms);
+
+}  // namespace penumbra::compare

@@ -1,0 +1,167 @@
+// Running the papers' performance experiments: every case rendered warm, timed, and set beside
+// its experiment's baseline. The cases themselves are in paper_experiments.cpp.
+#include "penumbra/compare/paper_bench.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "penumbra/compare/comparison.h"
+#include "penumbra/error.h"
+
+namespace penumbra::compare {
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+gl::PassTimes medianPasses(const std::vector<gl::PassTimes>& frames) {
+  auto of = [&](double gl::PassTimes::*pass) {
+    std::vector<double> v;
+    for (const gl::PassTimes& t : frames) v.push_back(t.*pass);
+    return median(v);
+  };
+  gl::PassTimes m;
+  m.light = of(&gl::PassTimes::light);
+  m.encode = of(&gl::PassTimes::encode);
+  m.prefilter = of(&gl::PassTimes::prefilter);
+  m.mipsOrSat = of(&gl::PassTimes::mipsOrSat);
+  m.auxiliary = of(&gl::PassTimes::auxiliary);
+  m.camera = of(&gl::PassTimes::camera);
+  m.depthBounds = of(&gl::PassTimes::depthBounds);
+  return m;
+}
+
+uint64_t shadowStorageBytes(const gl::MemoryReport& m) {
+  return m.technique + m.summedArea + m.scratch + m.auxiliary;
+}
+
+const CaseMeasurement* baselineOf(const std::vector<CaseMeasurement>& all, const BenchCase& c,
+                                  const std::string& series) {
+  for (const CaseMeasurement& m : all) {
+    if (m.benchCase.series == series && m.benchCase.x == c.x) return &m;
+  }
+  for (const CaseMeasurement& m : all) {  // a baseline measured once for every x
+    if (m.benchCase.series == series) return &m;
+  }
+  return nullptr;
+}
+
+std::string format2(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.2f", v);
+  return text;
+}
+
+// Each series' cost above its 1x1 case against k: k^2 for PCF's taps, k for a separable blur,
+// flat for a summed-area table.
+std::vector<std::string> exponentFindings(const std::vector<CaseMeasurement>& cases) {
+  std::vector<std::string> series;
+  for (const CaseMeasurement& m : cases) {
+    if (std::find(series.begin(), series.end(), m.benchCase.series) == series.end()) {
+      series.push_back(m.benchCase.series);
+    }
+  }
+  std::vector<std::string> findings;
+  for (const std::string& s : series) {
+    double base = 0.0, first = 0.0, last = 0.0;
+    std::vector<double> k, ms;
+    for (const CaseMeasurement& m : cases) {
+      if (m.benchCase.series != s) continue;
+      if (m.benchCase.x == 1.0) base = m.medianMs;
+    }
+    for (const CaseMeasurement& m : cases) {
+      if (m.benchCase.series != s || m.benchCase.x <= 1.0) continue;
+      if (k.empty()) first = m.medianMs;
+      last = m.medianMs;
+      if (m.medianMs > base) {
+        k.push_back(m.benchCase.x);
+        ms.push_back(m.medianMs - base);
+      }
+    }
+    std::string line = s + ": " + format2(first) + " ms at the smallest kernel, " +
+                       format2(last) + " ms at the largest";
+    if (k.size() >= 3 && ms.back() > 0.1 * base) {
+      line += "; the cost above the 1x1 case grows as k^" + format2(fittedExponent(k, ms));
+    } else {
+      line += "; flat: the cost above the 1x1 case stays within a tenth of it";
+    }
+    findings.push_back(line + ".");
+  }
+  return findings;
+}
+
+}  // namespace
+
+ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
+                                    const Experiment& experiment, int repeats) {
+  if (repeats < 1 || repeats > 100) {
+    throw Error("bench repeats " + std::to_string(repeats) + " is out of range [1, 100]");
+  }
+  for (const BenchCase& c : experiment.cases) renderer.validate(c.settings);
+  const bool gpuTimers = renderer.timerQueriesMeasureExecution();
+  ExperimentResult result;
+  result.experiment = experiment;
+  result.timing = gpuTimers ? "GPU timer queries (GL_TIME_ELAPSED)"
+                            : "wall clock, glFinish around each pass (this device's timer "
+                              "queries see only command submission)";
+  renderer.setScene(scene);
+  const gl::FrameView view{scene.camera, scene.light};
+  for (const BenchCase& c : experiment.cases) {
+    gl::RenderSettings settings = c.settings;
+    if (settings.technique == Technique::Pcf) settings.params.pcf = pcfMatchingPrefilter(settings);
+    renderer.render(settings, view);  // warm-up: shader variants, resources
+    CaseMeasurement m;
+    m.benchCase = c;
+    std::vector<gl::PassTimes> frames;
+    for (int i = 0; i < repeats; ++i) {
+      const gl::RenderResult r = renderer.render(settings, view);
+      const gl::PassTimes& t = gpuTimers ? r.gpuTimes : r.wallTimes;
+      frames.push_back(t);
+      m.frameMs.push_back(t.total());
+      m.shadowBytes = shadowStorageBytes(r.memory);
+    }
+    m.medianMs = median(m.frameMs);
+    m.minMs = *std::min_element(m.frameMs.begin(), m.frameMs.end());
+    m.maxMs = *std::max_element(m.frameMs.begin(), m.frameMs.end());
+    m.medianPasses = medianPasses(frames);
+    result.cases.push_back(std::move(m));
+  }
+  for (CaseMeasurement& m : result.cases) {
+    const CaseMeasurement* base = baselineOf(result.cases, m.benchCase, experiment.baselineSeries);
+    if (base == nullptr) {
+      throw Error("experiment " + experiment.id + " has no baseline case '" +
+                  experiment.baselineSeries + "'");
+    }
+    m.timeRatio = base->medianMs > 0.0 ? m.medianMs / base->medianMs : 0.0;
+    m.memoryRatio = base->shadowBytes > 0 ? double(m.shadowBytes) / double(base->shadowBytes) : 0.0;
+  }
+  if (experiment.fitsExponents) result.findings = exponentFindings(result.cases);
+  return result;
+}
+
+double fittedExponent(const std::vector<double>& k, const std::vector<double>& ms) {
+  if (k.size() != ms.size() || k.size() < 2) {
+    throw Error("a fitted exponent needs two or more (kernel, time) pairs");
+  }
+  double sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0;
+  for (size_t i = 0; i < k.size(); ++i) {
+    if (!(k[i] > 0.0) || !(ms[i] > 0.0)) {
+      throw Error("a fitted exponent needs positive kernels and times");
+    }
+    const double x = std::log(k[i]), y = std::log(ms[i]);
+    sx += x;
+    sy += y;
+    sxx += x * x;
+    sxy += x * y;
+  }
+  const double n = double(k.size());
+  const double denominator = n * sxx - sx * sx;
+  if (denominator <= 0.0) throw Error("a fitted exponent needs two or more distinct kernels");
+  return (n * sxy - sx * sy) / denominator;
+}
+
+}  // namespace penumbra::compare

@@ -1,0 +1,177 @@
+// `penumbra bench`'s outputs: bench.json, bench.csv and index.html with one gnuplot plot per
+// swept experiment, each case's ratio beside the paper's.
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "penumbra/compare/paper_bench_report.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/render_record.h"
+#include "penumbra/gnuplot.h"
+
+namespace penumbra::compare {
+namespace {
+
+using nlohmann::ordered_json;
+
+std::string fixed(double v, int digits) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(digits) << v;
+  return s.str();
+}
+
+std::string html(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '<') out += "&lt;";
+    else if (c == '>') out += "&gt;";
+    else if (c == '&') out += "&amp;";
+    else out += c;
+  }
+  return out;
+}
+
+// Median time against x, one line per series, log-log when the sweep spans a decade.
+void plotSweep(const ExperimentResult& r, const std::filesystem::path& png) {
+  std::map<std::string, std::vector<const CaseMeasurement*>> bySeries;
+  std::vector<std::string> order;
+  for (const CaseMeasurement& m : r.cases) {
+    if (bySeries[m.benchCase.series].empty()) order.push_back(m.benchCase.series);
+    bySeries[m.benchCase.series].push_back(&m);
+  }
+  const std::filesystem::path data = png.string() + ".dat";
+  {
+    std::ofstream out(data);
+    for (const std::string& s : order) {
+      for (const CaseMeasurement* m : bySeries[s]) {
+        out << m->benchCase.x << " " << m->medianMs << " " << m->minMs << " " << m->maxMs << "\n";
+      }
+      out << "\n\n";
+    }
+    if (!out) throw Error("cannot write " + data.string());
+  }
+  const bool logScale = r.experiment.id == "kernel-scaling";
+  std::ostringstream gp;
+  gp << "set terminal pngcairo size 720,460 font 'DejaVu Sans,10'\n"
+     << "set output " << gnuplotQuote(png.string()) << "\n"
+     << "set title " << gnuplotQuote(r.experiment.title) << " noenhanced\n"
+     << "set xlabel " << gnuplotQuote(r.experiment.xLabel) << " noenhanced\n"
+     << "set ylabel 'frame shadow cost, ms (median; bars: min-max)'\nset grid\n"
+     << "set key top left noenhanced\n"
+     << (logScale ? "set logscale xy\n" : "set yrange [0:*]\n") << "plot ";
+  for (size_t i = 0; i < order.size(); ++i) {
+    gp << (i ? ", " : "") << gnuplotQuote(data.string()) << " index " << i
+       << " using 1:2:3:4 with yerrorlines lw 2 title " << gnuplotQuote(order[i]);
+  }
+  gp << "\n";
+  runGnuplot(gp.str());
+  std::filesystem::remove(data);
+}
+
+ordered_json caseJson(const CaseMeasurement& m) {
+  ordered_json j = {{"label", m.benchCase.label},
+                    {"series", m.benchCase.series},
+                    {"x", m.benchCase.x},
+                    {"technique", techniqueId(m.benchCase.settings.technique)},
+                    {"shadow_map_size", m.benchCase.settings.shadowMapSize},
+                    {"median_ms", m.medianMs},
+                    {"min_ms", m.minMs},
+                    {"max_ms", m.maxMs},
+                    {"frames_ms", m.frameMs},
+                    {"passes_median_ms", ordered_json::parse(gl::passTimesJson(m.medianPasses))},
+                    {"shadow_bytes", m.shadowBytes},
+                    {"time_ratio", m.timeRatio},
+                    {"memory_ratio", m.memoryRatio}};
+  if (m.benchCase.paperTimeRatio) j["paper_time_ratio"] = *m.benchCase.paperTimeRatio;
+  if (m.benchCase.paperMemoryRatio) j["paper_memory_ratio"] = *m.benchCase.paperMemoryRatio;
+  if (!m.benchCase.paperNote.empty()) j["paper_note"] = m.benchCase.paperNote;
+  return j;
+}
+
+}  // namespace
+
+void writePaperBenchReport(const std::vector<ExperimentResult>& results,
+                           const PaperBenchContext& context, const std::filesystem::path& dir) {
+  std::filesystem::create_directories(dir / "plots");
+  ordered_json experiments = ordered_json::array();
+  std::ostringstream csv;
+  csv << "experiment,label,series,x,median_ms,min_ms,max_ms,shadow_bytes,time_ratio,"
+         "memory_ratio,paper_time_ratio,paper_memory_ratio\n";
+  std::ostringstream page;
+  page << "<!doctype html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+       << "<title>penumbra bench: the papers' performance experiments</title>\n"
+       << "<style>body{font-family:sans-serif;max-width:1100px;margin:2em auto;padding:0 1em}"
+       << "table{border-collapse:collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px;"
+       << "text-align:right}td:first-child,th:first-child{text-align:left}"
+       << ".note{color:#555;font-size:90%}</style></head><body>\n"
+       << "<h1>The papers' performance experiments, rerun</h1>\n"
+       << "<p>Device: " << html(context.device) << ". Timing: " << html(results.empty() ? "" : results[0].timing)
+       << ". Scene <code>" << html(context.scene) << "</code>; one warm-up frame, then "
+       << context.repeats << " timed frames per case (median, min-max). Command: <code>"
+       << html(context.command) << "</code>.</p>\n"
+       << "<p>The papers' times come from their 2007-2010 GPUs; what can be compared is each "
+          "ratio against the experiment's baseline, and how cost grows.</p>\n";
+  for (const ExperimentResult& r : results) {
+    const Experiment& e = r.experiment;
+    ordered_json cases = ordered_json::array();
+    for (const CaseMeasurement& m : r.cases) {
+      cases.push_back(caseJson(m));
+      csv << e.id << ",\"" << m.benchCase.label << "\",\"" << m.benchCase.series << "\","
+          << m.benchCase.x << "," << m.medianMs << "," << m.minMs << "," << m.maxMs << ","
+          << m.shadowBytes << "," << m.timeRatio << "," << m.memoryRatio << ","
+          << (m.benchCase.paperTimeRatio ? fixed(*m.benchCase.paperTimeRatio, 3) : "") << ","
+          << (m.benchCase.paperMemoryRatio ? fixed(*m.benchCase.paperMemoryRatio, 3) : "")
+          << "\n";
+    }
+    experiments.push_back({{"id", e.id},
+                           {"title", e.title},
+                           {"claim", e.claim},
+                           {"baseline", e.baselineSeries},
+                           {"timing", r.timing},
+                           {"cases", cases}});
+    page << "<h2 id=\"" << e.id << "\">" << html(e.title) << "</h2>\n<p>" << html(e.claim)
+         << "</p>\n<table><tr><th>case</th><th>median ms</th><th>min-max ms</th>"
+         << "<th>shadow memory MiB</th><th>time / " << html(e.baselineSeries)
+         << "</th><th>paper</th><th>memory / " << html(e.baselineSeries)
+         << "</th><th>paper</th></tr>\n";
+    for (const CaseMeasurement& m : r.cases) {
+      const BenchCase& c = m.benchCase;
+      page << "<tr><td>" << html(c.label) << "</td><td>" << fixed(m.medianMs, 1) << "</td><td>"
+           << fixed(m.minMs, 1) << "-" << fixed(m.maxMs, 1) << "</td><td>"
+           << fixed(double(m.shadowBytes) / 1048576.0, 1) << "</td><td>" << fixed(m.timeRatio, 2)
+           << "</td><td>" << (c.paperTimeRatio ? fixed(*c.paperTimeRatio, 2) : "")
+           << "</td><td>" << fixed(m.memoryRatio, 2) << "</td><td>"
+           << (c.paperMemoryRatio ? fixed(*c.paperMemoryRatio, 2) : "") << "</td></tr>\n";
+    }
+    page << "</table>\n";
+    for (const CaseMeasurement& m : r.cases) {
+      if (!m.benchCase.paperNote.empty()) {
+        page << "<p class=\"note\">" << html(m.benchCase.label) << ": "
+             << html(m.benchCase.paperNote) << "</p>\n";
+      }
+    }
+    if (!e.xLabel.empty()) {
+      plotSweep(r, dir / "plots" / (e.id + ".png"));
+      page << "<p><img src=\"plots/" << e.id << ".png\" alt=\"" << html(e.title) << "\"></p>\n";
+    }
+    for (const std::string& line : r.findings) page << "<p>" << html(line) << "</p>\n";
+  }
+  page << "</body></html>\n";
+  const ordered_json record = {{"device", context.device},
+                               {"timing", results.empty() ? "" : results[0].timing},
+                               {"scene", context.scene},
+                               {"repeats", context.repeats},
+                               {"command", context.command},
+                               {"experiments", experiments}};
+  std::ofstream(dir / "bench.json") << record.dump(2) << "\n";
+  std::ofstream(dir / "bench.csv") << csv.str();
+  std::ofstream(dir / "index.html") << page.str();
+  if (!std::ofstream(dir / "index.html", std::ios::app)) {
+    throw Error("cannot write the bench report in " + dir.string());
+  }
+}
+
+}  // namespace penumbra::compare
