@@ -1,0 +1,92 @@
+// penumbra bench --experiment: cases set against their baseline, memory ratios as the storage
+// formats dictate, the kernel-scaling fit, and unknown experiments refused with the valid ids.
+#include "penumbra/compare/paper_bench.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gl_test_context.h"
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+class PaperBench : public testing::GlTest {};
+
+compare::BenchSizes tiny() {
+  compare::BenchSizes z;
+  z.shadowMapSize = 64;
+  z.scalingShadowMapSize = 64;
+  z.width = 32;
+  z.height = 18;
+  return z;
+}
+
+TEST_F(PaperBench, GumbauCasesAreSetAgainstVsmWithTheirFormatsMemory) {
+  gl::Renderer renderer(*context);
+  const compare::Experiment e = compare::makePaperExperiment("gumbau-table1", tiny());
+  const compare::ExperimentResult r =
+      compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 2);
+  ASSERT_EQ(r.cases.size(), 4u);
+  // Channel texture and blur scratch per texel: VSM rg32f 8 bytes, ESM r32f 4, the power CDF's
+  // three channels rgba32f 16 or rgba16f 8 (image formats have no RGB).
+  const std::map<std::string, double> memory{{"VSM", 1.0},
+                                             {"ESM", 0.5},
+                                             {"power CDF, 32-bit", 2.0},
+                                             {"power CDF, 16-bit", 1.0}};
+  for (const compare::CaseMeasurement& m : r.cases) {
+    EXPECT_EQ(m.memoryRatio, memory.at(m.benchCase.series)) << m.benchCase.label;
+    EXPECT_EQ(m.frameMs.size(), 2u);
+    EXPECT_TRUE(m.medianMs > 0.0 && std::isfinite(m.medianMs)) << m.benchCase.label;
+    EXPECT_TRUE(m.minMs <= m.medianMs && m.medianMs <= m.maxMs) << m.benchCase.label;
+    if (m.benchCase.series == "VSM") EXPECT_EQ(m.timeRatio, 1.0);
+    else EXPECT_NEAR(m.timeRatio, m.medianMs / r.cases[0].medianMs, 1e-12);
+  }
+}
+
+TEST_F(PaperBench, EachKernelIsSetAgainstTheBaselineOfTheSameKernel) {
+  gl::Renderer renderer(*context);
+  compare::Experiment e = compare::makePaperExperiment("csm-table1", tiny());
+  std::erase_if(e.cases, [](const compare::BenchCase& c) { return c.x > 5.0; });
+  const compare::ExperimentResult r =
+      compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 1);
+  for (const compare::CaseMeasurement& m : r.cases) {
+    const compare::CaseMeasurement* pcf = nullptr;
+    for (const compare::CaseMeasurement& b : r.cases) {
+      if (b.benchCase.series == "PCF" && b.benchCase.x == m.benchCase.x) pcf = &b;
+    }
+    ASSERT_NE(pcf, nullptr);
+    EXPECT_NEAR(m.timeRatio, m.medianMs / pcf->medianMs, 1e-12) << m.benchCase.label;
+  }
+}
+
+TEST(PaperBenchFit, ExponentOfAPowerLawIsItsPower) {
+  const std::vector<double> k{3, 5, 7, 11, 31};
+  std::vector<double> square, linear;
+  for (double x : k) {
+    square.push_back(0.7 * x * x);
+    linear.push_back(2.5 * x);
+  }
+  EXPECT_NEAR(compare::fittedExponent(k, square), 2.0, 1e-12);
+  EXPECT_NEAR(compare::fittedExponent(k, linear), 1.0, 1e-12);
+  EXPECT_THROW(compare::fittedExponent({3}, {1}), Error);
+  EXPECT_THROW(compare::fittedExponent({3, 3}, {1, 2}), Error);
+}
+
+TEST(PaperBenchIds, UnknownExperimentsListTheValidOnes) {
+  try {
+    compare::makePaperExperiment("esm-table9", {});
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(),
+                 "unknown experiment 'esm-table9'; valid experiments: esm-table1, csm-table1, "
+                 "gumbau-table1, lvsm-layers, kernel-scaling");
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
