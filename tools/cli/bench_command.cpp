@@ -11,6 +11,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "command_line.h"
 #include "output_folder.h"
 #include "penumbra/compare/paper_bench.h"
 #include "penumbra/compare/paper_bench_report.h"
@@ -186,12 +187,7 @@ void registerBenchCommand(CLI::App& app) {
         }
       }
     }
-    o->commandLine = "penumbra bench";
-    for (const CLI::Option* opt : cmd->get_options()) {
-      if (opt->count() == 0 || opt->get_name() == "--help") continue;
-      o->commandLine += " " + opt->get_name(false, true);
-      for (const std::string& v : opt->results()) o->commandLine += " " + v;
-    }
+    o->commandLine = givenCommandLine(*cmd);
     runBench(*o);
   });
 }

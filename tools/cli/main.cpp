@@ -8,6 +8,7 @@
 #include "bench_command.h"
 #include "compare_command.h"
 #include "curves_command.h"
+#include "figures_command.h"
 #include "penumbra/error.h"
 #include "render_command.h"
 
@@ -18,6 +19,7 @@ int main(int argc, char** argv) {
   penumbra::cli::registerBenchCommand(app);
   penumbra::cli::registerCompareCommand(app);
   penumbra::cli::registerCurvesCommand(app);
+  penumbra::cli::registerFiguresCommand(app);
   penumbra::cli::registerRenderCommand(app);
   try {
     app.parse(argc, argv);
