@@ -68,16 +68,6 @@ Image crop(const Image& image, glm::vec4 rect, int zoom) {
   return out;
 }
 
-Image greyToColor(const Image& grey) {
-  Image out(grey.width(), grey.height(), 3);
-  for (int y = 0; y < grey.height(); ++y) {
-    for (int x = 0; x < grey.width(); ++x) {
-      for (int c = 0; c < 3; ++c) out.at(x, y, c) = grey.at(x, y);
-    }
-  }
-  return out;
-}
-
 ordered_json errorsJson(const VisibilityErrors& e) {
   return {{"pixels", e.pixels},
           {"rmse", e.rmse},
@@ -398,9 +388,9 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   const double range = 0.5;
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
-  writeColorPng(greyToColor(r.referenceVisibility), dir / "images" / "reference_visibility.png");
-  writeColorPng(greyToColor(r.groundTruthVisibility),
-                dir / "images" / "ground_truth_visibility.png");
+  // Visibility is a quantity, not light: its value is the grey level (no sRGB encoding).
+  writeGrey16Png(r.referenceVisibility, dir / "images" / "reference_visibility.png");
+  writeGrey16Png(r.groundTruthVisibility, dir / "images" / "ground_truth_visibility.png");
   tiles.push_back({dir / "images" / "reference_shaded.png", "filtered reference"});
   for (const TroubleSpot& spot : r.scene.troubleSpots) {
     writeColorPng(crop(r.referenceColor, spot.rect, 3),
@@ -410,7 +400,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   for (const TechniqueResult& t : r.techniques) {
     const std::string id(techniqueId(t.technique));
     writeColorPng(t.color, dir / "images" / (id + "_shaded.png"));
-    writeColorPng(greyToColor(t.visibility), dir / "images" / (id + "_visibility.png"));
+    writeGrey16Png(t.visibility, dir / "images" / (id + "_visibility.png"));
     plotErrorHeatMap(t.error, range, id + ": visibility error against the filtered reference",
                      dir / "images" / (id + "_error.png"));
     for (const TroubleSpot& spot : r.scene.troubleSpots) {

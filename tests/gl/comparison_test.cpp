@@ -3,7 +3,15 @@
 #include <gtest/gtest.h>
 
 #include "gl_test_context.h"
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+
 #include "penumbra/compare/comparison.h"
+#include "penumbra/compare/report.h"
+#include "penumbra/image_io.h"
 #include "penumbra/error.h"
 
 namespace penumbra {
@@ -124,6 +132,36 @@ TEST_F(ComparisonTest, MatchedPcfIsTheReferenceForGaussianBlursToo) {
       EXPECT_LT(find(r, Technique::Pcf).filtered.rmse, 1e-5) << scene << " " << filterModeName(f);
     }
   }
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// The report shows visibility as a quantity: each PNG's grey level is the visibility itself
+// (16-bit, no sRGB curve), so 0.5 reads back as 0.5, not as its sRGB encoding (0.735).
+TEST_F(ComparisonTest, ReportVisibilityImagesHoldTheVisibilityItself) {
+  compare::ComparisonRequest q = request("bench", {Technique::Vsm});
+  q.settings.shadowMapSize = 128;
+  q.settings.width = 64;
+  q.settings.height = 36;
+  const compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("penumbra-report-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  compare::writeReportFiles(r, dir);
+  const Image vsm = readGrey16Png(dir / "images" / "vsm_visibility.png");
+  const Image reference = readGrey16Png(dir / "images" / "reference_visibility.png");
+  std::filesystem::remove_all(dir);
+  ASSERT_EQ(vsm.data().size(), r.techniques[0].visibility.data().size());
+  double worst = 0.0;
+  for (size_t i = 0; i < vsm.data().size(); ++i) {
+    worst = std::max(worst, double(std::abs(vsm.data()[i] - r.techniques[0].visibility.data()[i])));
+    worst = std::max(worst, double(std::abs(reference.data()[i] - r.referenceVisibility.data()[i])));
+  }
+  EXPECT_LE(worst, 0.5 / 65535.0 + 1e-7);  // 16-bit rounding
 }
 
 }  // namespace
