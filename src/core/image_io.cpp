@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
+#include <cstring>
 #include <memory>
 #include <vector>
 
@@ -131,7 +133,12 @@ void writeLayerIndexPng(const Image& diagnostic, const Image& color,
   writeColorPng(out, path);
 }
 
-Image readGrey16Png(const std::filesystem::path& path) {
+namespace {
+
+// Reads a PNG that must be of `colorType` with `bitDepth` bits per sample (`expected` names it in
+// the error otherwise) into an image of the samples divided by their maximum, row 0 at the top.
+Image readPng(const std::filesystem::path& path, int colorType, int bitDepth, int channels,
+              const char* expected) {
   FilePtr file = open(path, "rb");
   png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -144,47 +151,36 @@ Image readGrey16Png(const std::filesystem::path& path) {
   png_read_info(png, info);
   const int width = int(png_get_image_width(png, info));
   const int height = int(png_get_image_height(png, info));
-  if (png_get_color_type(png, info) != PNG_COLOR_TYPE_GRAY || png_get_bit_depth(png, info) != 16) {
+  if (png_get_color_type(png, info) != colorType || png_get_bit_depth(png, info) != bitDepth) {
     png_destroy_read_struct(&png, &info, nullptr);
-    throw Error(path.string() + " is not a 16-bit greyscale PNG");
+    throw Error(path.string() + " is not " + expected);
   }
-  png_set_swap(png);
-  std::vector<uint16_t> pixels(size_t(width) * size_t(height));
+  if (bitDepth == 16) png_set_swap(png);  // PNG stores big-endian samples
+  const size_t bytes = size_t(bitDepth / 8);
+  const size_t rowBytes = size_t(width) * size_t(channels) * bytes;
+  std::vector<uint8_t> pixels(rowBytes * size_t(height));
   std::vector<png_bytep> rows;
-  for (int y = 0; y < height; ++y)
-    rows.push_back(reinterpret_cast<png_bytep>(&pixels[size_t(y) * size_t(width)]));
+  for (int y = 0; y < height; ++y) rows.push_back(&pixels[size_t(y) * rowBytes]);
   png_read_image(png, rows.data());
   png_destroy_read_struct(&png, &info, nullptr);
-  Image image(width, height, 1);
-  for (size_t i = 0; i < pixels.size(); ++i) image.data()[i] = float(pixels[i]) / 65535.0f;
+  Image image(width, height, channels);
+  const float maximum = float((1 << bitDepth) - 1);
+  for (size_t i = 0; i < image.data().size(); ++i) {
+    uint16_t sample = pixels[i * bytes];
+    if (bytes == 2) std::memcpy(&sample, &pixels[i * 2], 2);
+    image.data()[i] = float(sample) / maximum;
+  }
   return image;
 }
 
+}  // namespace
+
+Image readGrey16Png(const std::filesystem::path& path) {
+  return readPng(path, PNG_COLOR_TYPE_GRAY, 16, 1, "a 16-bit greyscale PNG");
+}
+
 Image readEncodedColorPng(const std::filesystem::path& path) {
-  FilePtr file = open(path, "rb");
-  png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-  png_infop info = png ? png_create_info_struct(png) : nullptr;
-  if (!png || !info) throw Error("libpng could not start reading " + path.string());
-  if (setjmp(png_jmpbuf(png))) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    throw Error(path.string() + " is not a readable PNG");
-  }
-  png_init_io(png, file.get());
-  png_read_info(png, info);
-  const int width = int(png_get_image_width(png, info));
-  const int height = int(png_get_image_height(png, info));
-  if (png_get_color_type(png, info) != PNG_COLOR_TYPE_RGB || png_get_bit_depth(png, info) != 8) {
-    png_destroy_read_struct(&png, &info, nullptr);
-    throw Error(path.string() + " is not an 8-bit RGB PNG");
-  }
-  std::vector<uint8_t> pixels(size_t(width) * size_t(height) * 3);
-  std::vector<png_bytep> rows;
-  for (int y = 0; y < height; ++y) rows.push_back(&pixels[size_t(y) * size_t(width) * 3]);
-  png_read_image(png, rows.data());
-  png_destroy_read_struct(&png, &info, nullptr);
-  Image image(width, height, 3);
-  for (size_t i = 0; i < pixels.size(); ++i) image.data()[i] = float(pixels[i]) / 255.0f;
-  return image;
+  return readPng(path, PNG_COLOR_TYPE_RGB, 8, 3, "an 8-bit RGB PNG");
 }
 
 void writeFloatExr(const Image& image, const std::filesystem::path& path) {
