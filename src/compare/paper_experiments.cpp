@@ -66,6 +66,7 @@ Experiment esmTable1(const BenchSizes& z) {
       c.x = k;
       c.settings = caseSettings(t, z.shadowMapSize, z, k, p);
       c.settings.blur = {BlurKernel::Gaussian, (k - 1) / 2, std::max(0.5f, 0.25f * float(k - 1))};
+      c.settings.filter = FilterMode::Trilinear;  // the paper's figures include mip-maps
       if (fps > 0.0) {
         c.paperTimeRatio = row.threshold / fps;  // frame time is 1 / fps
         c.paperNote = source;
@@ -158,22 +159,33 @@ Experiment lvsmLayers(const BenchSizes& z) {
   Experiment e;
   e.id = "lvsm-layers";
   e.title = "Thesis Fig. 4.6: layered VSM cost against the number of layers";
-  e.claim = "Each layer adds a two-channel map to encode, blur and read: cost grows with layers.";
+  e.claim =
+      "Each layer adds a two-channel map to encode, filter and read, yet LVSM stays real-time: "
+      "with 14 layers at 1024² performance dips to just under 100 fps (1920x1200, 4x MSAA; "
+      "Lloyd relaxation, trilinear and 16x anisotropic filtering, 16-bit storage). The figure's "
+      "per-layer times are not in the text.";
   e.xLabel = "layers";
   e.baselineSeries = "VSM";
   const int k = 5;
+  const int size = std::min(1024, z.shadowMapSize);  // the thesis's 1024² map
+  auto thesisSettings = [&](Technique t, std::initializer_list<const char*> p) {
+    gl::RenderSettings s = caseSettings(t, size, z, k, p);
+    s.filter = FilterMode::Anisotropic;
+    s.anisotropy = 16;
+    return s;
+  };
   BenchCase vsm;
   vsm.series = "VSM";
   vsm.label = "VSM";
-  vsm.settings = caseSettings(Technique::Vsm, z.shadowMapSize, z, k);
+  vsm.settings = thesisSettings(Technique::Vsm, {});
   e.cases.push_back(vsm);
-  for (int layers : {1, 2, 4, 6, 8}) {
+  for (int layers : {1, 2, 4, 8, 14}) {
     BenchCase c;
     c.series = "LVSM";
     c.label = "LVSM, " + std::to_string(layers) + (layers == 1 ? " layer" : " layers");
     c.x = layers;
     const std::string p = "layers=" + std::to_string(layers);
-    c.settings = caseSettings(Technique::Lvsm, z.shadowMapSize, z, k, {p.c_str()});
+    c.settings = thesisSettings(Technique::Lvsm, {p.c_str(), "placement=lloyd"});
     e.cases.push_back(c);
   }
   return e;
