@@ -3,6 +3,7 @@
 #pragma once
 
 #include <span>
+#include <vector>
 
 #include "penumbra/image.h"
 
@@ -43,5 +44,9 @@ double frameToFrameChange(std::span<const Image> estimates, std::span<const Imag
 // The pixels whose shading the shadow test decides — inside the shadow map, on surfaces facing
 // the light beyond grazing — from a renderer lookup image (channel 3 == 1).
 Image litSurfaceMask(const Image& lookup);
+
+// The median of a non-empty set of timings or values (the mean of the middle two for an even
+// count); throws Error when empty.
+double median(std::vector<double> values);
 
 }  // namespace penumbra

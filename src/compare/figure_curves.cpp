@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "html_text.h"
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/curves.h"
 #include "penumbra/params.h"
@@ -12,9 +13,7 @@ namespace penumbra::compare {
 namespace {
 
 std::string format(double v, int digits = 3) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
+  return fixedDigits(v, digits);
 }
 
 size_t column(const CurvesTable& t, const std::string& name) {

@@ -7,6 +7,7 @@
 #include <cstdio>
 
 #include "penumbra/compare/comparison.h"
+#include "html_text.h"
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
@@ -16,9 +17,7 @@ namespace penumbra::compare {
 namespace {
 
 std::string format(double v, int digits = 3) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*f", digits, v);
-  return text;
+  return fixedDigits(v, digits);
 }
 
 gl::RenderSettings figureSettings(const FiguresOptions& o) {

@@ -8,15 +8,10 @@
 
 #include "penumbra/compare/comparison.h"
 #include "penumbra/error.h"
+#include "penumbra/metrics.h"
 
 namespace penumbra::compare {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 gl::PassTimes medianPasses(const std::vector<gl::PassTimes>& frames) {
   auto of = [&](double gl::PassTimes::*pass) {

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/render_record.h"
@@ -16,23 +17,6 @@ namespace penumbra::compare {
 namespace {
 
 using nlohmann::ordered_json;
-
-std::string fixed(double v, int digits) {
-  std::ostringstream s;
-  s << std::fixed << std::setprecision(digits) << v;
-  return s.str();
-}
-
-std::string html(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
 
 // Median time against x, one line per series, log-log when the sweep spans a decade.
 void plotSweep(const ExperimentResult& r, const std::filesystem::path& png) {
@@ -108,10 +92,10 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
        << "text-align:right}td:first-child,th:first-child{text-align:left}"
        << ".note{color:#555;font-size:90%}</style></head><body>\n"
        << "<h1>The papers' performance experiments, rerun</h1>\n"
-       << "<p>Device: " << html(context.device) << ". Timing: " << html(results.empty() ? "" : results[0].timing)
-       << ". Scene <code>" << html(context.scene) << "</code>; one warm-up frame, then "
+       << "<p>Device: " << escapeHtml(context.device) << ". Timing: " << escapeHtml(results.empty() ? "" : results[0].timing)
+       << ". Scene <code>" << escapeHtml(context.scene) << "</code>; one warm-up frame, then "
        << context.repeats << " timed frames per case (median, min-max). Command: <code>"
-       << html(context.command) << "</code>.</p>\n"
+       << escapeHtml(context.command) << "</code>.</p>\n"
        << "<p>The papers' times come from their 2007-2010 GPUs; what can be compared is each "
           "ratio against the experiment's baseline, and how cost grows.</p>\n";
   for (const ExperimentResult& r : results) {
@@ -122,8 +106,8 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
       csv << e.id << ",\"" << m.benchCase.label << "\",\"" << m.benchCase.series << "\","
           << m.benchCase.x << "," << m.medianMs << "," << m.minMs << "," << m.maxMs << ","
           << m.shadowBytes << "," << m.timeRatio << "," << m.memoryRatio << ","
-          << (m.benchCase.paperTimeRatio ? fixed(*m.benchCase.paperTimeRatio, 3) : "") << ","
-          << (m.benchCase.paperMemoryRatio ? fixed(*m.benchCase.paperMemoryRatio, 3) : "")
+          << (m.benchCase.paperTimeRatio ? fixedDigits(*m.benchCase.paperTimeRatio, 3) : "") << ","
+          << (m.benchCase.paperMemoryRatio ? fixedDigits(*m.benchCase.paperMemoryRatio, 3) : "")
           << "\n";
     }
     experiments.push_back({{"id", e.id},
@@ -132,32 +116,32 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
                            {"baseline", e.baselineSeries},
                            {"timing", r.timing},
                            {"cases", cases}});
-    page << "<h2 id=\"" << e.id << "\">" << html(e.title) << "</h2>\n<p>" << html(e.claim)
+    page << "<h2 id=\"" << e.id << "\">" << escapeHtml(e.title) << "</h2>\n<p>" << escapeHtml(e.claim)
          << "</p>\n<table><tr><th>case</th><th>median ms</th><th>min-max ms</th>"
-         << "<th>shadow memory MiB</th><th>time / " << html(e.baselineSeries)
-         << "</th><th>paper</th><th>memory / " << html(e.baselineSeries)
+         << "<th>shadow memory MiB</th><th>time / " << escapeHtml(e.baselineSeries)
+         << "</th><th>paper</th><th>memory / " << escapeHtml(e.baselineSeries)
          << "</th><th>paper</th></tr>\n";
     for (const CaseMeasurement& m : r.cases) {
       const BenchCase& c = m.benchCase;
-      page << "<tr><td>" << html(c.label) << "</td><td>" << fixed(m.medianMs, 1) << "</td><td>"
-           << fixed(m.minMs, 1) << "-" << fixed(m.maxMs, 1) << "</td><td>"
-           << fixed(double(m.shadowBytes) / 1048576.0, 1) << "</td><td>" << fixed(m.timeRatio, 2)
-           << "</td><td>" << (c.paperTimeRatio ? fixed(*c.paperTimeRatio, 2) : "")
-           << "</td><td>" << fixed(m.memoryRatio, 2) << "</td><td>"
-           << (c.paperMemoryRatio ? fixed(*c.paperMemoryRatio, 2) : "") << "</td></tr>\n";
+      page << "<tr><td>" << escapeHtml(c.label) << "</td><td>" << fixedDigits(m.medianMs, 1) << "</td><td>"
+           << fixedDigits(m.minMs, 1) << "-" << fixedDigits(m.maxMs, 1) << "</td><td>"
+           << fixedDigits(double(m.shadowBytes) / 1048576.0, 1) << "</td><td>" << fixedDigits(m.timeRatio, 2)
+           << "</td><td>" << (c.paperTimeRatio ? fixedDigits(*c.paperTimeRatio, 2) : "")
+           << "</td><td>" << fixedDigits(m.memoryRatio, 2) << "</td><td>"
+           << (c.paperMemoryRatio ? fixedDigits(*c.paperMemoryRatio, 2) : "") << "</td></tr>\n";
     }
     page << "</table>\n";
     for (const CaseMeasurement& m : r.cases) {
       if (!m.benchCase.paperNote.empty()) {
-        page << "<p class=\"note\">" << html(m.benchCase.label) << ": "
-             << html(m.benchCase.paperNote) << "</p>\n";
+        page << "<p class=\"note\">" << escapeHtml(m.benchCase.label) << ": "
+             << escapeHtml(m.benchCase.paperNote) << "</p>\n";
       }
     }
     if (!e.xLabel.empty()) {
       plotSweep(r, dir / "plots" / (e.id + ".png"));
-      page << "<p><img src=\"plots/" << e.id << ".png\" alt=\"" << html(e.title) << "\"></p>\n";
+      page << "<p><img src=\"plots/" << e.id << ".png\" alt=\"" << escapeHtml(e.title) << "\"></p>\n";
     }
-    for (const std::string& line : r.findings) page << "<p>" << html(line) << "</p>\n";
+    for (const std::string& line : r.findings) page << "<p>" << escapeHtml(line) << "</p>\n";
   }
   page << "</body></html>\n";
   const ordered_json record = {{"device", context.device},

@@ -3,31 +3,21 @@
 
 #include <fstream>
 
+#include "html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/error.h"
 
 namespace penumbra::compare {
 namespace {
 
-std::string escaped(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<') out += "&lt;";
-    else if (c == '>') out += "&gt;";
-    else if (c == '&') out += "&amp;";
-    else out += c;
-  }
-  return out;
-}
-
 std::string itemHtml(const FigureItem& f) {
-  std::string h = "<section id=\"" + f.id + "\"><h2>" + escaped(f.title) + "</h2>\n";
+  std::string h = "<section id=\"" + f.id + "\"><h2>" + escapeHtml(f.title) + "</h2>\n";
   for (const std::string& image : f.images) {
-    h += "<img src=\"" + image + "\" alt=\"" + escaped(f.title) + "\">\n";
+    h += "<img src=\"" + image + "\" alt=\"" + escapeHtml(f.title) + "\">\n";
   }
-  h += f.tableHtml + "\n<p><b>Paper:</b> " + escaped(f.paper) + "</p>\n<p><b>Measured:</b> " +
-       escaped(f.measured) + "</p>\n<p class=\"" + (f.agrees ? "agree" : "disagree") +
-       "\"><b>" + (f.agrees ? "Agrees" : "Disagrees") + ":</b> " + escaped(f.verdict) +
+  h += f.tableHtml + "\n<p><b>Paper:</b> " + escapeHtml(f.paper) + "</p>\n<p><b>Measured:</b> " +
+       escapeHtml(f.measured) + "</p>\n<p class=\"" + (f.agrees ? "agree" : "disagree") +
+       "\"><b>" + (f.agrees ? "Agrees" : "Disagrees") + ":</b> " + escapeHtml(f.verdict) +
        "</p></section>\n";
   return h;
 }
@@ -36,10 +26,10 @@ std::string benchHtml(const std::vector<ExperimentResult>& results) {
   std::string h;
   for (const ExperimentResult& r : results) {
     const Experiment& e = r.experiment;
-    h += "<section id=\"" + e.id + "\"><h2>" + escaped(e.title) + "</h2>\n<p><b>Paper:</b> " +
-         escaped(e.claim) + "</p>\n<table><tr><th>case</th><th>time / " +
-         escaped(e.baselineSeries) + "</th><th>paper</th><th>memory / " +
-         escaped(e.baselineSeries) + "</th><th>paper</th></tr>";
+    h += "<section id=\"" + e.id + "\"><h2>" + escapeHtml(e.title) + "</h2>\n<p><b>Paper:</b> " +
+         escapeHtml(e.claim) + "</p>\n<table><tr><th>case</th><th>time / " +
+         escapeHtml(e.baselineSeries) + "</th><th>paper</th><th>memory / " +
+         escapeHtml(e.baselineSeries) + "</th><th>paper</th></tr>";
     for (const CaseMeasurement& m : r.cases) {
       auto cell = [](const std::optional<double>& v) {
         if (!v) return std::string("not given");
@@ -51,14 +41,14 @@ std::string benchHtml(const std::vector<ExperimentResult>& results) {
       std::snprintf(ours, sizeof ours, "%.2f</td><td>", m.timeRatio);
       char memory[32];
       std::snprintf(memory, sizeof memory, "%.2f", m.memoryRatio);
-      h += "<tr><td>" + escaped(m.benchCase.label) + "</td><td>" + ours +
+      h += "<tr><td>" + escapeHtml(m.benchCase.label) + "</td><td>" + ours +
            cell(m.benchCase.paperTimeRatio) + "</td><td>" + memory + "</td><td>" +
            cell(m.benchCase.paperMemoryRatio) + "</td></tr>";
     }
     h += "</table>\n";
     if (!e.xLabel.empty()) h += "<img src=\"bench/plots/" + e.id + ".png\" alt=\"" + e.id + "\">\n";
-    for (const std::string& f : r.findings) h += "<p>" + escaped(f) + "</p>\n";
-    h += "<p><b>Measured:</b> " + escaped(r.timing) + "; details in <a href=\"bench/index.html#" +
+    for (const std::string& f : r.findings) h += "<p>" + escapeHtml(f) + "</p>\n";
+    h += "<p><b>Measured:</b> " + escapeHtml(r.timing) + "; details in <a href=\"bench/index.html#" +
          e.id + "\">the bench page</a>.</p></section>\n";
   }
   return h;
@@ -96,14 +86,14 @@ void writePaperFigures(gl::Renderer& renderer, const FiguresOptions& options,
       "collapse;margin:1em 0}td,th{border:1px solid #bbb;padding:3px 8px}.agree{color:#1b5e20}"
       ".disagree{color:#b71c1c}section{border-top:1px solid #ddd;margin-top:2em}</style></head>"
       "<body>\n<h1>The seed papers' figures and tables, regenerated with penumbra</h1>\n<p>Device: " +
-      escaped(renderer.deviceDescription()) + ". Command: <code>" + escaped(options.command) +
+      escapeHtml(renderer.deviceDescription()) + ". Command: <code>" + escapeHtml(options.command) +
       "</code>. " + std::to_string(items.size()) + " figures, " +
       std::to_string(disagreements) +
       " disagreeing with their paper (each says why), and the papers' performance tables.</p>\n";
   page += "<ul>";
-  for (const FigureItem& f : items) page += "<li><a href=\"#" + f.id + "\">" + escaped(f.title) + "</a></li>";
+  for (const FigureItem& f : items) page += "<li><a href=\"#" + f.id + "\">" + escapeHtml(f.title) + "</a></li>";
   for (const ExperimentResult& r : bench) {
-    page += "<li><a href=\"#" + r.experiment.id + "\">" + escaped(r.experiment.title) + "</a></li>";
+    page += "<li><a href=\"#" + r.experiment.id + "\">" + escapeHtml(r.experiment.title) + "</a></li>";
   }
   page += "</ul>\n";
   for (const FigureItem& f : items) page += itemHtml(f);

@@ -12,6 +12,7 @@
 #include "penumbra/gl/render_record.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
+#include "html_text.h"
 #include "report_plots.h"
 
 namespace penumbra::compare {
@@ -29,20 +30,7 @@ uint64_t techniqueBytes(const TechniqueResult& t) {
 }
 
 std::string html(const std::string& text) {
-  std::string out;
-  for (char c : text) {
-    if (c == '<')
-      out += "&lt;";
-    else if (c == '>')
-      out += "&gt;";
-    else if (c == '&')
-      out += "&amp;";
-    else if (c == '"')
-      out += "&quot;";
-    else
-      out += c;
-  }
-  return out;
+  return escapeHtml(text);
 }
 
 std::string slug(const std::string& text) {

@@ -1,6 +1,7 @@
 // Visibility error metrics.
 #include "penumbra/metrics.h"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -111,6 +112,13 @@ Image litSurfaceMask(const Image& lookup) {
       mask.at(x, y) = lookup.at(x, y, 3) > 0.75f ? 1.0f : 0.0f;
   }
   return mask;
+}
+
+double median(std::vector<double> values) {
+  if (values.empty()) throw Error("the median of no values");
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
 }  // namespace penumbra

@@ -11,18 +11,13 @@
 #include "gl_formats.h"
 #include "gpu_timer.h"
 #include "penumbra/error.h"
+#include "penumbra/metrics.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
 #include "program_cache.h"
 
 namespace penumbra::gl {
 namespace {
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 Texture arrayTexture(unsigned format, int size, int layers, int levels) {
   Texture t(GL_TEXTURE_2D_ARRAY);

@@ -102,3 +102,16 @@ TEST(Metrics, LitSurfaceMaskKeepsPixelsWhereTheShadowTestDecides) {
 
 }  // namespace
 }  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+TEST(Median, MiddleValueOrMeanOfTheMiddleTwo) {
+  EXPECT_EQ(median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_EQ(median({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_EQ(median({7.0}), 7.0);
+  EXPECT_THROW(median({}), Error);
+}
+
+}  // namespace
+}  // namespace penumbra
