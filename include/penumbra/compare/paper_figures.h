@@ -16,12 +16,12 @@ namespace penumbra::compare {
 struct FiguresOptions {
   // Rendered figures: shadow-map and frame sizes (small defaults: the page must finish in
   // minutes on two CPU cores without a GPU; flags raise them).
-  int shadowMapSize = 512;
-  int width = 480;
-  int height = 270;
+  int shadowMapSize = 1024;
+  int width = 960;
+  int height = 540;
   // The bench tables: their sizes and timed frames per case.
-  BenchSizes benchSizes{512, 480, 270, 512};
-  int benchRepeats = 1;
+  BenchSizes benchSizes{1024, 960, 540, 1024};
+  int benchRepeats = 3;
   std::string command;  // the command line, printed on the page
 };
 
