@@ -1,0 +1,363 @@
+// The viewer's loop.
+#include "viewer.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "display_image.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "penumbra/image_io.h"
+#include "settings_panel.h"
+#include "viewer_state.h"
+#include "viewer_window.h"
+
+namespace penumbra::viewer {
+namespace {
+
+constexpr float kPanelWidth = 430.0f;
+constexpr size_t kTimeHistory = 120;  // frames in the rolling time graph
+
+// The scene area's texture: the displayed pixels at one texel per window pixel.
+class SceneTexture {
+ public:
+  SceneTexture() { glCreateTextures(GL_TEXTURE_2D, 1, &id_); }
+  ~SceneTexture() { glDeleteTextures(1, &id_); }
+  SceneTexture(const SceneTexture&) = delete;
+  SceneTexture& operator=(const SceneTexture&) = delete;
+
+  void upload(const DisplayImage& image) {
+    if (image.width != width_ || image.height != height_) {
+      glDeleteTextures(1, &id_);
+      glCreateTextures(GL_TEXTURE_2D, 1, &id_);
+      glTextureStorage2D(id_, 1, GL_RGB8, image.width, image.height);
+      // Nearest: the texels land on pixels one to one, the window shows the render's bytes.
+      glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+      glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+      width_ = image.width;
+      height_ = image.height;
+    }
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTextureSubImage2D(id_, 0, 0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, image.rgb.data());
+  }
+  GLuint id() const { return id_; }
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+ private:
+  GLuint id_ = 0;
+  int width_ = 0;
+  int height_ = 0;
+};
+
+void setMessage(ViewerState& state, std::string message, bool isError) {
+  state.message = std::move(message);
+  state.messageIsError = isError;
+}
+
+void loadSceneInto(ViewerState& state) {
+  Scene scene = loadScene(state.settings.scene);
+  applyOverrides(scene, state.settings.view);
+  for (const std::string& w : scene.warnings)
+    std::cerr << "penumbra-viewer: warning: " << w << "\n";
+  state.scene = std::move(scene);
+  state.camera = state.scene.camera;
+  state.light = state.scene.light;
+  if (state.light.kind != LightKind::Directional) state.settings.render.cascades.count = 1;
+}
+
+class Viewer {
+ public:
+  Viewer(const ViewerOptions& options, gl::Settings settings, ViewerWindow& window)
+      : options_(options), window_(window), renderer_(context_) {
+    state_.settings = std::move(settings);
+    state_.showPanel = !options.hidePanel;
+    if (!options.settingsFile.empty()) state_.settingsPath = options.settingsFile;
+    loadSceneInto(state_);
+    renderer_.setScene(state_.scene);
+  }
+
+  void run() {
+    int frame = 0;
+    bool renderNeeded = true;
+    bool displayNeeded = true;
+    while (!window_.shouldClose()) {
+      window_.beginFrame();
+      Changes changes;
+      if (state_.showPanel) {
+        FrameStats stats{result_ ? &*result_ : nullptr, renderer_.deviceDescription()};
+        changes = drawSettingsPanel(state_, stats, kPanelWidth);
+      }
+      handleInput(changes);
+      applyFileChanges(changes);
+      if (changes.scene) {
+        if (tryOrReport([&] {
+              loadSceneInto(state_);
+              renderer_.setScene(state_.scene);
+            })) {
+          renderNeeded = true;
+        }
+      }
+      renderNeeded |= changes.render;
+      if (renderNeeded) {
+        renderFrame();
+        renderNeeded = false;
+        displayNeeded = true;
+      }
+      if (displayNeeded || changes.display) {
+        showDisplay();
+        displayNeeded = false;
+      }
+      drawWindow();
+      ++frame;
+      const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
+      if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
+      if (screenshotRequested_) {
+        screenshotRequested_ = false;
+        char name[64];
+        std::snprintf(name, sizeof name, "penumbra-viewer-%04d.png", screenshotCount_++);
+        tryOrReport([&] {
+          writeScreenshot(name);
+          setMessage(state_, std::string("wrote ") + name, false);
+        });
+      }
+      window_.swapBuffers();
+      if (lastScripted) break;
+    }
+  }
+
+ private:
+  // Runs f; an Error becomes the panel's message (and, scripted, fails the run).
+  template <typename F>
+  bool tryOrReport(F&& f) {
+    try {
+      f();
+      return true;
+    } catch (const Error& e) {
+      if (options_.frames > 0) throw;
+      setMessage(state_, e.what(), true);
+      return false;
+    }
+  }
+
+  gl::RenderSettings currentSettings() const {
+    gl::RenderSettings s = state_.settings.render;
+    s.technique = state_.settings.techniques.front();
+    return s;
+  }
+
+  gl::FrameView currentView() const { return gl::FrameView{state_.camera, state_.light}; }
+
+  void renderFrame() {
+    const gl::RenderSettings settings = currentSettings();
+    tryOrReport([&] {
+      renderer_.validate(settings);
+      requireCascadableLight(settings.cascades, state_.light);
+      result_ = renderer_.render(settings, currentView());
+      state_.wallTimes.push_back(result_->wallTimes);
+      if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
+      reference_.reset();  // computed again when the error view asks for it
+      if (state_.messageIsError) state_.message.clear();
+    });
+  }
+
+  void showDisplay() {
+    if (!result_) return;
+    tryOrReport([&] {
+      std::optional<Image> map;
+      if (state_.view == View::Error && !reference_) {
+        // The filtered reference of the same settings and view: computed when this view asks for
+        // it, once per rendered frame.
+        reference_ = renderer_.renderReference(currentSettings(), currentView(), 1).visibility;
+        renderer_.render(currentSettings(), currentView());  // the technique's maps back in place
+      }
+      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(0);
+      if (state_.view == View::Channel) {
+        const Image channels = renderer_.readChannels(0);
+        const int c = std::clamp(state_.channel, 0, channels.channels() - 1);
+        map.emplace(channels.width(), channels.height(), 1);
+        for (int y = 0; y < channels.height(); ++y) {
+          for (int x = 0; x < channels.width(); ++x) map->at(x, y) = channels.at(x, y, c);
+        }
+      }
+      const DisplayImage image = composeDisplay(
+          state_.view, *result_, reference_ ? &*reference_ : nullptr, map ? &*map : nullptr);
+      texture_.upload(image);
+    });
+  }
+
+  // The scene area at the top left, one texel per pixel (square maps fitted into the frame).
+  void drawWindow() {
+    int width = 0, height = 0;
+    window_.framebufferSize(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glClearColor(0.12f, 0.12f, 0.12f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (texture_.width() > 0) {
+      float w = float(texture_.width()), h = float(texture_.height());
+      if (state_.view == View::ShadowMap || state_.view == View::Channel) {
+        const float side =
+            float(std::min(state_.settings.render.width, state_.settings.render.height));
+        w = h = side;
+      }
+      ImGui::GetBackgroundDrawList()->AddImage(ImTextureID(intptr_t(texture_.id())), ImVec2(0, 0),
+                                               ImVec2(w, h));
+    }
+    window_.drawUi();
+  }
+
+  void writeScreenshot(const std::string& path) {
+    int width = 0, height = 0;
+    const std::vector<uint8_t> pixels = window_.readBackBuffer(width, height);
+    writeEncodedColorPng(width, height, pixels, path);
+    std::cout << "wrote " << path << " (" << width << "x" << height << ")\n";
+  }
+
+  void applyFileChanges(Changes& changes) {
+    if (changes.saveSettings) {
+      tryOrReport([&] {
+        gl::writeSettingsFile(state_.settingsPath, settingsToSave(state_));
+        setMessage(state_, "saved " + state_.settingsPath, false);
+      });
+    }
+    if (changes.loadSettings) {
+      tryOrReport([&] {
+        state_.settings = loadViewerSettings(state_.settingsPath);
+        changes.scene = true;
+        setMessage(state_, "loaded " + state_.settingsPath, false);
+      });
+    }
+  }
+
+  void handleInput(Changes& changes) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantCaptureKeyboard) {
+      if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
+        glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
+      }
+      if (ImGui::IsKeyPressed(GLFW_KEY_H)) state_.showPanel = !state_.showPanel;
+      if (ImGui::IsKeyPressed(GLFW_KEY_F12)) {
+        screenshotRequested_ = true;  // taken from this frame's back buffer, before the swap
+      }
+      if (state_.cameraMode == CameraMode::Fly) {
+        const float step = 0.02f * std::max(state_.scene.bounds().radius(), 0.1f);
+        glm::vec3 move(0.0f);
+        if (ImGui::IsKeyDown(GLFW_KEY_W)) move.x += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_S)) move.x -= step;
+        if (ImGui::IsKeyDown(GLFW_KEY_D)) move.y += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_A)) move.y -= step;
+        if (ImGui::IsKeyDown(GLFW_KEY_E)) move.z += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.z -= step;
+        if (move != glm::vec3(0.0f)) {
+          flyCamera(state_.camera, move);
+          changes.render = true;
+        }
+      }
+    }
+    if (io.WantCaptureMouse) return;
+    const ImVec2 d = io.MouseDelta;
+    const bool moved = d.x != 0.0f || d.y != 0.0f;
+    const float radiansPerPixel = 0.01f;
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) && moved) {
+      if (io.KeyShift) {
+        moveLight(d.x, d.y);
+      } else if (state_.cameraMode == CameraMode::Orbit) {
+        orbitCamera(state_.camera, d.x * radiansPerPixel, d.y * radiansPerPixel);
+      } else {
+        lookAround(state_.camera, d.x * radiansPerPixel, d.y * radiansPerPixel);
+      }
+      changes.render = true;
+    }
+    if (state_.cameraMode == CameraMode::Orbit) {
+      if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) && d.y != 0.0f) {
+        dollyCamera(state_.camera, std::exp(0.01f * d.y));
+        changes.render = true;
+      }
+      if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) && moved) {
+        panCamera(state_.camera, -0.002f * d.x, 0.002f * d.y);
+        changes.render = true;
+      }
+      if (io.MouseWheel != 0.0f) {
+        dollyCamera(state_.camera, std::exp(-0.1f * io.MouseWheel));
+        changes.render = true;
+      }
+    }
+  }
+
+  void moveLight(float dx, float dy) {
+    Light& light = state_.light;
+    if (light.kind == LightKind::Directional) {
+      float azimuth = 0.0f, elevation = 0.0f;
+      lightAnglesOf(light.direction, azimuth, elevation);
+      light.direction =
+          lightDirectionFrom(azimuth + 0.5f * dx, std::clamp(elevation - 0.5f * dy, 1.0f, 90.0f));
+    } else {
+      Camera around{light.position, light.target, light.spotAngleDegrees};
+      orbitCamera(around, 0.01f * dx, -0.01f * dy);
+      light.position = around.position;
+    }
+  }
+
+  const ViewerOptions& options_;
+  ViewerWindow& window_;
+  gl::CurrentContext context_;
+  gl::Renderer renderer_;
+  ViewerState state_;
+  std::optional<gl::RenderResult> result_;
+  std::optional<Image> reference_;
+  SceneTexture texture_;
+  int screenshotCount_ = 0;
+  bool screenshotRequested_ = false;
+};
+
+}  // namespace
+
+gl::Settings loadViewerSettings(const std::string& path) {
+  gl::Settings settings;
+  // A frame that fits beside the panel in the default window; a file's width and height win.
+  settings.render.width = 800;
+  settings.render.height = 450;
+  if (path.empty()) return settings;
+  gl::applySettingsFile(path, settings);
+  if (settings.techniques.size() != 1) {
+    throw Error(path + ": \"technique\" names " + std::to_string(settings.techniques.size()) +
+                " techniques; the viewer shows one at a time");
+  }
+  checkSceneSource(settings.scene);
+  return settings;
+}
+
+gl::Settings settingsToSave(const ViewerState& state) {
+  gl::Settings s = state.settings;
+  SceneOverrides& v = s.view;
+  v = {};
+  v.cameraPosition = state.camera.position;
+  v.cameraTarget = state.camera.target;
+  v.cameraFovDegrees = state.camera.verticalFovDegrees;
+  if (state.light.kind == LightKind::Directional) {
+    v.lightDirection = state.light.direction;
+  } else {
+    v.lightPosition = state.light.position;
+    v.lightTarget = state.light.target;
+    v.spotAngleDegrees = state.light.spotAngleDegrees;
+  }
+  return s;
+}
+
+void runViewer(const ViewerOptions& options) {
+  // Bad settings are reported before any window opens (and without a display).
+  gl::Settings settings = loadViewerSettings(options.settingsFile);
+  ViewerWindow window(options.windowWidth, options.windowHeight, "penumbra-viewer");
+  Viewer viewer(options, std::move(settings), window);
+  viewer.run();
+}
+
+}  // namespace penumbra::viewer

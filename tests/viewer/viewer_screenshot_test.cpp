@@ -1,0 +1,171 @@
+// penumbra-viewer runs scripted under Xvfb: for every built-in scene its screenshot's scene area
+// (the window's top-left frame-sized rectangle) equals `penumbra render` of the same settings
+// file, and the settings panel draws (a screenshot with it differs from one without it).
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <iostream>
+#include <sstream>
+
+#include "penumbra/image_io.h"
+#include "penumbra/scene.h"
+#include "penumbra/technique.h"
+#include "run_penumbra.h"
+
+namespace penumbra::test {
+namespace {
+
+constexpr int kFrameWidth = 160;
+constexpr int kFrameHeight = 90;
+
+// Runs `args` (args[0] found on PATH) in `cwd`, stdout and stderr together.
+RunResult runProgram(const std::vector<std::string>& args, const fs::path& cwd) {
+  std::vector<std::string> all = args;
+  std::vector<char*> argv;
+  for (std::string& a : all) argv.push_back(a.data());
+  argv.push_back(nullptr);
+  const fs::path log = cwd / ".viewer-test-output";
+  const pid_t pid = fork();
+  if (pid == 0) {
+    const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0 || chdir(cwd.c_str()) != 0) _exit(127);
+    execvp(argv[0], argv.data());
+    _exit(127);
+  }
+  RunResult result;
+  waitpid(pid, &result.status, 0);
+  result.output = readFile(log);
+  fs::remove(log);
+  return result;
+}
+
+bool haveXvfbRun() {
+  return std::system("command -v xvfb-run > /dev/null 2>&1") == 0;
+}
+
+// CI must run these tests; elsewhere they skip without xvfb-run (Debian's xvfb).
+#define REQUIRE_XVFB()                                                                       \
+  do {                                                                                       \
+    if (!haveXvfbRun()) {                                                                    \
+      const char* ci = std::getenv("CI");                                                    \
+      if (ci != nullptr && std::string(ci) == "true") FAIL() << "xvfb-run is not installed"; \
+      GTEST_SKIP() << "xvfb-run is not installed (scripts/install-deps installs xvfb)";      \
+    }                                                                                        \
+  } while (false)
+
+// The viewer scripted for three frames in a 1280x800 Xvfb screen, its window's PNG at `png`.
+RunResult runViewer(const fs::path& settings, const fs::path& png, const fs::path& cwd,
+                    bool hidePanel = false) {
+  std::vector<std::string> args{"xvfb-run",
+                                "-a",
+                                "-s",
+                                "-screen 0 1280x800x24",
+                                PENUMBRA_VIEWER_EXECUTABLE,
+                                "--settings",
+                                settings.string(),
+                                "--frames",
+                                "3",
+                                "--screenshot",
+                                png.string()};
+  if (hidePanel) args.push_back("--hide-panel");
+  return runProgram(args, cwd);
+}
+
+fs::path writeSettings(const fs::path& folder, const std::string& scene, Technique technique) {
+  std::ostringstream json;
+  json << "{\"scene\": \"" << scene << "\", \"technique\": \"" << techniqueId(technique)
+       << "\", \"shadow-size\": 256, \"blur\": 3, \"filter\": \"bilinear\", \"width\": "
+       << kFrameWidth << ", \"height\": " << kFrameHeight << "}\n";
+  const fs::path path = folder / (scene + ".json");
+  writeFile(path, json.str());
+  return path;
+}
+
+struct Difference {
+  int maxSteps = 0;        // largest difference of one channel, in 8-bit steps
+  double meanSteps = 0.0;  // mean absolute difference per channel, in 8-bit steps
+};
+
+// The window screenshot's top-left width x height rectangle (the scene area) against `other`'s.
+Difference sceneAreaDifference(const Image& window, const Image& other, int width, int height) {
+  Difference d;
+  double sum = 0.0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        const int steps =
+            int(std::lround(std::abs(window.at(x, y, c) - other.at(x, y, c)) * 255.0f));
+        d.maxSteps = std::max(d.maxSteps, steps);
+        sum += steps;
+      }
+    }
+  }
+  d.meanSteps = sum / (3.0 * width * height);
+  return d;
+}
+
+// Both run on the same driver in CI (Mesa's llvmpipe through EGL and through GLX) and the viewer
+// draws the render's sRGB bytes one texel per pixel, so they match exactly there. The tolerance
+// leaves room for a machine whose EGL finds a GPU while Xvfb's GLX is llvmpipe: rasterisation and
+// float rounding may then move single shadow-edge pixels, not the picture.
+constexpr double kMeanStepsTolerance = 0.5;
+
+TEST(Viewer, ScreenshotOfEachSceneEqualsTheHeadlessRender) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const auto techniques = allTechniques();
+  size_t i = 0;
+  for (std::string_view name : builtinSceneNames()) {
+    const std::string scene(name);
+    // A different technique on each scene, so that the run covers several.
+    const Technique technique = techniques[i++ % techniques.size()];
+    SCOPED_TRACE(scene + " with " + std::string(techniqueId(technique)));
+    const fs::path settings = writeSettings(scratch.path(), scene, technique);
+    const fs::path out = scratch.path() / scene;
+    const RunResult render = runPenumbra(
+        {"render", "--settings", settings.string(), "--out", out.string()}, scratch.path());
+    ASSERT_EQ(render.exitCode(), 0) << render.output;
+    const fs::path shot = scratch.path() / (scene + "_viewer.png");
+    const RunResult viewer = runViewer(settings, shot, scratch.path());
+    ASSERT_EQ(viewer.exitCode(), 0) << viewer.output;
+    const Image window = readEncodedColorPng(shot);
+    const Image headless =
+        readEncodedColorPng(out / (scene + "_" + std::string(techniqueId(technique)) + ".png"));
+    ASSERT_EQ(headless.width(), kFrameWidth);
+    ASSERT_GE(window.width(), kFrameWidth);
+    ASSERT_GE(window.height(), kFrameHeight);
+    const Difference d = sceneAreaDifference(window, headless, kFrameWidth, kFrameHeight);
+    std::cout << scene << " (" << techniqueId(technique) << "): mean difference " << d.meanSteps
+              << " steps, largest " << d.maxSteps << "\n";
+    EXPECT_LE(d.meanSteps, kMeanStepsTolerance) << "largest channel difference " << d.maxSteps;
+  }
+}
+
+TEST(Viewer, ThePanelDrawsBesideTheSceneArea) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "bench", Technique::Vsm);
+  const fs::path withPanel = scratch.path() / "with_panel.png";
+  const fs::path withoutPanel = scratch.path() / "without_panel.png";
+  const RunResult shown = runViewer(settings, withPanel, scratch.path());
+  ASSERT_EQ(shown.exitCode(), 0) << shown.output;
+  const RunResult hidden = runViewer(settings, withoutPanel, scratch.path(), true);
+  ASSERT_EQ(hidden.exitCode(), 0) << hidden.output;
+  const Image a = readEncodedColorPng(withPanel);
+  const Image b = readEncodedColorPng(withoutPanel);
+  ASSERT_EQ(a.width(), b.width());
+  ASSERT_EQ(a.height(), b.height());
+  // The panel covers the window's right edge, full height: most of a column there changes.
+  int differing = 0;
+  for (int y = 0; y < a.height(); ++y) {
+    const int x = a.width() - 100;
+    differing += a.at(x, y, 0) != b.at(x, y, 0) || a.at(x, y, 1) != b.at(x, y, 1) ||
+                 a.at(x, y, 2) != b.at(x, y, 2);
+  }
+  EXPECT_GT(differing, a.height() / 4) << "the panel did not draw";
+  // The scene area is the same with and without it.
+  EXPECT_EQ(sceneAreaDifference(a, b, kFrameWidth, kFrameHeight).maxSteps, 0);
+}
+
+}  // namespace
+}  // namespace penumbra::test
