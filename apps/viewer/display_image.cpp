@@ -3,8 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 
 #include "penumbra/diagnostic_images.h"
+#include "penumbra/error.h"
 #include "penumbra/image_io.h"
 #include "penumbra/srgb.h"
 
@@ -45,6 +47,28 @@ std::string_view viewName(View view) {
     case View::Channel: return "shadow map channel";
   }
   return "?";
+}
+
+std::string_view viewId(View view) {
+  switch (view) {
+    case View::Shaded: return "shaded";
+    case View::Visibility: return "visibility";
+    case View::Error: return "error";
+    case View::FailureMask: return "failures";
+    case View::Layers: return "layers";
+    case View::ShadowMap: return "shadowmap";
+    case View::Channel: return "channel";
+  }
+  return "?";
+}
+
+View parseView(std::string_view id) {
+  std::string valid;
+  for (View v : kViews) {
+    if (viewId(v) == id) return v;
+    valid += (valid.empty() ? "" : ", ") + std::string(viewId(v));
+  }
+  throw Error("unknown view '" + std::string(id) + "'; valid views: " + valid);
 }
 
 Image visibilityError(const gl::RenderResult& result, const Image& reference) {

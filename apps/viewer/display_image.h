@@ -24,6 +24,10 @@ enum class View {
 inline constexpr View kViews[] = {View::Shaded, View::Visibility, View::Error,  View::FailureMask,
                                   View::Layers, View::ShadowMap,  View::Channel};
 std::string_view viewName(View view);
+// Short names for --show: shaded, visibility, error, failures, layers, shadowmap, channel.
+std::string_view viewId(View view);
+// Throws Error listing the valid names.
+View parseView(std::string_view id);
 
 struct DisplayImage {
   int width = 0;

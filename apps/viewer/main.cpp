@@ -1,6 +1,7 @@
 // `penumbra-viewer`: tune every technique live and see why it fails (docs/viewer.md).
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <vector>
 
 #include "penumbra/error.h"
 #include "viewer.h"
@@ -18,6 +19,15 @@ int main(int argc, char** argv) {
       ->needs(frames);
   app.add_flag("--hide-panel", options.hidePanel,
                "start with the settings panel hidden (H toggles)");
+  app.add_option("--show", options.show,
+                 "what the scene area shows: shaded, visibility, error, failures, layers, "
+                 "shadowmap, channel")
+      ->capture_default_str();
+  std::vector<int> probe;
+  app.add_option("--probe", probe,
+                 "X,Y: a frame pixel to show under the cursor from the start (for scripted runs)")
+      ->delimiter(',')
+      ->expected(2);
   app.add_option("--window-width", options.windowWidth, "window width in pixels")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
@@ -25,6 +35,10 @@ int main(int argc, char** argv) {
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
   CLI11_PARSE(app, argc, argv);
+  if (probe.size() == 2) {
+    options.probeX = probe[0];
+    options.probeY = probe[1];
+  }
   try {
     penumbra::viewer::runViewer(options);
   } catch (const std::exception& e) {

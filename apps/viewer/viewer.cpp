@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "cursor_probe.h"
 #include "display_image.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
@@ -79,6 +80,8 @@ class Viewer {
       : options_(options), window_(window), renderer_(context_) {
     state_.settings = std::move(settings);
     state_.showPanel = !options.hidePanel;
+    state_.view = parseView(options.show);
+    if (options.probeX >= 0 && options.probeY >= 0) probePixel_ = {options.probeX, options.probeY};
     if (!options.settingsFile.empty()) state_.settingsPath = options.settingsFile;
     loadSceneInto(state_);
     renderer_.setScene(state_.scene);
@@ -115,6 +118,7 @@ class Viewer {
         showDisplay();
         displayNeeded = false;
       }
+      updateProbe();
       drawWindow();
       ++frame;
       const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
@@ -164,6 +168,8 @@ class Viewer {
       state_.wallTimes.push_back(result_->wallTimes);
       if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
       reference_.reset();  // computed again when the error view asks for it
+      depthMaps_.clear();  // read again when the cursor probes a pixel
+      probe_.reset();
       if (state_.messageIsError) state_.message.clear();
     });
   }
@@ -193,6 +199,22 @@ class Viewer {
     });
   }
 
+  // The probe of the pixel under the cursor, computed when the pixel or the render changes.
+  void updateProbe() {
+    if (!result_ || !probePixel_) return;
+    const auto [x, y] = *probePixel_;
+    if (x >= result_->visibility.width() || y >= result_->visibility.height()) return;
+    if (probe_ && probe_->x == x && probe_->y == y) return;
+    tryOrReport([&] {
+      if (depthMaps_.empty()) {
+        for (int c = 0; c < result_->cascadeFrame.count; ++c) {
+          depthMaps_.push_back(renderer_.readDepthMap(c));
+        }
+      }
+      probe_ = probePixel(*result_, depthMaps_, x, y);
+    });
+  }
+
   // The scene area at the top left, one texel per pixel (square maps fitted into the frame).
   void drawWindow() {
     int width = 0, height = 0;
@@ -210,6 +232,12 @@ class Viewer {
       }
       ImGui::GetBackgroundDrawList()->AddImage(ImTextureID(intptr_t(texture_.id())), ImVec2(0, 0),
                                                ImVec2(w, h));
+    }
+    const float below = float(state_.settings.render.height) + 8.0f;
+    const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
+    if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
+      drawCursorProbe(*probe_, state_.settings.techniques.front(), 0.0f, below, probeWidth,
+                      std::min(420.0f, float(height) - below));
     }
     window_.drawUi();
   }
@@ -263,6 +291,13 @@ class Viewer {
       }
     }
     if (io.WantCaptureMouse) return;
+    const ImVec2 cursor = io.MousePos;
+    const bool mapShown = state_.view == View::ShadowMap || state_.view == View::Channel;
+    if (!mapShown && cursor.x >= 0.0f && cursor.y >= 0.0f &&
+        cursor.x < float(state_.settings.render.width) &&
+        cursor.y < float(state_.settings.render.height)) {
+      probePixel_ = {int(cursor.x), int(cursor.y)};
+    }
     const ImVec2 d = io.MouseDelta;
     const bool moved = d.x != 0.0f || d.y != 0.0f;
     const float radiansPerPixel = 0.01f;
@@ -313,6 +348,9 @@ class Viewer {
   ViewerState state_;
   std::optional<gl::RenderResult> result_;
   std::optional<Image> reference_;
+  std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
+  std::optional<std::pair<int, int>> probePixel_;
+  std::optional<CursorProbe> probe_;
   SceneTexture texture_;
   int screenshotCount_ = 0;
   bool screenshotRequested_ = false;
@@ -354,6 +392,7 @@ gl::Settings settingsToSave(const ViewerState& state) {
 
 void runViewer(const ViewerOptions& options) {
   // Bad settings are reported before any window opens (and without a display).
+  parseView(options.show);
   gl::Settings settings = loadViewerSettings(options.settingsFile);
   ViewerWindow window(options.windowWidth, options.windowHeight, "penumbra-viewer");
   Viewer viewer(options, std::move(settings), window);

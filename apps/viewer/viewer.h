@@ -11,6 +11,8 @@ struct ViewerOptions {
   int frames = 0;            // > 0: scripted, exits after this many frames
   std::string screenshot;    // scripted: the window's PNG written after the last frame
   bool hidePanel = false;
+  std::string show = "shaded";   // what the scene area shows at start (display_image.h viewId)
+  int probeX = -1, probeY = -1;  // >= 0: the pixel under the cursor at start (scripted runs)
   int windowWidth = 1280;
   int windowHeight = 800;
 };

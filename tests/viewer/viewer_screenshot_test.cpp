@@ -55,19 +55,15 @@ bool haveXvfbRun() {
 
 // The viewer scripted for three frames in a 1280x800 Xvfb screen, its window's PNG at `png`.
 RunResult runViewer(const fs::path& settings, const fs::path& png, const fs::path& cwd,
-                    bool hidePanel = false) {
-  std::vector<std::string> args{"xvfb-run",
-                                "-a",
-                                "-s",
-                                "-screen 0 1280x800x24",
-                                PENUMBRA_VIEWER_EXECUTABLE,
-                                "--settings",
-                                settings.string(),
-                                "--frames",
-                                "3",
-                                "--screenshot",
-                                png.string()};
-  if (hidePanel) args.push_back("--hide-panel");
+                    const std::vector<std::string>& options = {}) {
+  std::vector<std::string> args{"xvfb-run", "-a", "-s", "-screen 0 1280x800x24",
+                                PENUMBRA_VIEWER_EXECUTABLE};
+  for (const std::string& a :
+       {std::string("--settings"), settings.string(), std::string("--frames"), std::string("3"),
+        std::string("--screenshot"), png.string()}) {
+    args.push_back(a);
+  }
+  args.insert(args.end(), options.begin(), options.end());
   return runProgram(args, cwd);
 }
 
@@ -149,7 +145,7 @@ TEST(Viewer, ThePanelDrawsBesideTheSceneArea) {
   const fs::path withoutPanel = scratch.path() / "without_panel.png";
   const RunResult shown = runViewer(settings, withPanel, scratch.path());
   ASSERT_EQ(shown.exitCode(), 0) << shown.output;
-  const RunResult hidden = runViewer(settings, withoutPanel, scratch.path(), true);
+  const RunResult hidden = runViewer(settings, withoutPanel, scratch.path(), {"--hide-panel"});
   ASSERT_EQ(hidden.exitCode(), 0) << hidden.output;
   const Image a = readEncodedColorPng(withPanel);
   const Image b = readEncodedColorPng(withoutPanel);
@@ -165,6 +161,63 @@ TEST(Viewer, ThePanelDrawsBesideTheSceneArea) {
   EXPECT_GT(differing, a.height() / 4) << "the panel did not draw";
   // The scene area is the same with and without it.
   EXPECT_EQ(sceneAreaDifference(a, b, kFrameWidth, kFrameHeight).maxSteps, 0);
+}
+
+// Pixels of the window's rectangle [x0, x1) x [y0, y1) that differ between two screenshots.
+int differingPixels(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
+  int count = 0;
+  for (int y = y0; y < y1; ++y) {
+    for (int x = x0; x < x1; ++x) {
+      count += a.at(x, y, 0) != b.at(x, y, 0) || a.at(x, y, 1) != b.at(x, y, 1) ||
+               a.at(x, y, 2) != b.at(x, y, 2);
+    }
+  }
+  return count;
+}
+
+TEST(Viewer, EveryViewShowsSomethingOtherThanTheShadedFrame) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  // ESM with the Z-max classifier fails somewhere on the backyard's fence; its failure mask, the
+  // error against the reference and the channel all differ from the shaded picture.
+  const fs::path settings = scratch.path() / "esm.json";
+  writeFile(settings,
+            "{\"scene\": \"backyard\", \"technique\": \"esm\", \"param\": {\"esm\": "
+            "{\"classifier\": \"zmax\"}}, \"shadow-size\": 256, \"blur\": 3, \"width\": " +
+                std::to_string(kFrameWidth) + ", \"height\": " + std::to_string(kFrameHeight) +
+                "}\n");
+  const fs::path shadedPng = scratch.path() / "shaded.png";
+  ASSERT_EQ(runViewer(settings, shadedPng, scratch.path(), {"--hide-panel"}).exitCode(), 0);
+  const Image shaded = readEncodedColorPng(shadedPng);
+  for (const char* view : {"visibility", "error", "failures", "shadowmap", "channel"}) {
+    SCOPED_TRACE(view);
+    const fs::path png = scratch.path() / (std::string(view) + ".png");
+    const RunResult run =
+        runViewer(settings, png, scratch.path(), {"--hide-panel", "--show", view});
+    ASSERT_EQ(run.exitCode(), 0) << run.output;
+    const Image shown = readEncodedColorPng(png);
+    EXPECT_GT(differingPixels(shaded, shown, 0, 0, kFrameWidth, kFrameHeight),
+              kFrameWidth * kFrameHeight / 10);
+  }
+}
+
+TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "planar", Technique::Vsm);
+  const fs::path without = scratch.path() / "without.png";
+  const fs::path with = scratch.path() / "with.png";
+  ASSERT_EQ(runViewer(settings, without, scratch.path()).exitCode(), 0);
+  // The frame's centre: the planar scene's lit ground.
+  const RunResult run = runViewer(
+      settings, with, scratch.path(),
+      {"--probe", std::to_string(kFrameWidth / 2) + "," + std::to_string(kFrameHeight / 2)});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const Image a = readEncodedColorPng(without);
+  const Image b = readEncodedColorPng(with);
+  // The probe window (about 800 x 400 pixels) below the scene area.
+  EXPECT_GT(differingPixels(a, b, 0, kFrameHeight + 10, 700, kFrameHeight + 300), 100000);
+  EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
 }
 
 }  // namespace
