@@ -8,6 +8,7 @@
 #include "penumbra/diagnostic_images.h"
 #include "penumbra/error.h"
 #include "penumbra/image_io.h"
+#include "penumbra/metrics.h"
 #include "penumbra/srgb.h"
 
 namespace penumbra::viewer {
@@ -72,14 +73,7 @@ View parseView(std::string_view id) {
 }
 
 Image visibilityError(const gl::RenderResult& result, const Image& reference) {
-  Image error(result.visibility.width(), result.visibility.height(), 1);
-  for (int y = 0; y < error.height(); ++y) {
-    for (int x = 0; x < error.width(); ++x) {
-      const bool drawn = result.diagnostic.at(x, y) >= 0.0f;
-      error.at(x, y) = drawn ? result.visibility.at(x, y) - reference.at(x, y) : 0.0f;
-    }
-  }
-  return error;
+  return signedVisibilityError(result.visibility, reference, litSurfaceMask(result.lookup));
 }
 
 DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Image* reference,

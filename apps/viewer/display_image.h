@@ -43,7 +43,8 @@ inline constexpr float kErrorRange = 0.5f;
 DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Image* reference,
                             const Image* map);
 
-// Visibility minus reference where something is drawn (0 elsewhere).
+// Visibility minus reference where the shadow test decides the shading (0 elsewhere), as the
+// report measures it (penumbra/metrics.h).
 Image visibilityError(const gl::RenderResult& result, const Image& reference);
 
 }  // namespace penumbra::viewer

@@ -98,7 +98,7 @@ class Viewer {
         FrameStats stats{result_ ? &*result_ : nullptr, renderer_.deviceDescription()};
         changes = drawSettingsPanel(state_, stats, kPanelWidth);
       }
-      handleInput(changes);
+      if (options_.frames == 0) handleInput(changes);  // scripted runs take no input
       applyFileChanges(changes);
       if (changes.scene) {
         if (tryOrReport([&] {

@@ -44,4 +44,8 @@ double frameToFrameChange(std::span<const Image> estimates, std::span<const Imag
 // the light beyond grazing — from a renderer lookup image (channel 3 == 1).
 Image litSurfaceMask(const Image& lookup);
 
+// Visibility minus the reference where `coverage` (litSurfaceMask) holds, 0 elsewhere: the signed
+// error the report's heat maps and the viewer's error view show (positive: leaks light).
+Image signedVisibilityError(const Image& visibility, const Image& reference, const Image& coverage);
+
 }  // namespace penumbra

@@ -22,14 +22,6 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
   return s;
 }
 
-Image errorImage(const Image& visibility, const Image& reference, const Image& coverage) {
-  Image error(visibility.width(), visibility.height(), 1);
-  for (size_t i = 0; i < error.data().size(); ++i) {
-    error.data()[i] = coverage.data()[i] > 0.5f ? visibility.data()[i] - reference.data()[i] : 0.0f;
-  }
-  return error;
-}
-
 }  // namespace
 
 shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings) {
@@ -152,7 +144,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         out.memory = r.memory;
         out.color = r.color;
         out.visibility = r.visibility;
-        out.error = errorImage(r.visibility, reference.visibility, result.coverage);
+        out.error = signedVisibilityError(r.visibility, reference.visibility, result.coverage);
         visibilities[k].push_back(r.visibility);
         masks[k].push_back(litSurfaceMask(r.lookup));
         const bool pcfIsReference = t == Technique::Pcf && request.matchPcfKernel;

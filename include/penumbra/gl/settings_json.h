@@ -1,7 +1,7 @@
-// Settings files: the scene, techniques, parameters, render settings, camera and light of a render
-// as JSON whose keys are the command line's option names (docs/settings.md). `penumbra render
-// --settings`, `penumbra compare --settings` and the viewer's save and load all go through here,
-// so a file the viewer saves is one the command line accepts.
+// Settings files: the scene, techniques, parameters, render settings, camera and light of a
+// render as JSON whose keys are the command line's option names (docs/viewer.md, "Settings
+// files"). `penumbra render --settings`, `penumbra compare --settings` and the viewer's save and
+// load all go through here, so a file the viewer saves is one the command line accepts.
 #pragma once
 
 #include <filesystem>
