@@ -129,11 +129,22 @@ void applyParams(const json& value, const std::string& source, TechniqueParams& 
     const At at{source, "param." + id};
     const Technique technique = withLocation(at, [&] { return parseTechnique(id); });
     if (!values.is_object()) at.fail("must be an object of parameter values");
-    for (const auto& [name, v] : values.items()) {
-      const At param{source, "param." + id + "." + name};
-      if (!v.is_number() && !v.is_string()) param.fail("must be a number or a string");
-      const std::string valueText = v.is_string() ? v.get<std::string>() : v.dump();
-      withLocation(param, [&] { setParam(technique, params, name, valueText); });
+    // Split lists first: setting LVSM's splits also fixes its placement, which a "placement" in
+    // the same file must be able to set back (JSON objects have no order to rely on).
+    const auto isSplitList = [technique](const std::string& name) {
+      for (const ParamSpec& spec : techniqueParamSpecs(technique)) {
+        if (spec.name == name) return spec.kind == ParamKind::SplitList;
+      }
+      return false;
+    };
+    for (bool splitLists : {true, false}) {
+      for (const auto& [name, v] : values.items()) {
+        if (isSplitList(name) != splitLists) continue;
+        const At param{source, "param." + id + "." + name};
+        if (!v.is_number() && !v.is_string()) param.fail("must be a number or a string");
+        const std::string valueText = v.is_string() ? v.get<std::string>() : v.dump();
+        withLocation(param, [&] { setParam(technique, params, name, valueText); });
+      }
     }
   }
 }
