@@ -23,6 +23,9 @@ int main(int argc, char** argv) {
                  "what the scene area shows: shaded, visibility, error, failures, layers, "
                  "shadowmap, channel")
       ->capture_default_str();
+  app.add_option("--split", options.split,
+                 "TECHNIQUE: start in the split view, this technique right of the divider (same "
+                 "parameters as the settings')");
   std::vector<int> probe;
   app.add_option("--probe", probe,
                  "X,Y: a frame pixel to show under the cursor from the start (for scripted runs)")

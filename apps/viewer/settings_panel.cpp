@@ -41,10 +41,10 @@ void paramHelp(Technique technique, const ParamSpec& spec) {
 
 // Sets a parameter from text through the registry, which checks it; a refusal becomes the
 // panel's message.
-bool trySetParam(ViewerState& state, Technique technique, const ParamSpec& spec,
-                 const std::string& value) {
+bool trySetParam(ViewerState& state, TechniqueParams& params, Technique technique,
+                 const ParamSpec& spec, const std::string& value) {
   try {
-    setParam(technique, state.settings.render.params, spec.name, value);
+    setParam(technique, params, spec.name, value);
     return true;
   } catch (const Error& e) {
     state.message = e.what();
@@ -53,16 +53,20 @@ bool trySetParam(ViewerState& state, Technique technique, const ParamSpec& spec,
   }
 }
 
-bool paramWidget(ViewerState& state, Technique technique, const ParamSpec& spec) {
-  const std::string label = std::string(spec.name) + "##" + std::string(techniqueId(technique));
-  const std::string current = formatParam(technique, state.settings.render.params, spec.name);
+// `side` tells apart the widgets of the split view's two parameter sets.
+bool paramWidget(ViewerState& state, TechniqueParams& params, Technique technique,
+                 const ParamSpec& spec, const char* side) {
+  const std::string label =
+      std::string(spec.name) + "##" + std::string(techniqueId(technique)) + side;
+  const std::string current = formatParam(technique, params, spec.name);
   bool changed = false;
   switch (spec.kind) {
     case ParamKind::Real: {
       if (spec.acceptsAuto) {
         bool isAuto = current == "auto";
         if (ImGui::Checkbox(("auto##" + label).c_str(), &isAuto)) {
-          changed |= trySetParam(state, technique, spec, isAuto ? "auto" : shortest(spec.min));
+          changed |=
+              trySetParam(state, params, technique, spec, isAuto ? "auto" : shortest(spec.min));
         }
         paramHelp(technique, spec);
         if (isAuto) break;
@@ -73,14 +77,14 @@ bool paramWidget(ViewerState& state, Technique technique, const ParamSpec& spec)
       const bool logarithmic = spec.min > 0.0 && spec.max / spec.min > 100.0;
       if (ImGui::SliderFloat(label.c_str(), &value, float(spec.min), float(spec.max), "%.6g",
                              logarithmic ? ImGuiSliderFlags_Logarithmic : 0)) {
-        changed |= trySetParam(state, technique, spec, shortest(double(value)));
+        changed |= trySetParam(state, params, technique, spec, shortest(double(value)));
       }
       break;
     }
     case ParamKind::Integer: {
       int value = std::stoi(current);
       if (ImGui::SliderInt(label.c_str(), &value, int(spec.min), int(spec.max))) {
-        changed |= trySetParam(state, technique, spec, std::to_string(value));
+        changed |= trySetParam(state, params, technique, spec, std::to_string(value));
       }
       break;
     }
@@ -88,7 +92,7 @@ bool paramWidget(ViewerState& state, Technique technique, const ParamSpec& spec)
       if (ImGui::BeginCombo(label.c_str(), current.c_str())) {
         for (const ParamChoice& c : spec.choices) {
           if (ImGui::Selectable(std::string(c.name).c_str(), c.name == current)) {
-            changed |= trySetParam(state, technique, spec, std::string(c.name));
+            changed |= trySetParam(state, params, technique, spec, std::string(c.name));
           }
         }
         ImGui::EndCombo();
@@ -100,7 +104,7 @@ bool paramWidget(ViewerState& state, Technique technique, const ParamSpec& spec)
       std::snprintf(buffer, sizeof buffer, "%s", current.c_str());
       if (ImGui::InputText(label.c_str(), buffer, sizeof buffer,
                            ImGuiInputTextFlags_EnterReturnsTrue)) {
-        changed |= trySetParam(state, technique, spec, buffer);
+        changed |= trySetParam(state, params, technique, spec, buffer);
       }
       break;
     }
@@ -168,12 +172,33 @@ void techniqueSection(ViewerState& state, Changes& changes) {
   Technique& shown = state.settings.techniques.front();
   if (comboOf("technique", shown, allTechniques(), techniqueLabel)) changes.render = true;
   for (const ParamSpec& spec : techniqueParamSpecs(shown)) {
-    changes.render |= paramWidget(state, shown, spec);
+    changes.render |= paramWidget(state, state.settings.render.params, shown, spec, "left");
   }
   if (ImGui::Button("defaults")) {
     state.settings.render.params = defaultTechniqueParams();
     changes.render = true;
   }
+}
+
+// The split view: a second technique, or the same one with a second parameter set, right of a
+// draggable divider.
+void splitSection(ViewerState& state, Changes& changes) {
+  if (ImGui::Checkbox("split view", &state.split)) {
+    if (state.split) state.splitParams = state.settings.render.params;
+    changes.render = true;
+  }
+  if (!state.split) return;
+  if (comboOf("right technique", state.splitTechnique, allTechniques(), techniqueLabel)) {
+    changes.render = true;
+  }
+  for (const ParamSpec& spec : techniqueParamSpecs(state.splitTechnique)) {
+    changes.render |= paramWidget(state, state.splitParams, state.splitTechnique, spec, "right");
+  }
+  if (ImGui::Button("copy left parameters")) {
+    state.splitParams = state.settings.render.params;
+    changes.render = true;
+  }
+  ImGui::TextDisabled("drag the divider in the scene; left: the technique above");
 }
 
 void renderSection(ViewerState& state, Changes& changes) {
@@ -354,6 +379,7 @@ Changes drawSettingsPanel(ViewerState& state, const FrameStats& stats, float pan
     sceneSection(state, changes);
   if (ImGui::CollapsingHeader("technique", ImGuiTreeNodeFlags_DefaultOpen))
     techniqueSection(state, changes);
+  if (ImGui::CollapsingHeader("split view")) splitSection(state, changes);
   if (ImGui::CollapsingHeader("shadow map and filtering", ImGuiTreeNodeFlags_DefaultOpen)) {
     renderSection(state, changes);
   }

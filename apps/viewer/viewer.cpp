@@ -6,6 +6,8 @@
 #include <GLFW/glfw3.h>
 #include <imgui.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -82,6 +84,11 @@ class Viewer {
     state_.showPanel = !options.hidePanel;
     state_.view = parseView(options.show);
     if (options.probeX >= 0 && options.probeY >= 0) probePixel_ = {options.probeX, options.probeY};
+    if (!options.split.empty()) {
+      state_.split = true;
+      state_.splitTechnique = parseTechnique(options.split);
+      state_.splitParams = state_.settings.render.params;
+    }
     if (!options.settingsFile.empty()) state_.settingsPath = options.settingsFile;
     loadSceneInto(state_);
     renderer_.setScene(state_.scene);
@@ -164,6 +171,17 @@ class Viewer {
     tryOrReport([&] {
       renderer_.validate(settings);
       requireCascadableLight(settings.cascades, state_.light);
+      if (state_.split) {
+        // The right side first: the renderer then holds the left side's maps, which the shadow
+        // map and channel views and the probe's depth maps read.
+        gl::RenderSettings right = settings;
+        right.technique = state_.splitTechnique;
+        right.params = state_.splitParams;
+        renderer_.validate(right);
+        splitResult_ = renderer_.render(right, currentView());
+      } else {
+        splitResult_.reset();
+      }
       result_ = renderer_.render(settings, currentView());
       state_.wallTimes.push_back(result_->wallTimes);
       if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
@@ -193,8 +211,21 @@ class Viewer {
           for (int x = 0; x < channels.width(); ++x) map->at(x, y) = channels.at(x, y, c);
         }
       }
-      const DisplayImage image = composeDisplay(
+      DisplayImage image = composeDisplay(
           state_.view, *result_, reference_ ? &*reference_ : nullptr, map ? &*map : nullptr);
+      if (splitResult_ && !map) {
+        // The same view of the right side's render (the reference does not depend on the
+        // technique), right of the divider.
+        const DisplayImage right = composeDisplay(state_.view, *splitResult_,
+                                                  reference_ ? &*reference_ : nullptr, nullptr);
+        const size_t from = size_t(dividerPixel()) * 3;
+        const size_t row = size_t(image.width) * 3;
+        for (int y = 0; y < image.height; ++y) {
+          std::copy(right.rgb.begin() + std::ptrdiff_t(size_t(y) * row + from),
+                    right.rgb.begin() + std::ptrdiff_t(size_t(y + 1) * row),
+                    image.rgb.begin() + std::ptrdiff_t(size_t(y) * row + from));
+        }
+      }
       texture_.upload(image);
     });
   }
@@ -205,13 +236,16 @@ class Viewer {
     const auto [x, y] = *probePixel_;
     if (x >= result_->visibility.width() || y >= result_->visibility.height()) return;
     if (probe_ && probe_->x == x && probe_->y == y) return;
+    // Right of the divider the probe is the right side's; the light pass's depth is the same.
+    const bool right = splitResult_ && x >= dividerPixel();
     tryOrReport([&] {
       if (depthMaps_.empty()) {
         for (int c = 0; c < result_->cascadeFrame.count; ++c) {
           depthMaps_.push_back(renderer_.readDepthMap(c));
         }
       }
-      probe_ = probePixel(*result_, depthMaps_, x, y);
+      probe_ = probePixel(right ? *splitResult_ : *result_, depthMaps_, x, y);
+      probeTechnique_ = right ? state_.splitTechnique : state_.settings.techniques.front();
     });
   }
 
@@ -230,13 +264,36 @@ class Viewer {
             float(std::min(state_.settings.render.width, state_.settings.render.height));
         w = h = side;
       }
-      ImGui::GetBackgroundDrawList()->AddImage(ImTextureID(intptr_t(texture_.id())), ImVec2(0, 0),
-                                               ImVec2(w, h));
+      ImDrawList* background = ImGui::GetBackgroundDrawList();
+      background->AddImage(ImTextureID(intptr_t(texture_.id())), ImVec2(0, 0), ImVec2(w, h));
+      if (splitResult_ && w == float(texture_.width())) {
+        // One pixel wide, on the divider's column: either side keeps every other column. The
+        // labels sit in the top 20 rows, on dark boxes to read on any image.
+        const float x = float(dividerPixel()) + 0.5f;
+        // A filled rectangle, not a line: ImGui anti-aliases lines into the next columns.
+        background->AddRectFilled(ImVec2(x - 0.5f, 0.0f), ImVec2(x + 0.5f, h),
+                                  IM_COL32(255, 160, 0, 255));
+        const std::string left(techniqueId(state_.settings.techniques.front()));
+        const std::string right(techniqueId(state_.splitTechnique));
+        const ImVec2 leftSize = ImGui::CalcTextSize(left.c_str());
+        const ImVec2 rightSize = ImGui::CalcTextSize(right.c_str());
+        const ImVec2 leftAt(x - 6.0f - leftSize.x, 3.0f), rightAt(x + 6.0f, 3.0f);
+        background->AddRectFilled(
+            ImVec2(leftAt.x - 3.0f, 1.0f),
+            ImVec2(leftAt.x + leftSize.x + 3.0f, leftAt.y + leftSize.y + 2.0f),
+            IM_COL32(0, 0, 0, 190));
+        background->AddRectFilled(
+            ImVec2(rightAt.x - 3.0f, 1.0f),
+            ImVec2(rightAt.x + rightSize.x + 3.0f, rightAt.y + rightSize.y + 2.0f),
+            IM_COL32(0, 0, 0, 190));
+        background->AddText(leftAt, IM_COL32(255, 255, 255, 255), left.c_str());
+        background->AddText(rightAt, IM_COL32(255, 255, 255, 255), right.c_str());
+      }
     }
     const float below = float(state_.settings.render.height) + 8.0f;
     const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
     if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
-      drawCursorProbe(*probe_, state_.settings.techniques.front(), 0.0f, below, probeWidth,
+      drawCursorProbe(*probe_, probeTechnique_, 0.0f, below, probeWidth,
                       std::min(420.0f, float(height) - below));
     }
     window_.drawUi();
@@ -300,6 +357,18 @@ class Viewer {
     }
     const ImVec2 d = io.MouseDelta;
     const bool moved = d.x != 0.0f || d.y != 0.0f;
+    if (state_.split && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+        std::abs(cursor.x - float(dividerPixel())) <= 5.0f &&
+        cursor.y < float(state_.settings.render.height)) {
+      draggingDivider_ = true;
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
+    if (draggingDivider_) {
+      state_.divider = std::clamp(cursor.x / float(state_.settings.render.width), 0.0f, 1.0f);
+      probe_.reset();
+      changes.display = true;
+      return;
+    }
     const float radiansPerPixel = 0.01f;
     if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) && moved) {
       if (io.KeyShift) {
@@ -327,6 +396,12 @@ class Viewer {
     }
   }
 
+  // The first column right of the divider.
+  int dividerPixel() const {
+    const int width = state_.settings.render.width;
+    return std::clamp(int(std::lround(state_.divider * float(width))), 0, width - 1);
+  }
+
   void moveLight(float dx, float dy) {
     Light& light = state_.light;
     if (light.kind == LightKind::Directional) {
@@ -347,10 +422,13 @@ class Viewer {
   gl::Renderer renderer_;
   ViewerState state_;
   std::optional<gl::RenderResult> result_;
+  std::optional<gl::RenderResult> splitResult_;  // the split view's right side
   std::optional<Image> reference_;
   std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
   std::optional<std::pair<int, int>> probePixel_;
   std::optional<CursorProbe> probe_;
+  Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
+  bool draggingDivider_ = false;
   SceneTexture texture_;
   int screenshotCount_ = 0;
   bool screenshotRequested_ = false;
@@ -393,6 +471,7 @@ gl::Settings settingsToSave(const ViewerState& state) {
 void runViewer(const ViewerOptions& options) {
   // Bad settings are reported before any window opens (and without a display).
   parseView(options.show);
+  if (!options.split.empty()) parseTechnique(options.split);
   gl::Settings settings = loadViewerSettings(options.settingsFile);
   ViewerWindow window(options.windowWidth, options.windowHeight, "penumbra-viewer");
   Viewer viewer(options, std::move(settings), window);

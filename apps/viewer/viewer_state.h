@@ -20,6 +20,12 @@ struct ViewerState {
   View view = View::Shaded;
   int channel = 0;  // View::Channel's technique channel
   bool showPanel = true;
+  // The split view: right of the divider (a share of the frame's width), this technique with
+  // these parameters; left, the settings' technique.
+  bool split = false;
+  Technique splitTechnique = Technique::Pcf;
+  TechniqueParams splitParams = defaultTechniqueParams();
+  float divider = 0.5f;
   std::string settingsPath = "penumbra-viewer.json";  // the panel's save / load file
   std::string message;  // the last error or confirmation, shown in the panel
   bool messageIsError = false;

@@ -220,5 +220,47 @@ TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
 }
 
+TEST(Viewer, TheSplitViewShowsEachTechniqueOnItsSideOfTheDivider) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "backyard", Technique::Vsm);
+  const fs::path shot = scratch.path() / "split.png";
+  const RunResult run = runViewer(settings, shot, scratch.path(), {"--split", "pcf"});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const auto render = [&](const char* technique) {
+    const fs::path out = scratch.path() / technique;
+    const RunResult r = runPenumbra({"render", "--settings", settings.string(), "--technique",
+                                     technique, "--out", out.string()},
+                                    scratch.path());
+    EXPECT_EQ(r.exitCode(), 0) << r.output;
+    return readEncodedColorPng(out / ("backyard_" + std::string(technique) + ".png"));
+  };
+  const Image window = readEncodedColorPng(shot);
+  const Image vsm = render("vsm");
+  const Image pcf = render("pcf");
+  // The divider starts at half the width; its line covers that column and the technique labels
+  // the top 20 rows.
+  const int divider = kFrameWidth / 2;
+  const int labelRows = 20;
+  int leftMismatch = 0, rightMismatch = 0, differFromEachOther = 0;
+  for (int y = labelRows; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
+      if (x == divider) continue;
+      const Image& expected = x < divider ? vsm : pcf;
+      bool same = true, techniquesDiffer = false;
+      for (int c = 0; c < 3; ++c) {
+        same &= window.at(x, y, c) == expected.at(x, y, c);
+        techniquesDiffer |= vsm.at(x, y, c) != pcf.at(x, y, c);
+      }
+      (x < divider ? leftMismatch : rightMismatch) += !same;
+      differFromEachOther += techniquesDiffer;
+    }
+  }
+  EXPECT_EQ(leftMismatch, 0);
+  EXPECT_EQ(rightMismatch, 0);
+  // Otherwise the test could not tell the sides apart.
+  EXPECT_GT(differFromEachOther, 50);
+}
+
 }  // namespace
 }  // namespace penumbra::test
