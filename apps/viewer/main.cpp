@@ -17,6 +17,9 @@ int main(int argc, char** argv) {
   app.add_option("--screenshot", options.screenshot,
                  "scripted: write the window as a PNG after the last frame")
       ->needs(frames);
+  app.add_option("--save-settings", options.saveSettings,
+                 "scripted: save the settings after the last frame, as the panel's save does")
+      ->needs(frames);
   app.add_flag("--hide-panel", options.hidePanel,
                "start with the settings panel hidden (H toggles)");
   app.add_option("--show", options.show,

@@ -7,6 +7,8 @@
 #include <charconv>
 #include <cmath>
 #include <cstring>
+#include <deque>
+#include <utility>
 
 #include "penumbra/error.h"
 #include "penumbra/filter_mode.h"
@@ -307,20 +309,60 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
   }
 }
 
+// The last frames' time of each pass as a rolling graph, one colour per pass, stacked so that the
+// top is the frame's total.
+void drawPassGraph(const std::deque<gl::PassTimes>& history) {
+  if (history.empty()) return;
+  using Pass = double gl::PassTimes::*;
+  static constexpr std::pair<const char*, Pass> kPasses[] = {
+      {"light", &gl::PassTimes::light},         {"encode", &gl::PassTimes::encode},
+      {"blur", &gl::PassTimes::prefilter},      {"mips/SAT", &gl::PassTimes::mipsOrSat},
+      {"auxiliary", &gl::PassTimes::auxiliary}, {"depth bounds", &gl::PassTimes::depthBounds},
+      {"camera", &gl::PassTimes::camera}};
+  double peak = 0.0;
+  for (const gl::PassTimes& t : history) peak = std::max(peak, t.total());
+  peak = std::max(peak * 1.1, 1e-3);
+  std::vector<ImU32> colours;
+  for (size_t p = 0; p < std::size(kPasses); ++p) {  // the legend, above the graph
+    float r = 0.0f, g = 0.0f, b = 0.0f;
+    ImGui::ColorConvertHSVtoRGB(float(p) / float(std::size(kPasses)), 0.6f, 1.0f, r, g, b);
+    colours.push_back(ImGui::ColorConvertFloat4ToU32(ImVec4(r, g, b, 1.0f)));
+    ImGui::TextColored(ImVec4(r, g, b, 1.0f), "%s", kPasses[p].first);
+    if (p + 1 < std::size(kPasses)) ImGui::SameLine();
+  }
+  ImDrawList* draw = ImGui::GetWindowDrawList();
+  const ImVec2 origin = ImGui::GetCursorScreenPos();
+  const ImVec2 size(ImGui::GetContentRegionAvail().x, 70.0f);
+  draw->AddRectFilled(origin, ImVec2(origin.x + size.x, origin.y + size.y),
+                      IM_COL32(25, 25, 30, 255));
+  const auto point = [&](size_t i, double ms) {
+    // One frame so far: a flat line across.
+    const float t = history.size() == 1 ? float(i) : float(i) / float(history.size() - 1);
+    return ImVec2(origin.x + size.x * t, origin.y + size.y * float(1.0 - ms / peak));
+  };
+  std::vector<double> below(history.size(), 0.0);
+  for (size_t p = 0; p < std::size(kPasses); ++p) {
+    std::vector<ImVec2> line;
+    for (size_t i = 0; i < history.size(); ++i) {
+      below[i] += history[i].*(kPasses[p].second);
+      line.push_back(point(i, below[i]));
+    }
+    if (history.size() == 1) line.push_back(point(1, below[0]));
+    draw->AddPolyline(line.data(), int(line.size()), colours[p], 0, 1.5f);
+  }
+  ImGui::Dummy(size);
+  ImGui::Text("stacked per pass; top: frame %.1f ms (peak %.1f)", history.back().total(),
+              peak / 1.1);
+}
+
 void statsSection(ViewerState& state, const FrameStats& stats) {
   if (stats.result == nullptr) return;
   const gl::RenderResult& r = *stats.result;
   ImGui::Text("%s", stats.device.c_str());
-  // llvmpipe's timer queries are not the time spent; the wall clock between glFinish is.
-  std::vector<float> totals;
-  for (const gl::PassTimes& t : state.wallTimes) totals.push_back(float(t.total()));
-  if (!totals.empty()) {
-    const float peak = *std::max_element(totals.begin(), totals.end());
-    const std::string caption =
-        "frame " + shortest(std::round(totals.back() * 10.0) / 10.0) + " ms";
-    ImGui::PlotLines("wall ms", totals.data(), int(totals.size()), 0, caption.c_str(), 0.0f,
-                     peak * 1.1f, ImVec2(0, 50));
-  }
+  // llvmpipe's timer queries are not the time it spends; the wall clock between glFinish is.
+  // Both are kept, the graph shows the one chosen.
+  ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);
+  drawPassGraph(state.graphGpuTimes ? state.gpuTimes : state.wallTimes);
   const gl::PassTimes& g = r.gpuTimes;
   const gl::PassTimes& w = r.wallTimes;
   if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) {
@@ -349,8 +391,9 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
   }
   const gl::MemoryReport& m = r.memory;
   const auto mib = [](uint64_t bytes) { return double(bytes) / (1024.0 * 1024.0); };
-  ImGui::Text("memory %.2f MiB: technique %.2f, SAT %.2f, light %.2f, frame %.2f", mib(m.total()),
-              mib(m.technique), mib(m.summedArea), mib(m.lightPass), mib(m.frame));
+  ImGui::TextWrapped("memory %.2f MiB: technique %.2f, SAT %.2f, light %.2f, frame %.2f",
+                     mib(m.total()), mib(m.technique), mib(m.summedArea), mib(m.lightPass),
+                     mib(m.frame));
   if (r.failureRatePercent > 0.0) ImGui::Text("ESM failures: %.2f %%", r.failureRatePercent);
 }
 

@@ -130,6 +130,9 @@ class Viewer {
       ++frame;
       const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
+      if (lastScripted && !options_.saveSettings.empty()) {
+        gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
+      }
       if (screenshotRequested_) {
         screenshotRequested_ = false;
         char name[64];
@@ -183,8 +186,12 @@ class Viewer {
         splitResult_.reset();
       }
       result_ = renderer_.render(settings, currentView());
+      state_.gpuTimes.push_back(result_->gpuTimes);
       state_.wallTimes.push_back(result_->wallTimes);
-      if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
+      if (state_.wallTimes.size() > kTimeHistory) {
+        state_.gpuTimes.pop_front();
+        state_.wallTimes.pop_front();
+      }
       reference_.reset();  // computed again when the error view asks for it
       depthMaps_.clear();  // read again when the cursor probes a pixel
       probe_.reset();

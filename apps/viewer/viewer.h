@@ -10,6 +10,7 @@ struct ViewerOptions {
   std::string settingsFile;  // loaded at start; empty: the defaults
   int frames = 0;            // > 0: scripted, exits after this many frames
   std::string screenshot;    // scripted: the window's PNG written after the last frame
+  std::string saveSettings;  // scripted: the settings file saved after the last frame
   bool hidePanel = false;
   std::string show = "shaded";   // what the scene area shows at start (display_image.h viewId)
   std::string split;             // a technique id: the split view's right side from the start

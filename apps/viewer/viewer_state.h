@@ -29,7 +29,10 @@ struct ViewerState {
   std::string settingsPath = "penumbra-viewer.json";  // the panel's save / load file
   std::string message;  // the last error or confirmation, shown in the panel
   bool messageIsError = false;
-  std::deque<gl::PassTimes> wallTimes;  // the last frames' per-pass wall times, oldest first
+  // The last frames' per-pass times, oldest first: GPU timer queries and wall clock.
+  std::deque<gl::PassTimes> gpuTimes;
+  std::deque<gl::PassTimes> wallTimes;
+  bool graphGpuTimes = false;
 };
 
 // What the panel changed this frame, so that only what depends on it is redone.

@@ -220,6 +220,35 @@ TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
 }
 
+TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "contact", Technique::Msm);
+  const fs::path shot = scratch.path() / "viewer.png";
+  const fs::path saved = scratch.path() / "saved.json";
+  const RunResult run =
+      runViewer(settings, shot, scratch.path(), {"--save-settings", saved.string()});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const std::string json = readFile(saved);
+  // Everything, the camera and light as the window had them included.
+  for (const char* key : {"\"camera\"", "\"light\"", "\"param\"", "\"msm\"", "\"cascades\""}) {
+    EXPECT_NE(json.find(key), std::string::npos) << key << " missing from\n" << json;
+  }
+  const fs::path out = scratch.path() / "render";
+  const RunResult render =
+      runPenumbra({"render", "--settings", saved.string(), "--out", out.string()}, scratch.path());
+  ASSERT_EQ(render.exitCode(), 0) << render.output;
+  const Image headless = readEncodedColorPng(out / "contact_msm.png");
+  const Difference d =
+      sceneAreaDifference(readEncodedColorPng(shot), headless, kFrameWidth, kFrameHeight);
+  std::cout << "saved settings: mean difference " << d.meanSteps << " steps, largest "
+            << d.maxSteps << "\n";
+  // Not byte for byte: a saved light direction is normalised again when it is loaded
+  // (applyOverrides), which may move it by a float ulp and a shadow-edge pixel by one step.
+  EXPECT_LE(d.meanSteps, kMeanStepsTolerance);
+  EXPECT_LE(d.maxSteps, 2);
+}
+
 TEST(Viewer, TheSplitViewShowsEachTechniqueOnItsSideOfTheDivider) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
