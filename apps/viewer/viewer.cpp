@@ -331,14 +331,13 @@ class Viewer {
 
   void handleInput(Changes& changes) {
     const ImGuiIO& io = ImGui::GetIO();
+    for (int key : window_.takeKeyPresses()) {  // none while a text field has the keyboard
+      if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
+      if (key == GLFW_KEY_H) state_.showPanel = !state_.showPanel;
+      // Taken from this frame's back buffer, before the swap.
+      if (key == GLFW_KEY_F12) screenshotRequested_ = true;
+    }
     if (!io.WantCaptureKeyboard) {
-      if (ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape))) {
-        glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
-      }
-      if (ImGui::IsKeyPressed(GLFW_KEY_H)) state_.showPanel = !state_.showPanel;
-      if (ImGui::IsKeyPressed(GLFW_KEY_F12)) {
-        screenshotRequested_ = true;  // taken from this frame's back buffer, before the swap
-      }
       if (state_.cameraMode == CameraMode::Fly) {
         const float step = 0.02f * std::max(state_.scene.bounds().radius(), 0.1f);
         glm::vec3 move(0.0f);
@@ -362,6 +361,20 @@ class Viewer {
         cursor.y < float(state_.settings.render.height)) {
       probePixel_ = {int(cursor.x), int(cursor.y)};
     }
+    // A drag moves things only when it started over the scene area, and from the frame after the
+    // press: the press's own delta may be a jump from anywhere (the pointer entering the window).
+    bool dragging[3] = {false, false, false};
+    for (int b = 0; b < 3; ++b) {
+      if (ImGui::IsMouseClicked(b)) {
+        dragStarted_[b] = cursor.x >= 0.0f && cursor.y >= 0.0f &&
+                          cursor.x < float(state_.settings.render.width) &&
+                          cursor.y < float(state_.settings.render.height);
+      } else if (!ImGui::IsMouseDown(b)) {
+        dragStarted_[b] = false;
+      } else {
+        dragging[b] = dragStarted_[b];
+      }
+    }
     const ImVec2 d = io.MouseDelta;
     const bool moved = d.x != 0.0f || d.y != 0.0f;
     if (state_.split && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
@@ -377,7 +390,7 @@ class Viewer {
       return;
     }
     const float radiansPerPixel = 0.01f;
-    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f) && moved) {
+    if (dragging[ImGuiMouseButton_Left] && moved) {
       if (io.KeyShift) {
         moveLight(d.x, d.y);
       } else if (state_.cameraMode == CameraMode::Orbit) {
@@ -388,11 +401,11 @@ class Viewer {
       changes.render = true;
     }
     if (state_.cameraMode == CameraMode::Orbit) {
-      if (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) && d.y != 0.0f) {
+      if (dragging[ImGuiMouseButton_Right] && d.y != 0.0f) {
         dollyCamera(state_.camera, std::exp(0.01f * d.y));
         changes.render = true;
       }
-      if (ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f) && moved) {
+      if (dragging[ImGuiMouseButton_Middle] && moved) {
         panCamera(state_.camera, -0.002f * d.x, 0.002f * d.y);
         changes.render = true;
       }
@@ -436,6 +449,7 @@ class Viewer {
   std::optional<CursorProbe> probe_;
   Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
   bool draggingDivider_ = false;
+  bool dragStarted_[3] = {false, false, false};  // per mouse button: pressed over the scene area
   SceneTexture texture_;
   int screenshotCount_ = 0;
   bool screenshotRequested_ = false;

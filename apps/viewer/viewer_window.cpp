@@ -25,6 +25,11 @@ void onGlfwError(int, const char* description) {
 
 }  // namespace
 
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+  auto* self = static_cast<ViewerWindow*>(glfwGetWindowUserPointer(window));
+  if (action == GLFW_PRESS && self != nullptr) self->keyPresses_.push_back(key);
+}
+
 ViewerWindow::ViewerWindow(int width, int height, const char* title) {
   glfwSetErrorCallback(onGlfwError);
   if (!glfwInit()) {
@@ -45,6 +50,9 @@ ViewerWindow::ViewerWindow(int width, int height, const char* title) {
                 " window with an OpenGL 4.5 core context (" + why + ")");
   }
   glfwMakeContextCurrent(window_);
+  glfwSetWindowUserPointer(window_, this);
+  // Before ImGui's backend installs its callbacks: it chains to this one.
+  glfwSetKeyCallback(window_, onKey);
   // Scripted runs must not wait for vertical blank: Xvfb has none, desktops would cap the rate.
   glfwSwapInterval(0);
   IMGUI_CHECKVERSION();
@@ -81,6 +89,13 @@ void ViewerWindow::drawUi() {
 
 void ViewerWindow::swapBuffers() {
   glfwSwapBuffers(window_);
+}
+
+std::vector<int> ViewerWindow::takeKeyPresses() {
+  std::vector<int> keys;
+  keys.swap(keyPresses_);
+  if (ImGui::GetIO().WantCaptureKeyboard) keys.clear();  // typed into a text field
+  return keys;
 }
 
 void ViewerWindow::framebufferSize(int& width, int& height) const {

@@ -27,10 +27,16 @@ class ViewerWindow {
   // The back buffer as 8-bit RGB, row 0 at the top (call before swapBuffers).
   std::vector<uint8_t> readBackBuffer(int& width, int& height) const;
   void framebufferSize(int& width, int& height) const;
+  // The keys pressed since the last call (GLFW key codes), when ImGui does not want the keyboard.
+  // Taken from GLFW's callback rather than ImGui 1.86's key state, which misses a press and
+  // release that fall between two frames (a quick tap while a slow frame renders).
+  std::vector<int> takeKeyPresses();
   GLFWwindow* handle() const { return window_; }
 
  private:
   GLFWwindow* window_ = nullptr;
+  std::vector<int> keyPresses_;
+  friend void onKey(GLFWwindow*, int, int, int, int);
 };
 
 }  // namespace penumbra::viewer
