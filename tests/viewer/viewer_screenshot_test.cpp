@@ -241,12 +241,66 @@ TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
   const Image headless = readEncodedColorPng(out / "contact_msm.png");
   const Difference d =
       sceneAreaDifference(readEncodedColorPng(shot), headless, kFrameWidth, kFrameHeight);
-  std::cout << "saved settings: mean difference " << d.meanSteps << " steps, largest "
-            << d.maxSteps << "\n";
+  std::cout << "saved settings: mean difference " << d.meanSteps << " steps, largest " << d.maxSteps
+            << "\n";
   // Not byte for byte: a saved light direction is normalised again when it is loaded
   // (applyOverrides), which may move it by a float ulp and a shadow-edge pixel by one step.
   EXPECT_LE(d.meanSteps, kMeanStepsTolerance);
   EXPECT_LE(d.maxSteps, 2);
+}
+
+bool haveXdotool() {
+  return std::system("command -v xdotool > /dev/null 2>&1") == 0;
+}
+
+// The viewer run interactively (no --frames) under Xvfb, driven by xdotool as a user would: F12
+// screenshots between a left drag (orbit), a shift drag (the light), a pointer move (the probe)
+// and H (the panel), then Esc quits. Waits are generous: llvmpipe compiles shaders at start.
+TEST(Viewer, TakesMouseAndKeyboardInput) {
+  REQUIRE_XVFB();
+  if (!haveXdotool()) {
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::string(ci) == "true") FAIL() << "xdotool is not installed";
+    GTEST_SKIP() << "xdotool is not installed (scripts/install-deps installs it)";
+  }
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "backyard", Technique::Vsm);
+  const fs::path script = scratch.path() / "drive.sh";
+  writeFile(script, std::string("#!/bin/bash\n") + PENUMBRA_VIEWER_EXECUTABLE + " --settings " +
+                        settings.string() + " > viewer.log 2>&1 &\n" +
+                        R"(pid=$!
+sleep 8
+xdotool key F12; sleep 2
+xdotool mousemove 40 40 mousedown 1; sleep 0.3; xdotool mousemove 80 50; sleep 0.3
+xdotool mousemove 120 60; sleep 0.5; xdotool mouseup 1; sleep 2
+xdotool key F12; sleep 2
+xdotool keydown shift mousemove 40 40 mousedown 1; sleep 0.3; xdotool mousemove 80 40; sleep 0.3
+xdotool mousemove 120 40; sleep 0.5; xdotool mouseup 1 keyup shift; sleep 2
+xdotool key F12; sleep 2
+xdotool key h; sleep 1; xdotool key F12; sleep 2
+xdotool key Escape
+for i in $(seq 1 20); do kill -0 $pid 2> /dev/null || break; sleep 0.5; done
+if kill -0 $pid 2> /dev/null; then kill $pid; echo "Esc did not quit"; exit 1; fi
+wait $pid
+)");
+  const RunResult run = runProgram(
+      {"xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "bash", script.string()}, scratch.path());
+  ASSERT_EQ(run.exitCode(), 0) << run.output << readFile(scratch.path() / "viewer.log");
+  std::vector<Image> shots;
+  for (int i = 0; i < 4; ++i) {
+    const fs::path png = scratch.path() / ("penumbra-viewer-000" + std::to_string(i) + ".png");
+    ASSERT_TRUE(fs::exists(png)) << png << " missing (F12 lost?)\n"
+                                 << readFile(scratch.path() / "viewer.log");
+    shots.push_back(readEncodedColorPng(png));
+  }
+  const int area = kFrameWidth * kFrameHeight;
+  // The orbit moved the camera, the shift drag the light: each changed the picture.
+  EXPECT_GT(differingPixels(shots[0], shots[1], 0, 0, kFrameWidth, kFrameHeight), area / 4);
+  EXPECT_GT(differingPixels(shots[1], shots[2], 0, 0, kFrameWidth, kFrameHeight), area / 50);
+  // The pointer over the scene area opened the probe below it; H hid the panel.
+  EXPECT_GT(differingPixels(shots[1], shots[2], 0, kFrameHeight + 10, 700, kFrameHeight + 300),
+            10000);
+  EXPECT_GT(differingPixels(shots[2], shots[3], 1180, 0, 1181, 800), 200);
 }
 
 TEST(Viewer, TheSplitViewShowsEachTechniqueOnItsSideOfTheDivider) {
