@@ -18,6 +18,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/image_io.h"
+#include "scene_texture.h"
 #include "settings_panel.h"
 #include "viewer_state.h"
 #include "viewer_window.h"
@@ -27,38 +28,6 @@ namespace {
 
 constexpr float kPanelWidth = 430.0f;
 constexpr size_t kTimeHistory = 120;  // frames in the rolling time graph
-
-// The scene area's texture: the displayed pixels at one texel per window pixel.
-class SceneTexture {
- public:
-  SceneTexture() { glCreateTextures(GL_TEXTURE_2D, 1, &id_); }
-  ~SceneTexture() { glDeleteTextures(1, &id_); }
-  SceneTexture(const SceneTexture&) = delete;
-  SceneTexture& operator=(const SceneTexture&) = delete;
-
-  void upload(const DisplayImage& image) {
-    if (image.width != width_ || image.height != height_) {
-      glDeleteTextures(1, &id_);
-      glCreateTextures(GL_TEXTURE_2D, 1, &id_);
-      glTextureStorage2D(id_, 1, GL_RGB8, image.width, image.height);
-      // Nearest: the texels land on pixels one to one, the window shows the render's bytes.
-      glTextureParameteri(id_, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-      glTextureParameteri(id_, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-      width_ = image.width;
-      height_ = image.height;
-    }
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    glTextureSubImage2D(id_, 0, 0, 0, width_, height_, GL_RGB, GL_UNSIGNED_BYTE, image.rgb.data());
-  }
-  GLuint id() const { return id_; }
-  int width() const { return width_; }
-  int height() const { return height_; }
-
- private:
-  GLuint id_ = 0;
-  int width_ = 0;
-  int height_ = 0;
-};
 
 void setMessage(ViewerState& state, std::string message, bool isError) {
   state.message = std::move(message);
