@@ -4,7 +4,11 @@
 // place penumbra does. Grey PNGs and EXRs hold data (visibility) and are written as they are.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
+#include <span>
+#include <string_view>
+#include <vector>
 
 #include "penumbra/image.h"
 
@@ -13,6 +17,12 @@ namespace penumbra {
 // 3 or 4 channels of linear light in [0,1] (clamped), row 0 at the top: an 8-bit RGB PNG of their
 // sRGB encoding, tagged sRGB. Alpha, if any, is dropped.
 void writeColorPng(const Image& image, const std::filesystem::path& path);
+// The 8-bit sRGB encoding writeColorPng stores (RGB interleaved, row 0 at the top), for showing
+// on screen exactly what the file holds.
+std::vector<uint8_t> encodeSrgb8(const Image& image);
+// Already-encoded 8-bit sRGB pixels (width * height * 3, row 0 at the top) as a PNG tagged sRGB.
+void writeEncodedColorPng(int width, int height, std::span<const uint8_t> rgb,
+                          const std::filesystem::path& path);
 // One channel in [0,1] (clamped): a 16-bit greyscale PNG.
 void writeGrey16Png(const Image& image, const std::filesystem::path& path);
 // One channel: a float OpenEXR image with channel "Y".

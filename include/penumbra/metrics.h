@@ -49,4 +49,8 @@ Image litSurfaceMask(const Image& lookup);
 // count); throws Error when empty.
 double median(std::vector<double> values);
 
+// Visibility minus the reference where `coverage` (litSurfaceMask) holds, 0 elsewhere: the signed
+// error the report's heat maps and the viewer's error view show (positive: leaks light).
+Image signedVisibilityError(const Image& visibility, const Image& reference, const Image& coverage);
+
 }  // namespace penumbra

@@ -3,13 +3,31 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 #include <sstream>
 
+#include "penumbra/diagnostic_images.h"
 #include "penumbra/error.h"
 #include "penumbra/gnuplot.h"
 
 namespace penumbra::compare {
+namespace {
+
+// The heat-map palette the viewer also draws with (penumbra/diagnostic_images.h), in gnuplot's
+// syntax: -1 '#2166ac', ..., 1 '#b2182b'.
+std::string gnuplotPalette() {
+  std::string stops;
+  for (const ErrorPaletteStop& s : errorPalette()) {
+    char stop[32];
+    std::snprintf(stop, sizeof stop, "%s%g '#%02x%02x%02x'", stops.empty() ? "" : ", ",
+                  double(s.position), s.red, s.green, s.blue);
+    stops += stop;
+  }
+  return stops;
+}
+
+}  // namespace
 
 void plotErrorHeatMap(const Image& error, double range, const std::string& title,
                       const std::filesystem::path& png) {
@@ -26,8 +44,7 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
      << " font 'DejaVu Sans,10'\n"
      << "set output " << gnuplotQuote(png.string()) << "\n"
      << "set title " << gnuplotQuote(title) << " noenhanced\n"
-     << "set palette defined (-1 '#2166ac', -0.5 '#92c5de', 0 '#f7f7f7', 0.5 '#f4a582', 1 "
-        "'#b2182b')\n"
+     << "set palette defined (" << gnuplotPalette() << ")\n"
      << "set cbrange [" << -range << ":" << range << "]\n"
      << "set cblabel 'red: leaks light   blue: over-darkens'\n"
      << "unset xtics\nunset ytics\nset size ratio -1\n"

@@ -16,6 +16,7 @@
 #include <memory>
 #include <vector>
 
+#include "penumbra/diagnostic_images.h"
 #include "penumbra/error.h"
 #include "penumbra/srgb.h"
 
@@ -66,9 +67,8 @@ void requireFinite(const Image& image, std::string_view what) {
   }
 }
 
-void writeColorPng(const Image& image, const std::filesystem::path& path) {
-  if (image.channels() < 3) throw Error("a colour PNG needs 3 or 4 channels");
-  requireFinite(image, path.string());
+std::vector<uint8_t> encodeSrgb8(const Image& image) {
+  if (image.channels() < 3) throw Error("a colour image needs 3 or 4 channels");
   std::vector<uint8_t> pixels(size_t(image.width()) * size_t(image.height()) * 3);
   for (int y = 0; y < image.height(); ++y) {
     for (int x = 0; x < image.width(); ++x) {
@@ -79,10 +79,28 @@ void writeColorPng(const Image& image, const std::filesystem::path& path) {
       }
     }
   }
+  return pixels;
+}
+
+void writeEncodedColorPng(int width, int height, std::span<const uint8_t> rgb,
+                          const std::filesystem::path& path) {
+  if (width < 1 || height < 1 || rgb.size() != size_t(width) * size_t(height) * 3) {
+    throw Error("cannot write " + path.string() + ": " + std::to_string(rgb.size()) +
+                " bytes are not a " + std::to_string(width) + "x" + std::to_string(height) +
+                " RGB image");
+  }
   std::vector<png_bytep> rows;
-  for (int y = 0; y < image.height(); ++y)
-    rows.push_back(&pixels[size_t(y) * size_t(image.width()) * 3]);
-  writePng(path, image.width(), image.height(), PNG_COLOR_TYPE_RGB, 8, rows, true);
+  for (int y = 0; y < height; ++y) {
+    rows.push_back(const_cast<png_bytep>(&rgb[size_t(y) * size_t(width) * 3]));
+  }
+  writePng(path, width, height, PNG_COLOR_TYPE_RGB, 8, rows, true);
+}
+
+void writeColorPng(const Image& image, const std::filesystem::path& path) {
+  if (image.channels() < 3) throw Error("a colour PNG needs 3 or 4 channels");
+  requireFinite(image, path.string());
+  const std::vector<uint8_t> pixels = encodeSrgb8(image);
+  writeEncodedColorPng(image.width(), image.height(), pixels, path);
 }
 
 void writeGrey16Png(const Image& image, const std::filesystem::path& path) {
@@ -101,36 +119,12 @@ void writeGrey16Png(const Image& image, const std::filesystem::path& path) {
 
 void writeFailureMaskPng(const Image& diagnostic, const Image& color,
                          const std::filesystem::path& path) {
-  Image out(diagnostic.width(), diagnostic.height(), 3);
-  for (int y = 0; y < out.height(); ++y) {
-    for (int x = 0; x < out.width(); ++x) {
-      const float d = diagnostic.at(x, y);
-      const float grey = 0.5f * (color.at(x, y, 0) + color.at(x, y, 1) + color.at(x, y, 2)) / 3.0f;
-      const bool failed = d > 0.5f;
-      out.at(x, y, 0) = d < 0.0f ? 0.0f : (failed ? 1.0f : grey);
-      out.at(x, y, 1) = d < 0.0f ? 0.0f : (failed ? 0.1f : grey);
-      out.at(x, y, 2) = d < 0.0f ? 0.0f : (failed ? 0.1f : grey);
-    }
-  }
-  writeColorPng(out, path);
+  writeColorPng(failureMaskImage(diagnostic, color), path);
 }
 
 void writeLayerIndexPng(const Image& diagnostic, const Image& color,
                         const std::filesystem::path& path) {
-  static const float palette[8][3] = {{0.9f, 0.3f, 0.3f}, {0.3f, 0.8f, 0.3f}, {0.3f, 0.4f, 0.9f},
-                                      {0.9f, 0.8f, 0.2f}, {0.8f, 0.3f, 0.8f}, {0.2f, 0.8f, 0.8f},
-                                      {0.9f, 0.6f, 0.3f}, {0.6f, 0.6f, 0.6f}};
-  Image out(diagnostic.width(), diagnostic.height(), 3);
-  for (int y = 0; y < out.height(); ++y) {
-    for (int x = 0; x < out.width(); ++x) {
-      const float d = diagnostic.at(x, y);
-      const float shade = 0.4f + 0.6f * color.at(x, y, 1);
-      for (int c = 0; c < 3; ++c) {
-        out.at(x, y, c) = d < 0.0f ? 0.0f : shade * palette[int(d) % 8][c];
-      }
-    }
-  }
-  writeColorPng(out, path);
+  writeColorPng(layerIndexImage(diagnostic, color), path);
 }
 
 namespace {

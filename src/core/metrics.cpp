@@ -105,6 +105,15 @@ double frameToFrameChange(std::span<const Image> estimates, std::span<const Imag
   return meanFrameStep(estimates, {}, masks, "frame-to-frame change");
 }
 
+Image signedVisibilityError(const Image& visibility, const Image& reference,
+                            const Image& coverage) {
+  Image error(visibility.width(), visibility.height(), 1);
+  for (size_t i = 0; i < error.data().size(); ++i) {
+    error.data()[i] = coverage.data()[i] > 0.5f ? visibility.data()[i] - reference.data()[i] : 0.0f;
+  }
+  return error;
+}
+
 Image litSurfaceMask(const Image& lookup) {
   Image mask(lookup.width(), lookup.height(), 1);
   for (int y = 0; y < lookup.height(); ++y) {

@@ -28,6 +28,17 @@ void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLs
   }
 }
 
+void routeDebugMessages() {
+  glEnable(GL_DEBUG_OUTPUT);
+  glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+  glDebugMessageCallback(onDebugMessage, nullptr);
+}
+
+std::string currentDescription() {
+  return std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", " +
+         reinterpret_cast<const char*>(glGetString(GL_VERSION));
+}
+
 bool hasExtension(const char* list, const char* name) {
   if (list == nullptr) return false;
   const size_t length = std::strlen(name);
@@ -162,9 +173,7 @@ HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
       throw Error("EGL gave an OpenGL " + std::to_string(epoxy_gl_version()) +
                   " context; penumbra needs 4.5 core");
     }
-    glEnable(GL_DEBUG_OUTPUT);
-    glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-    glDebugMessageCallback(onDebugMessage, nullptr);
+    routeDebugMessages();
     return;
   }
   throw Error("cannot create a headless OpenGL 4.5 core context through EGL" +
@@ -182,8 +191,23 @@ HeadlessContext::~HeadlessContext() {
 }
 
 std::string HeadlessContext::description() const {
-  return std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", " +
-         reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  return currentDescription();
+}
+
+CurrentContext::CurrentContext() {
+  GLint profile = 0;
+  glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
+  if (epoxy_gl_version() < 45 || (profile & GL_CONTEXT_CORE_PROFILE_BIT) == 0) {
+    throw Error("the current context is OpenGL " + std::to_string(epoxy_gl_version() / 10) + "." +
+                std::to_string(epoxy_gl_version() % 10) +
+                ((profile & GL_CONTEXT_CORE_PROFILE_BIT) ? " core" : " (not core)") +
+                "; penumbra needs 4.5 core (" + currentDescription() + ")");
+  }
+  routeDebugMessages();
+}
+
+std::string CurrentContext::description() const {
+  return currentDescription();
 }
 
 void checkErrors(const char* where) {

@@ -166,7 +166,7 @@ MemoryReport Renderer::State::memory() const {
   return m;
 }
 
-Renderer::Renderer(const HeadlessContext& context) : state_(std::make_unique<State>()) {
+Renderer::Renderer(const Context& context) : state_(std::make_unique<State>()) {
   DeviceLimits& limits = state_->limits;
   limits.device = context.description();
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limits.maxTextureSize);

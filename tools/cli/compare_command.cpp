@@ -15,6 +15,7 @@
 #include "progress_bar.h"
 #include "render_options.h"
 #include "scene_options.h"
+#include "settings_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
@@ -41,16 +42,19 @@ struct CompareOptions {
   std::string outDir = "out/compare";
   bool force = false;
   bool quiet = false;
+  std::string settingsFile;
+  const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
 };
 
 void runCompare(const CompareOptions& o) {
   if (printTechniqueListIfAsked(o.technique)) return;
   compare::ComparisonRequest request;
-  request.scene = o.scene.scene;
-  checkSceneSource(o.scene.scene);  // unknown scenes and missing files fail before anything else
-  request.view = sceneOverrides(o.scene);
-  request.techniques = selectedTechniques(o.technique);
-  request.settings.params = selectedParams(o.technique, request.techniques);
+  const gl::Settings resolved =
+      resolveSettings(*o.command, o.settingsFile, o.scene, o.technique, o.render);
+  request.scene = resolved.scene;
+  checkSceneSource(request.scene);  // unknown scenes and missing files fail before anything else
+  request.view = resolved.view;
+  request.techniques = resolved.techniques;
   // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
   // no longer matched to the prefilter (the report says so).
   for (const std::string& assignment : o.technique.params) {
@@ -59,9 +63,7 @@ void runCompare(const CompareOptions& o) {
       request.matchPcfKernel = false;
     }
   }
-  const TechniqueParams params = request.settings.params;
-  request.settings = toRenderSettings(o.render);
-  request.settings.params = params;
+  request.settings = resolved.render;
   request.supersample = o.supersample;
   request.pathFrames = o.frames;
   request.tau = o.tau;
@@ -104,6 +106,8 @@ void registerCompareCommand(CLI::App& app) {
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
+  addSettingsOption(*cmd, o->settingsFile);
+  o->command = cmd;
   cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")

@@ -22,6 +22,7 @@
 #include "penumbra/image_io.h"
 #include "render_options.h"
 #include "scene_options.h"
+#include "settings_options.h"
 #include "technique_options.h"
 
 namespace penumbra::cli {
@@ -35,6 +36,8 @@ struct RenderCommandOptions {
   int repeat = 1;
   int frames = 1;
   std::vector<std::string> animate{"orbit"};
+  std::string settingsFile;
+  const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
 };
 
 // Runs a program found on PATH with exactly these arguments (no shell, so any path is safe) and
@@ -106,21 +109,22 @@ void runRender(const RenderCommandOptions& options) {
     return;
   }
   if (printTechniqueListIfAsked(options.technique)) return;
-  const SceneOverrides overrides = sceneOverrides(options.scene);
+  const gl::Settings resolved = resolveSettings(*options.command, options.settingsFile,
+                                                options.scene, options.technique, options.render);
+  const SceneOverrides& overrides = resolved.view;
   const auto loadStart = std::chrono::steady_clock::now();
-  Scene scene = loadScene(options.scene.scene);
+  Scene scene = loadScene(resolved.scene);
   const double loadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
           .count();
 
   applyOverrides(scene, overrides);
   printSceneWarnings(scene);
-  const std::vector<Technique> techniques = selectedTechniques(options.technique);
+  const std::vector<Technique>& techniques = resolved.techniques;
   for (const std::string& name : options.animate) parseAnimation(name);  // before any GL work
   if (options.frames > 1) requireFfmpeg();
-  gl::RenderSettings settings = toRenderSettings(options.render);
+  gl::RenderSettings settings = resolved.render;
   requireCascadableLight(settings.cascades, scene.light);
-  settings.params = selectedParams(options.technique, techniques);
 
   checkOutputPath(options.outDir);  // before any GL work
 
@@ -183,6 +187,8 @@ void registerRenderCommand(CLI::App& app) {
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
+  addSettingsOption(*cmd, o->settingsFile);
+  o->command = cmd;
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();

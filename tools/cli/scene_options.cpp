@@ -1,14 +1,13 @@
-// Scene and view options. The view file is JSON (docs/scenes.md):
-//   {"light": {"direction": [x, y, z]} or {"position": [...], "target": [...], "spot_angle": deg},
-//    "camera": {"position": [x, y, z], "target": [x, y, z], "fov": deg}}
+// Scene and view options. The view file is JSON (docs/scenes.md, read by
+// penumbra/gl/settings_json.h): {"light": {"direction": [x, y, z]} or {"position": [...],
+// "target": [...], "spot_angle": deg}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
 #include "scene_options.h"
 
-#include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/settings_json.h"
 
 namespace penumbra::cli {
 namespace {
@@ -22,59 +21,6 @@ glm::vec3 parseVector(const std::string& text, const std::string& option) {
     throw Error(option + " '" + text + "' must be three numbers X,Y,Z");
   }
   return v;
-}
-
-glm::vec3 jsonVector(const nlohmann::json& value, const std::string& where) {
-  if (!value.is_array() || value.size() != 3 || !value[0].is_number() || !value[1].is_number() ||
-      !value[2].is_number()) {
-    throw Error(where + " must be an array of three numbers");
-  }
-  return {value[0].get<float>(), value[1].get<float>(), value[2].get<float>()};
-}
-
-float jsonNumber(const nlohmann::json& value, const std::string& where) {
-  if (!value.is_number()) throw Error(where + " must be a number");
-  return value.get<float>();
-}
-
-void readViewFile(const std::string& path, SceneOverrides& o) {
-  std::ifstream in(path);
-  if (!in) throw Error("cannot open view file " + path);
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception& e) {
-    throw Error("view file " + path + " is not valid JSON: " + e.what());
-  }
-  if (!j.is_object()) throw Error("view file " + path + " must hold a JSON object");
-  for (const auto& [key, value] : j.items()) {
-    const std::string where = path + ": \"" + key + "\"";
-    if (!value.is_object()) throw Error(where + " must be an object");
-    for (const auto& [field, v] : value.items()) {
-      const std::string at = where + "." + field;
-      if (key == "light" && field == "direction") {
-        o.lightDirection = jsonVector(v, at);
-      } else if (key == "light" && field == "position") {
-        o.lightPosition = jsonVector(v, at);
-      } else if (key == "light" && field == "target") {
-        o.lightTarget = jsonVector(v, at);
-      } else if (key == "light" && field == "spot_angle") {
-        o.spotAngleDegrees = jsonNumber(v, at);
-      } else if (key == "camera" && field == "position") {
-        o.cameraPosition = jsonVector(v, at);
-      } else if (key == "camera" && field == "target") {
-        o.cameraTarget = jsonVector(v, at);
-      } else if (key == "camera" && field == "fov") {
-        o.cameraFovDegrees = jsonNumber(v, at);
-      } else if (key == "light" || key == "camera") {
-        throw Error(
-            at + " is not a setting; " + key + " takes " +
-            (key == "light" ? "direction, position, target, spot_angle" : "position, target, fov"));
-      } else {
-        throw Error(where + " is not a setting; the file takes \"light\" and \"camera\"");
-      }
-    }
-  }
 }
 
 }  // namespace
@@ -97,9 +43,9 @@ void addSceneOptions(CLI::App& app, SceneOptions& o) {
   app.add_option("--camera-fov", o.cameraFov, "vertical field of view in degrees, (0, 170]");
 }
 
-SceneOverrides sceneOverrides(const SceneOptions& o) {
-  SceneOverrides overrides;
-  if (!o.viewFile.empty()) readViewFile(o.viewFile, overrides);
+SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
+  SceneOverrides overrides = std::move(base);
+  if (!o.viewFile.empty()) gl::applyViewFile(o.viewFile, overrides);
   // A light kind given on the command line replaces the file's light entirely.
   if (!o.lightDirection.empty()) {
     overrides.lightPosition.reset();

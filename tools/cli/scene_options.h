@@ -20,9 +20,9 @@ struct SceneOptions {
 
 void addSceneOptions(CLI::App& app, SceneOptions& options);
 
-// The overrides from the view file, then the command line; throws Error naming the option or the
-// file's key that is malformed.
-SceneOverrides sceneOverrides(const SceneOptions& options);
+// `base` (a settings file's), then the view file, then the command line; throws Error naming the
+// option or the file's key that is malformed.
+SceneOverrides sceneOverrides(const SceneOptions& options, SceneOverrides base = {});
 
 // Prints the scene's warnings to stderr, one line each.
 void printSceneWarnings(const Scene& scene);

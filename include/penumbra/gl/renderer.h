@@ -22,7 +22,7 @@
 
 namespace penumbra::gl {
 
-class HeadlessContext;
+class Context;
 
 using penumbra::FilterMode;  // penumbra/filter_mode.h
 
@@ -129,8 +129,9 @@ LookupPixel lookupPixelAt(const RenderResult& result, int x, int y);
 
 class Renderer {
  public:
-  // Needs a current GL 4.5 context; compiles shader variants on first use.
-  explicit Renderer(const HeadlessContext& context);
+  // Needs a current GL 4.5 core context (HeadlessContext, or CurrentContext for a window's);
+  // compiles shader variants on first use.
+  explicit Renderer(const Context& context);
   ~Renderer();
   Renderer(const Renderer&) = delete;
   Renderer& operator=(const Renderer&) = delete;

@@ -1,0 +1,471 @@
+// The viewer's loop.
+#include "viewer.h"
+
+#include <epoxy/gl.h>
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <imgui.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "cursor_probe.h"
+#include "display_image.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/context.h"
+#include "penumbra/image_io.h"
+#include "scene_texture.h"
+#include "settings_panel.h"
+#include "viewer_state.h"
+#include "viewer_window.h"
+
+namespace penumbra::viewer {
+namespace {
+
+constexpr float kPanelWidth = 430.0f;
+constexpr size_t kTimeHistory = 120;  // frames in the rolling time graph
+
+void setMessage(ViewerState& state, std::string message, bool isError) {
+  state.message = std::move(message);
+  state.messageIsError = isError;
+}
+
+void loadSceneInto(ViewerState& state) {
+  Scene scene = loadScene(state.settings.scene);
+  applyOverrides(scene, state.settings.view);
+  for (const std::string& w : scene.warnings)
+    std::cerr << "penumbra-viewer: warning: " << w << "\n";
+  state.scene = std::move(scene);
+  state.camera = state.scene.camera;
+  state.light = state.scene.light;
+  if (state.light.kind != LightKind::Directional) state.settings.render.cascades.count = 1;
+}
+
+class Viewer {
+ public:
+  Viewer(const ViewerOptions& options, gl::Settings settings, ViewerWindow& window)
+      : options_(options), window_(window), renderer_(context_) {
+    state_.settings = std::move(settings);
+    state_.showPanel = !options.hidePanel;
+    state_.view = parseView(options.show);
+    if (options.probeX >= 0 && options.probeY >= 0) probePixel_ = {options.probeX, options.probeY};
+    if (!options.split.empty()) {
+      state_.split = true;
+      state_.splitTechnique = parseTechnique(options.split);
+      state_.splitParams = state_.settings.render.params;
+    }
+    if (!options.settingsFile.empty()) state_.settingsPath = options.settingsFile;
+    loadSceneInto(state_);
+    renderer_.setScene(state_.scene);
+  }
+
+  void run() {
+    int frame = 0;
+    bool renderNeeded = true;
+    bool displayNeeded = true;
+    while (!window_.shouldClose()) {
+      window_.beginFrame();
+      Changes changes;
+      if (state_.showPanel) {
+        FrameStats stats{result_ ? &*result_ : nullptr, renderer_.deviceDescription()};
+        changes = drawSettingsPanel(state_, stats, kPanelWidth);
+      }
+      if (options_.frames == 0) handleInput(changes);  // scripted runs take no input
+      applyFileChanges(changes);
+      if (changes.scene) {
+        if (tryOrReport([&] {
+              loadSceneInto(state_);
+              renderer_.setScene(state_.scene);
+            })) {
+          renderNeeded = true;
+        }
+      }
+      renderNeeded |= changes.render;
+      if (renderNeeded) {
+        renderFrame();
+        renderNeeded = false;
+        displayNeeded = true;
+      }
+      if (displayNeeded || changes.display) {
+        showDisplay();
+        displayNeeded = false;
+      }
+      updateProbe();
+      drawWindow();
+      ++frame;
+      const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
+      if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
+      if (lastScripted && !options_.saveSettings.empty()) {
+        gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
+      }
+      if (screenshotRequested_) {
+        screenshotRequested_ = false;
+        char name[64];
+        std::snprintf(name, sizeof name, "penumbra-viewer-%04d.png", screenshotCount_++);
+        tryOrReport([&] {
+          writeScreenshot(name);
+          setMessage(state_, std::string("wrote ") + name, false);
+        });
+      }
+      window_.swapBuffers();
+      if (lastScripted) break;
+    }
+  }
+
+ private:
+  // Runs f; an Error becomes the panel's message (and, scripted, fails the run).
+  template <typename F>
+  bool tryOrReport(F&& f) {
+    try {
+      f();
+      return true;
+    } catch (const Error& e) {
+      if (options_.frames > 0) throw;
+      setMessage(state_, e.what(), true);
+      return false;
+    }
+  }
+
+  gl::RenderSettings currentSettings() const {
+    gl::RenderSettings s = state_.settings.render;
+    s.technique = state_.settings.techniques.front();
+    return s;
+  }
+
+  gl::FrameView currentView() const { return gl::FrameView{state_.camera, state_.light}; }
+
+  void renderFrame() {
+    const gl::RenderSettings settings = currentSettings();
+    tryOrReport([&] {
+      renderer_.validate(settings);
+      requireCascadableLight(settings.cascades, state_.light);
+      if (state_.split) {
+        // The right side first: the renderer then holds the left side's maps, which the shadow
+        // map and channel views and the probe's depth maps read.
+        gl::RenderSettings right = settings;
+        right.technique = state_.splitTechnique;
+        right.params = state_.splitParams;
+        renderer_.validate(right);
+        splitResult_ = renderer_.render(right, currentView());
+      } else {
+        splitResult_.reset();
+      }
+      result_ = renderer_.render(settings, currentView());
+      state_.gpuTimes.push_back(result_->gpuTimes);
+      state_.wallTimes.push_back(result_->wallTimes);
+      if (state_.wallTimes.size() > kTimeHistory) {
+        state_.gpuTimes.pop_front();
+        state_.wallTimes.pop_front();
+      }
+      reference_.reset();  // computed again when the error view asks for it
+      depthMaps_.clear();  // read again when the cursor probes a pixel
+      probe_.reset();
+      if (state_.messageIsError) state_.message.clear();
+    });
+  }
+
+  void showDisplay() {
+    if (!result_) return;
+    tryOrReport([&] {
+      std::optional<Image> map;
+      if (state_.view == View::Error && !reference_) {
+        // The filtered reference of the same settings and view: computed when this view asks for
+        // it, once per rendered frame.
+        reference_ = renderer_.renderReference(currentSettings(), currentView(), 1).visibility;
+        renderer_.render(currentSettings(), currentView());  // the technique's maps back in place
+      }
+      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(0);
+      if (state_.view == View::Channel) {
+        const Image channels = renderer_.readChannels(0);
+        const int c = std::clamp(state_.channel, 0, channels.channels() - 1);
+        map.emplace(channels.width(), channels.height(), 1);
+        for (int y = 0; y < channels.height(); ++y) {
+          for (int x = 0; x < channels.width(); ++x) map->at(x, y) = channels.at(x, y, c);
+        }
+      }
+      DisplayImage image = composeDisplay(
+          state_.view, *result_, reference_ ? &*reference_ : nullptr, map ? &*map : nullptr);
+      if (splitResult_ && !map) {
+        // The same view of the right side's render (the reference does not depend on the
+        // technique), right of the divider.
+        const DisplayImage right = composeDisplay(state_.view, *splitResult_,
+                                                  reference_ ? &*reference_ : nullptr, nullptr);
+        const size_t from = size_t(dividerPixel()) * 3;
+        const size_t row = size_t(image.width) * 3;
+        for (int y = 0; y < image.height; ++y) {
+          std::copy(right.rgb.begin() + std::ptrdiff_t(size_t(y) * row + from),
+                    right.rgb.begin() + std::ptrdiff_t(size_t(y + 1) * row),
+                    image.rgb.begin() + std::ptrdiff_t(size_t(y) * row + from));
+        }
+      }
+      texture_.upload(image);
+    });
+  }
+
+  // The probe of the pixel under the cursor, computed when the pixel or the render changes.
+  void updateProbe() {
+    if (!result_ || !probePixel_) return;
+    const auto [x, y] = *probePixel_;
+    if (x >= result_->visibility.width() || y >= result_->visibility.height()) return;
+    if (probe_ && probe_->x == x && probe_->y == y) return;
+    // Right of the divider the probe is the right side's; the light pass's depth is the same.
+    const bool right = splitResult_ && x >= dividerPixel();
+    tryOrReport([&] {
+      if (depthMaps_.empty()) {
+        for (int c = 0; c < result_->cascadeFrame.count; ++c) {
+          depthMaps_.push_back(renderer_.readDepthMap(c));
+        }
+      }
+      probe_ = probePixel(right ? *splitResult_ : *result_, depthMaps_, x, y);
+      probeTechnique_ = right ? state_.splitTechnique : state_.settings.techniques.front();
+    });
+  }
+
+  // The scene area at the top left, one texel per pixel (square maps fitted into the frame).
+  void drawWindow() {
+    int width = 0, height = 0;
+    window_.framebufferSize(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glClearColor(0.12f, 0.12f, 0.12f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    if (texture_.width() > 0) {
+      float w = float(texture_.width()), h = float(texture_.height());
+      if (state_.view == View::ShadowMap || state_.view == View::Channel) {
+        const float side =
+            float(std::min(state_.settings.render.width, state_.settings.render.height));
+        w = h = side;
+      }
+      ImDrawList* background = ImGui::GetBackgroundDrawList();
+      background->AddImage(ImTextureID(intptr_t(texture_.id())), ImVec2(0, 0), ImVec2(w, h));
+      if (splitResult_ && w == float(texture_.width())) {
+        // One pixel wide, on the divider's column: either side keeps every other column. The
+        // labels sit in the top 20 rows, on dark boxes to read on any image.
+        const float x = float(dividerPixel()) + 0.5f;
+        // A filled rectangle, not a line: ImGui anti-aliases lines into the next columns.
+        background->AddRectFilled(ImVec2(x - 0.5f, 0.0f), ImVec2(x + 0.5f, h),
+                                  IM_COL32(255, 160, 0, 255));
+        const std::string left(techniqueId(state_.settings.techniques.front()));
+        const std::string right(techniqueId(state_.splitTechnique));
+        const ImVec2 leftSize = ImGui::CalcTextSize(left.c_str());
+        const ImVec2 rightSize = ImGui::CalcTextSize(right.c_str());
+        const ImVec2 leftAt(x - 6.0f - leftSize.x, 3.0f), rightAt(x + 6.0f, 3.0f);
+        background->AddRectFilled(
+            ImVec2(leftAt.x - 3.0f, 1.0f),
+            ImVec2(leftAt.x + leftSize.x + 3.0f, leftAt.y + leftSize.y + 2.0f),
+            IM_COL32(0, 0, 0, 190));
+        background->AddRectFilled(
+            ImVec2(rightAt.x - 3.0f, 1.0f),
+            ImVec2(rightAt.x + rightSize.x + 3.0f, rightAt.y + rightSize.y + 2.0f),
+            IM_COL32(0, 0, 0, 190));
+        background->AddText(leftAt, IM_COL32(255, 255, 255, 255), left.c_str());
+        background->AddText(rightAt, IM_COL32(255, 255, 255, 255), right.c_str());
+      }
+    }
+    const float below = float(state_.settings.render.height) + 8.0f;
+    const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
+    if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
+      drawCursorProbe(*probe_, probeTechnique_, 0.0f, below, probeWidth,
+                      std::min(420.0f, float(height) - below));
+    }
+    window_.drawUi();
+  }
+
+  void writeScreenshot(const std::string& path) {
+    int width = 0, height = 0;
+    const std::vector<uint8_t> pixels = window_.readBackBuffer(width, height);
+    writeEncodedColorPng(width, height, pixels, path);
+    std::cout << "wrote " << path << " (" << width << "x" << height << ")\n";
+  }
+
+  void applyFileChanges(Changes& changes) {
+    if (changes.saveSettings) {
+      tryOrReport([&] {
+        gl::writeSettingsFile(state_.settingsPath, settingsToSave(state_));
+        setMessage(state_, "saved " + state_.settingsPath, false);
+      });
+    }
+    if (changes.loadSettings) {
+      tryOrReport([&] {
+        state_.settings = loadViewerSettings(state_.settingsPath);
+        changes.scene = true;
+        setMessage(state_, "loaded " + state_.settingsPath, false);
+      });
+    }
+  }
+
+  void handleInput(Changes& changes) {
+    const ImGuiIO& io = ImGui::GetIO();
+    for (int key : window_.takeKeyPresses()) {  // none while a text field has the keyboard
+      if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
+      if (key == GLFW_KEY_H) state_.showPanel = !state_.showPanel;
+      // Taken from this frame's back buffer, before the swap.
+      if (key == GLFW_KEY_F12) screenshotRequested_ = true;
+    }
+    if (!io.WantCaptureKeyboard) {
+      if (state_.cameraMode == CameraMode::Fly) {
+        const float step = 0.02f * std::max(state_.scene.bounds().radius(), 0.1f);
+        glm::vec3 move(0.0f);
+        if (ImGui::IsKeyDown(GLFW_KEY_W)) move.x += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_S)) move.x -= step;
+        if (ImGui::IsKeyDown(GLFW_KEY_D)) move.y += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_A)) move.y -= step;
+        if (ImGui::IsKeyDown(GLFW_KEY_E)) move.z += step;
+        if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.z -= step;
+        if (move != glm::vec3(0.0f)) {
+          flyCamera(state_.camera, move);
+          changes.render = true;
+        }
+      }
+    }
+    if (io.WantCaptureMouse) return;
+    const ImVec2 cursor = io.MousePos;
+    const bool mapShown = state_.view == View::ShadowMap || state_.view == View::Channel;
+    if (!mapShown && cursor.x >= 0.0f && cursor.y >= 0.0f &&
+        cursor.x < float(state_.settings.render.width) &&
+        cursor.y < float(state_.settings.render.height)) {
+      probePixel_ = {int(cursor.x), int(cursor.y)};
+    }
+    // A drag moves things only when it started over the scene area, and from the frame after the
+    // press: the press's own delta may be a jump from anywhere (the pointer entering the window).
+    bool dragging[3] = {false, false, false};
+    for (int b = 0; b < 3; ++b) {
+      if (ImGui::IsMouseClicked(b)) {
+        dragStarted_[b] = cursor.x >= 0.0f && cursor.y >= 0.0f &&
+                          cursor.x < float(state_.settings.render.width) &&
+                          cursor.y < float(state_.settings.render.height);
+      } else if (!ImGui::IsMouseDown(b)) {
+        dragStarted_[b] = false;
+      } else {
+        dragging[b] = dragStarted_[b];
+      }
+    }
+    const ImVec2 d = io.MouseDelta;
+    const bool moved = d.x != 0.0f || d.y != 0.0f;
+    if (state_.split && ImGui::IsMouseClicked(ImGuiMouseButton_Left) &&
+        std::abs(cursor.x - float(dividerPixel())) <= 5.0f &&
+        cursor.y < float(state_.settings.render.height)) {
+      draggingDivider_ = true;
+    }
+    if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
+    if (draggingDivider_) {
+      state_.divider = std::clamp(cursor.x / float(state_.settings.render.width), 0.0f, 1.0f);
+      probe_.reset();
+      changes.display = true;
+      return;
+    }
+    const float radiansPerPixel = 0.01f;
+    if (dragging[ImGuiMouseButton_Left] && moved) {
+      if (io.KeyShift) {
+        moveLight(d.x, d.y);
+      } else if (state_.cameraMode == CameraMode::Orbit) {
+        orbitCamera(state_.camera, d.x * radiansPerPixel, d.y * radiansPerPixel);
+      } else {
+        lookAround(state_.camera, d.x * radiansPerPixel, d.y * radiansPerPixel);
+      }
+      changes.render = true;
+    }
+    if (state_.cameraMode == CameraMode::Orbit) {
+      if (dragging[ImGuiMouseButton_Right] && d.y != 0.0f) {
+        dollyCamera(state_.camera, std::exp(0.01f * d.y));
+        changes.render = true;
+      }
+      if (dragging[ImGuiMouseButton_Middle] && moved) {
+        panCamera(state_.camera, -0.002f * d.x, 0.002f * d.y);
+        changes.render = true;
+      }
+      if (io.MouseWheel != 0.0f) {
+        dollyCamera(state_.camera, std::exp(-0.1f * io.MouseWheel));
+        changes.render = true;
+      }
+    }
+  }
+
+  // The first column right of the divider.
+  int dividerPixel() const {
+    const int width = state_.settings.render.width;
+    return std::clamp(int(std::lround(state_.divider * float(width))), 0, width - 1);
+  }
+
+  void moveLight(float dx, float dy) {
+    Light& light = state_.light;
+    if (light.kind == LightKind::Directional) {
+      float azimuth = 0.0f, elevation = 0.0f;
+      lightAnglesOf(light.direction, azimuth, elevation);
+      light.direction =
+          lightDirectionFrom(azimuth + 0.5f * dx, std::clamp(elevation - 0.5f * dy, 1.0f, 90.0f));
+    } else {
+      Camera around{light.position, light.target, light.spotAngleDegrees};
+      orbitCamera(around, 0.01f * dx, -0.01f * dy);
+      light.position = around.position;
+    }
+  }
+
+  const ViewerOptions& options_;
+  ViewerWindow& window_;
+  gl::CurrentContext context_;
+  gl::Renderer renderer_;
+  ViewerState state_;
+  std::optional<gl::RenderResult> result_;
+  std::optional<gl::RenderResult> splitResult_;  // the split view's right side
+  std::optional<Image> reference_;
+  std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
+  std::optional<std::pair<int, int>> probePixel_;
+  std::optional<CursorProbe> probe_;
+  Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
+  bool draggingDivider_ = false;
+  bool dragStarted_[3] = {false, false, false};  // per mouse button: pressed over the scene area
+  SceneTexture texture_;
+  int screenshotCount_ = 0;
+  bool screenshotRequested_ = false;
+};
+
+}  // namespace
+
+gl::Settings loadViewerSettings(const std::string& path) {
+  gl::Settings settings;
+  // A frame that fits beside the panel in the default window; a file's width and height win.
+  settings.render.width = 800;
+  settings.render.height = 450;
+  if (path.empty()) return settings;
+  gl::applySettingsFile(path, settings);
+  if (settings.techniques.size() != 1) {
+    throw Error(path + ": \"technique\" names " + std::to_string(settings.techniques.size()) +
+                " techniques; the viewer shows one at a time");
+  }
+  checkSceneSource(settings.scene);
+  return settings;
+}
+
+gl::Settings settingsToSave(const ViewerState& state) {
+  gl::Settings s = state.settings;
+  SceneOverrides& v = s.view;
+  v = {};
+  v.cameraPosition = state.camera.position;
+  v.cameraTarget = state.camera.target;
+  v.cameraFovDegrees = state.camera.verticalFovDegrees;
+  if (state.light.kind == LightKind::Directional) {
+    v.lightDirection = state.light.direction;
+  } else {
+    v.lightPosition = state.light.position;
+    v.lightTarget = state.light.target;
+    v.spotAngleDegrees = state.light.spotAngleDegrees;
+  }
+  return s;
+}
+
+void runViewer(const ViewerOptions& options) {
+  // Bad settings are reported before any window opens (and without a display).
+  parseView(options.show);
+  if (!options.split.empty()) parseTechnique(options.split);
+  gl::Settings settings = loadViewerSettings(options.settingsFile);
+  ViewerWindow window(options.windowWidth, options.windowHeight, "penumbra-viewer");
+  Viewer viewer(options, std::move(settings), window);
+  viewer.run();
+}
+
+}  // namespace penumbra::viewer

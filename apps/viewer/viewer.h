@@ -1,0 +1,26 @@
+// The viewer's loop: load the scene, render when something the frame depends on changes, show
+// the frame or a diagnostic in the scene area at the window's top left, the panel at its right.
+#pragma once
+
+#include <string>
+
+namespace penumbra::viewer {
+
+struct ViewerOptions {
+  std::string settingsFile;  // loaded at start; empty: the defaults
+  int frames = 0;            // > 0: scripted, exits after this many frames
+  std::string screenshot;    // scripted: the window's PNG written after the last frame
+  std::string saveSettings;  // scripted: the settings file saved after the last frame
+  bool hidePanel = false;
+  std::string show = "shaded";   // what the scene area shows at start (display_image.h viewId)
+  std::string split;             // a technique id: the split view's right side from the start
+  int probeX = -1, probeY = -1;  // >= 0: the pixel under the cursor at start (scripted runs)
+  int windowWidth = 1280;
+  int windowHeight = 800;
+};
+
+// Runs until the window closes (or the scripted frames are done); throws Error for bad settings
+// at start and for a window or context that cannot be made.
+void runViewer(const ViewerOptions& options);
+
+}  // namespace penumbra::viewer

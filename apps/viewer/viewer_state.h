@@ -1,0 +1,55 @@
+// Everything the viewer shows and edits, apart from GL objects: the settings (as saved and as the
+// command line takes them), the camera and light being moved, what the scene area shows.
+#pragma once
+
+#include <deque>
+#include <string>
+
+#include "camera_control.h"
+#include "display_image.h"
+#include "penumbra/gl/settings_json.h"
+
+namespace penumbra::viewer {
+
+struct ViewerState {
+  gl::Settings settings;  // settings.techniques.front() is the technique shown
+  Scene scene;            // loaded from settings.scene, with settings.view applied
+  Camera camera;          // the view being moved; starts as the scene's camera
+  Light light;            // the light being moved; starts as the scene's light
+  CameraMode cameraMode = CameraMode::Orbit;
+  View view = View::Shaded;
+  int channel = 0;  // View::Channel's technique channel
+  bool showPanel = true;
+  // The split view: right of the divider (a share of the frame's width), this technique with
+  // these parameters; left, the settings' technique.
+  bool split = false;
+  Technique splitTechnique = Technique::Pcf;
+  TechniqueParams splitParams = defaultTechniqueParams();
+  float divider = 0.5f;
+  std::string settingsPath = "penumbra-viewer.json";  // the panel's save / load file
+  std::string message;  // the last error or confirmation, shown in the panel
+  bool messageIsError = false;
+  // The last frames' per-pass times, oldest first: GPU timer queries and wall clock.
+  std::deque<gl::PassTimes> gpuTimes;
+  std::deque<gl::PassTimes> wallTimes;
+  bool graphGpuTimes = false;
+};
+
+// What the panel changed this frame, so that only what depends on it is redone.
+struct Changes {
+  bool scene = false;    // reload the scene (and take its camera and light)
+  bool render = false;   // render the frame again
+  bool display = false;  // compose the scene area again from the last render
+  bool saveSettings = false;
+  bool loadSettings = false;
+};
+
+// A settings file for the viewer (the defaults when `path` is empty): one technique, a scene that
+// loadScene can try; throws Error otherwise.
+gl::Settings loadViewerSettings(const std::string& path);
+
+// The settings with the current camera and light written into their view overrides: what a
+// saved file must hold to reproduce this frame.
+gl::Settings settingsToSave(const ViewerState& state);
+
+}  // namespace penumbra::viewer

@@ -1,0 +1,53 @@
+// Merging the settings file with the command line.
+#include "settings_options.h"
+
+#include <algorithm>
+
+#include "penumbra/error.h"
+#include "penumbra/params.h"
+
+namespace penumbra::cli {
+
+void addSettingsOption(CLI::App& app, std::string& path) {
+  app.add_option("--settings", path,
+                 "JSON settings file (keys are these options' names; the viewer saves one, "
+                 "docs/viewer.md); options given on the command line override the file's values");
+}
+
+gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
+                             const SceneOptions& scene, const TechniqueOptions& technique,
+                             const RenderOptions& render) {
+  gl::Settings s;
+  s.scene = scene.scene;
+  s.techniques = selectedTechniques(technique);
+  RenderOptions options = render;
+  // A file may set the cascade count the tuning options need: checked after merging.
+  options.cascadesTuned = false;
+  s.render = toRenderSettings(options);
+  s.render.params = defaultTechniqueParams();
+  if (!path.empty()) {
+    std::vector<std::string> given;
+    for (std::string_view key : gl::settingsKeys()) {
+      if (key == "param" || key == "light" || key == "camera") continue;  // merged below
+      if (command.count("--" + std::string(key)) > 0) given.emplace_back(key);
+    }
+    // --blur on the command line means that width with its default sigma, not the file's.
+    if (command.count("--blur") > 0 && command.count("--blur-sigma") == 0) {
+      given.emplace_back("blur-sigma");
+    }
+    gl::applySettingsFile(path, s, given);
+  }
+  if (render.cascadesTuned && s.render.cascades.count == 1) {
+    throw Error(
+        "the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
+        "--cascades 2..8 (1 is one map of the whole scene)");
+  }
+  s.view = sceneOverrides(scene, s.view);
+  for (const std::string& assignment : technique.params) {
+    applyParamAssignment(s.techniques, s.render.params, assignment);
+  }
+  for (Technique t : s.techniques) validateParams(t, s.render.params);
+  return s;
+}
+
+}  // namespace penumbra::cli
