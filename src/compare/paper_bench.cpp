@@ -89,6 +89,35 @@ std::vector<std::string> exponentFindings(const std::vector<CaseMeasurement>& ca
   return findings;
 }
 
+// How the measured ratios stand against the paper's: within a quarter of them, or not, and why
+// where the device explains it.
+std::string paperAgreement(const std::vector<CaseMeasurement>& cases, bool softwareDevice) {
+  double lowest = INFINITY, highest = 0.0;
+  int compared = 0;
+  for (const CaseMeasurement& m : cases) {
+    if (!m.benchCase.paperTimeRatio || *m.benchCase.paperTimeRatio == 1.0) continue;
+    const double quotient = m.timeRatio / *m.benchCase.paperTimeRatio;
+    lowest = std::min(lowest, quotient);
+    highest = std::max(highest, quotient);
+    ++compared;
+  }
+  if (compared == 0) return "";
+  const std::string range = format2(lowest) + "x to " + format2(highest) + "x the paper's";
+  if (lowest >= 0.75 && highest <= 1.25) {
+    return "Against the paper: agrees; our time ratios are " + range + ".";
+  }
+  std::string line = "Against the paper: disagrees; our time ratios are " + range + ".";
+  if (softwareDevice) {
+    line +=
+        " This device rasterises, samples and filters in software on the CPU: every texture "
+        "fetch, filter tap and transcendental costs instructions that the papers' GPUs spent in "
+        "fixed-function texture units, so techniques that read more (more channels, "
+        "anisotropic or trilinear filtering, wider kernels) weigh far more here. Rerun on a GPU "
+        "(GPU timer queries) to compare with the papers.";
+  }
+  return line;
+}
+
 }  // namespace
 
 ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
@@ -135,6 +164,8 @@ ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
     m.memoryRatio = base->shadowBytes > 0 ? double(m.shadowBytes) / double(base->shadowBytes) : 0.0;
   }
   if (experiment.fitsExponents) result.findings = exponentFindings(result.cases);
+  const std::string agreement = paperAgreement(result.cases, !gpuTimers);
+  if (!agreement.empty()) result.findings.push_back(agreement);
   return result;
 }
 
