@@ -36,6 +36,8 @@ struct CompareOptions {
   // Sized for a two-core machine without a GPU: the whole report in about 20 s.
   RenderOptions render = compareRenderDefaults();
   int supersample = 4;
+  int areaSamples = kMinAreaLightSamples;
+  bool filterGiven = false;  // --filter on the command line
   int frames = 4;
   double tau = 0.05;
   std::string outDir = "out/compare";
@@ -62,7 +64,13 @@ void runCompare(const CompareOptions& o) {
   const TechniqueParams params = request.settings.params;
   request.settings = toRenderSettings(o.render);
   request.settings.params = params;
+  // Soft shadows of the filterable techniques widen their filter by mip level: without a --filter,
+  // a light size makes the lookups trilinear (bilinear ones cannot widen).
+  if (request.view.lightSize && *request.view.lightSize > 0.0f && !o.filterGiven) {
+    request.settings.filter = FilterMode::Trilinear;
+  }
   request.supersample = o.supersample;
+  request.areaLightSamples = o.areaSamples;
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
@@ -106,6 +114,10 @@ void registerCompareCommand(CLI::App& app) {
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")
       ->capture_default_str();
+  cmd->add_option("--area-samples", o->areaSamples,
+                  "with --light-size: point samples of the area-light reference, side^2 with side "
+                  "in [8, 32]")
+      ->capture_default_str();
   cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")
       ->capture_default_str();
   cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
@@ -117,7 +129,10 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "replace --out even when it is not a penumbra report (deletes everything in it)");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  cmd->callback([o] { runCompare(*o); });
+  cmd->callback([o, cmd] {
+    o->filterGiven = cmd->get_option("--filter")->count() > 0;
+    runCompare(*o);
+  });
 }
 
 }  // namespace penumbra::cli

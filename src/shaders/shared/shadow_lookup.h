@@ -10,6 +10,7 @@
 #include "lookup_footprint.h"
 #include "mip_span.h"
 #include "prelude.h"
+#include "soft_shadow.h"
 #include "summed_area.h"
 #include "technique_dispatch.h"
 PENUMBRA_BEGIN_SHARED
@@ -261,12 +262,31 @@ struct ShadowSample {
 
 // The whole lookup for a receiver at uv (its screen derivatives uvDx, uvDy) and linear light-space
 // depth receiverDepth (clamped to [0,1]), with the receiver plane's depth gradient per texel.
+// A light with a size (soft_shadow.h) makes PCF PCSS and widens every filterable technique's
+// footprint to the penumbra its blocker search estimates; the hard test stays hard.
 PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, int technique,
                                           TechniqueParams p, vec2 uv, float receiverDepth,
-                                          vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {
+                                          vec2 uvDx, vec2 uvDy, vec2 depthPerTexel,
+                                          SoftLight light) {
   ShadowSample r;
   r.diagnostic = 0.0f;
   float d = clamp(receiverDepth, 0.0f, 1.0f);
+  if (light.size > 0.0f && technique != kTechniqueHard) {
+    BlockerEstimate blockers = searchBlockers(s, ls.shadowMapSize, light, uv, d, depthPerTexel);
+    if (blockers.share == 0.0f) {
+      r.visibility = 1.0f;  // nothing between the receiver and any point of the light
+      return r;
+    }
+    float width = softFilterTexels(light, d, blockers);
+    if (technique == kTechniquePcf) {
+      r.visibility = pcssVisibility(s, ls.shadowMapSize, uv, d, depthPerTexel,
+                                    p.pcf.receiverPlane, p.pcf.bias, width);
+      return r;
+    }
+    SoftFootprint footprint = softFootprint(uvDx, uvDy, width, ls.shadowMapSize, ls.filterMode);
+    uvDx = footprint.uvDx;
+    uvDy = footprint.uvDy;
+  }
   if (technique == kTechniquePcf || technique == kTechniqueHard) {
     PcfParams pcf = p.pcf;
     pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
