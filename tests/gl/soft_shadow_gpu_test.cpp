@@ -115,6 +115,8 @@ TEST_F(SoftShadowGpu, AreaLightReferenceEqualsTheAnalyticDiskPenumbraAndConverge
   // 256); the map's texels move the edge by up to half a texel (1/140 of the penumbra), 0.005
   // of visibility at the steepest.
   EXPECT_LT(coarse.maxAbsolute, 0.25 + 0.005);
+  // Those cells' errors are independent, each within 1/N: RMSE <= sqrt(2 side) / N (0.0625).
+  EXPECT_LT(coarse.rmse, std::sqrt(16.0) / 64.0);
   EXPECT_LT(fine.maxAbsolute, 0.125 + 0.005);
   // Converges: the RMSE falls with the samples (stratified sampling of an edge: as N^-3/4,
   // 2.8x from 64 to 256; asked for 2x). Measured on llvmpipe: 0.0225 (64), 0.0033 (1024).
