@@ -8,6 +8,8 @@
 #include <cmath>
 #include <cstdio>
 #include <glm/gtc/constants.hpp>
+#include <string>
+#include <vector>
 
 #include "gl_test_context.h"
 #include "penumbra/area_light.h"
@@ -121,6 +123,53 @@ TEST_F(SoftShadowGpu, AreaLightReferenceEqualsTheAnalyticDiskPenumbraAndConverge
   // Converges: the RMSE falls with the samples (stratified sampling of an edge: as N^-3/4,
   // 2.8x from 64 to 256; asked for 2x). Measured on llvmpipe: 0.0225 (64), 0.0033 (1024).
   EXPECT_LT(fine.rmse, 0.5 * coarse.rmse);
+}
+
+TEST_F(SoftShadowGpu, SoftLookupsEqualTheCpuTwinOnThePenumbraeScene) {
+  gl::Renderer renderer(*context);
+  Scene scene = makeBuiltinScene("penumbrae");
+  scene.light.size = 0.1f;
+  const LightView view = fitLightView(scene);
+  struct Case {
+    Technique technique;
+    FilterMode filter;
+  };
+  for (const Case c :
+       {Case{Technique::Pcf, FilterMode::Point}, Case{Technique::Vsm, FilterMode::Trilinear},
+        Case{Technique::Evsm4, FilterMode::Trilinear},
+        Case{Technique::Msm, FilterMode::SummedArea}}) {
+    gl::RenderSettings s;
+    s.technique = c.technique;
+    s.filter = c.filter;
+    s.shadowMapSize = 256;
+    s.width = 96;
+    s.height = 54;
+    s.blur = {BlurKernel::Box, 1, 1.0f};
+    const gl::RenderResult r = renderer.render(scene, s);
+    LookupConfig config{c.technique, r.params,     c.filter,
+                        s.blur,      s.anisotropy, renderer.halfFloatRounding()};
+    config.softLight = {scene.light.size, 0, view.nearDistance, view.farDistance,
+                        view.texelWorldSize(s.shadowMapSize)};
+    const CpuShadowLookup twin(renderer.readDepthMap(), config);
+    std::vector<float> errors;
+    for (int y = 0; y < s.height; ++y) {
+      for (int x = 0; x < s.width; ++x) {
+        if (r.lookup.at(x, y, 3) <= 0.0f) continue;
+        errors.push_back(
+            std::abs(twin.lookup(gl::lookupPixelAt(r, x, y)).visibility - r.visibility.at(x, y)));
+      }
+    }
+    std::sort(errors.begin(), errors.end());
+    ASSERT_GT(errors.size(), 1000u);
+    const float p99 = errors[size_t(0.99 * double(errors.size()))];
+    std::printf("%s %s: %zu pixels, p99 %.2e, max %.2e\n",
+                std::string(techniqueId(c.technique)).c_str(),
+                std::string(filterModeName(c.filter)).c_str(), errors.size(), p99, errors.back());
+    // Both sides run shared/soft_shadow.h; only rounding differs (fp32 in another order, the
+    // texture unit's 8-bit filter weights for trilinear lookups): 99% of pixels within 2e-3, the
+    // rest where a search or filter tap rounds to the neighbouring texel.
+    EXPECT_LT(p99, 2e-3f) << techniqueId(c.technique);
+  }
 }
 
 }  // namespace
