@@ -102,9 +102,9 @@ TEST(Pcss, SpotLightPenumbraFollowsThePerspectiveFormula) {
 }
 
 TEST(SoftShadows, FilterableWidthMatchesPcssInTheMean) {
-  // A filterable technique over the same edge: its mip level follows the same blocker estimate,
-  // and the level's kernel (2^lod blocks under the bilinear tent) has the second moment of
-  // PCSS's box. VSM is exact over a two-depth edge (Chebyshev's bound is tight for two depths,
+  // A filterable technique over the same edge: its mip probes (soft_shadow.h) follow the same
+  // blocker estimate, and their kernel (4 x 4 probes of 2^lod blocks under the bilinear tent) has
+  // the second moment of PCSS's box. VSM is exact over a two-depth edge (Chebyshev's bound is tight for two depths,
   // thesis §3.2), so its profile is the filter's. Mip blocks are aligned to the map, so the
   // width depends on where the edge falls in a block: averaged over the 16 phases of the
   // coarsest level used (lod 3.1: 8- and 16-texel blocks).
@@ -120,7 +120,9 @@ TEST(SoftShadows, FilterableWidthMatchesPcssInTheMean) {
     const CpuShadowLookup vsm(depth, softConfig(Technique::Vsm, FilterMode::Trilinear, light));
     mean += measuredPenumbraTexels(vsm, dReceiver) / 16.0;
   }
-  EXPECT_NEAR(mean, 15.0, 0.2 * 15.0);
+  // The probes' kernels blend two mip levels linearly in lod, not in variance: their width is
+  // off by up to 6% between levels. Measured on the CPU twin: 15.03.
+  EXPECT_NEAR(mean, 15.0, 0.1 * 15.0);
 }
 
 TEST(SoftShadows, EveryTechniquesSoftVariantIsAVisibilityAndLitWhereNothingOccludes) {

@@ -149,6 +149,34 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
   return f;
 }
 
+// The soft variant's filtered channels for the mip-mapped filter modes: the box of `width` texels
+// (the penumbra) as kSoftProbeSide^2 probes (soft_shadow.h), each channel reduced over them by its
+// own reduction (mean, min, max or log-space mean).
+PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSettings ls,
+                                                    int technique, TechniqueParams p, vec2 uv,
+                                                    float width, float receiverDepth) {
+  int size = ls.shadowMapSize;
+  SoftFootprint probe =
+      softFootprint(vec2(0.0f), vec2(0.0f), width / float(kSoftProbeSide), size, ls.filterMode);
+  ivec2 range = receiverChannelRange(technique, p, receiverDepth);
+  ChannelAccumulator acc[kMaxChannels];
+  for (int c = range.x; c <= range.y; ++c) {
+    acc[c] = startReduction(channelReduction(technique, c, p), p.esm.exponent);
+  }
+  float share = 1.0f / float(kSoftProbeSide * kSoftProbeSide);
+  for (int j = 0; j < kSoftProbeSide; ++j) {
+    for (int i = 0; i < kSoftProbeSide; ++i) {
+      FilteredChannels f = filterChannels(s, ls, technique, p, uv + softProbeOffset(i, j, width, size),
+                                          probe.uvDx, probe.uvDy, receiverDepth);
+      for (int c = range.x; c <= range.y; ++c) acc[c] = accumulateTap(acc[c], f.values[c], share);
+    }
+  }
+  FilteredChannels result;
+  for (int c = 0; c < kMaxChannels; ++c) result.values[c] = 0.0f;
+  for (int c = range.x; c <= range.y; ++c) result.values[c] = reductionResult(acc[c]);
+  return result;
+}
+
 // A level-0 depth for PCF: the channel texture holds raw depth for PCF and the hard test; ESM's
 // fallback reads the light pass's depth, which its prefilter never touched.
 PENUMBRA_INLINE float pcfDepthTexel(LookupSources s, bool fromLightDepth, ivec2 texel) {
@@ -271,6 +299,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
   ShadowSample r;
   r.diagnostic = 0.0f;
   float d = clamp(receiverDepth, 0.0f, 1.0f);
+  bool softProbes = false;  // the penumbra, not the pixel's footprint, sets the filter width
+  float softWidth = 0.0f;
   if (light.size > 0.0f && technique != kTechniqueHard) {
     BlockerEstimate blockers = searchBlockers(s, ls.shadowMapSize, light, uv, d, depthPerTexel);
     if (blockers.share == 0.0f) {
@@ -284,6 +314,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
       return r;
     }
     SoftFootprint footprint = softFootprint(uvDx, uvDy, width, ls.shadowMapSize, ls.filterMode);
+    softProbes = ls.filterMode != kFilterSummedArea && any(notEqual(footprint.uvDx, uvDx));
+    softWidth = width;
     uvDx = footprint.uvDx;
     uvDy = footprint.uvDy;
   }
@@ -300,7 +332,9 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
     return r;
   }
-  FilteredChannels f = filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+  FilteredChannels f = softProbes
+                           ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
+                           : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
   if (technique == kTechniqueEsm &&
       esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
     r.diagnostic = 1.0f;

@@ -157,5 +157,17 @@ PENUMBRA_INLINE SoftFootprint softFootprint(vec2 uvDx, vec2 uvDy, float width, i
   return f;
 }
 
+// Mip-mapped soft lookups probe the box of `width` texels at kSoftProbeSide^2 points, each probe
+// filtered over width / kSoftProbeSide (softFootprint), the probes combined by each channel's
+// reduction (shadow_lookup.h softFilterChannels): like PCSS's taps, shifted kernels that tile the
+// box, so the kernel is centred on the lookup and grows smoothly instead of following the mip
+// chain's block grid (one probe at the box's level showed its blocks in wide penumbrae). The
+// grid's variance plus a probe's equals the box's (2^lod = width / (K sqrt 3) per probe).
+const int kSoftProbeSide = 4;
+
+PENUMBRA_INLINE vec2 softProbeOffset(int i, int j, float width, int size) {
+  return ((vec2(float(i), float(j)) + 0.5f) / float(kSoftProbeSide) - 0.5f) * (width / float(size));
+}
+
 PENUMBRA_END_SHARED
 #endif
