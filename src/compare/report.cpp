@@ -110,6 +110,7 @@ ordered_json settingsJson(const ComparisonRequest& r) {
           {"ground_truth_supersampling", r.supersample},
           {"camera_path_frames", r.pathFrames},
           {"tau", r.tau},
+          {"area_light_samples", r.areaLightSamples},
           {"pcf_kernel_matched_to_prefilter", r.matchPcfKernel},
           {"cascades", ordered_json::parse(gl::cascadeSettingsJson(s.cascades))}};
 }

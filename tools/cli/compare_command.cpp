@@ -38,6 +38,7 @@ struct CompareOptions {
   int supersample = 4;
   int areaSamples = kMinAreaLightSamples;
   bool filterGiven = false;  // --filter on the command line
+  bool blurGiven = false;    // --blur
   int frames = 4;
   double tau = 0.05;
   std::string outDir = "out/compare";
@@ -64,10 +65,13 @@ void runCompare(const CompareOptions& o) {
   const TechniqueParams params = request.settings.params;
   request.settings = toRenderSettings(o.render);
   request.settings.params = params;
-  // Soft shadows of the filterable techniques widen their filter by mip level: without a --filter,
-  // a light size makes the lookups trilinear (bilinear ones cannot widen).
-  if (request.view.lightSize && *request.view.lightSize > 0.0f && !o.filterGiven) {
-    request.settings.filter = FilterMode::Trilinear;
+  // Soft shadows of the filterable techniques widen their filter by mip level: without a
+  // --filter, a light size makes the lookups trilinear (bilinear ones cannot widen).
+  // The area-light reference has no prefilter either: without a --blur, the penumbra alone sets
+  // the filter's width.
+  if (request.view.lightSize && *request.view.lightSize > 0.0f) {
+    if (!o.filterGiven) request.settings.filter = FilterMode::Trilinear;
+    if (!o.blurGiven) request.settings.blur.radius = 0;
   }
   request.supersample = o.supersample;
   request.areaLightSamples = o.areaSamples;
@@ -131,6 +135,7 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   cmd->callback([o, cmd] {
     o->filterGiven = cmd->get_option("--filter")->count() > 0;
+    o->blurGiven = cmd->get_option("--blur")->count() > 0;
     runCompare(*o);
   });
 }

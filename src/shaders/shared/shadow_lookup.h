@@ -313,6 +313,9 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
                                     p.pcf.receiverPlane, p.pcf.bias, width);
       return r;
     }
+    // The summed-area box replaces the blur (its minimum is the blur's width); the mip probes
+    // come after it.
+    if (ls.filterMode != kFilterSummedArea) width = softWidthBeyondBlur(width, ls);
     SoftFootprint footprint = softFootprint(uvDx, uvDy, width, ls.shadowMapSize, ls.filterMode);
     softProbes = ls.filterMode != kFilterSummedArea && any(notEqual(footprint.uvDx, uvDx));
     softWidth = width;

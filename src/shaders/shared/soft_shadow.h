@@ -4,6 +4,7 @@
 // or summed-area box, docs/techniques.md "Soft shadows").
 #ifndef PENUMBRA_SHARED_SOFT_SHADOW_H
 #define PENUMBRA_SHARED_SOFT_SHADOW_H
+#include "filter_weights.h"
 #include "hard.h"
 #include "lookup_access.h"
 #include "lookup_footprint.h"
@@ -155,6 +156,19 @@ PENUMBRA_INLINE SoftFootprint softFootprint(vec2 uvDx, vec2 uvDy, float width, i
     f.uvDy = vec2(0.0f, least);
   }
   return f;
+}
+
+// The part of a penumbra of `width` texels the mip probes still have to filter once the
+// prefilter's blur has: widths of box kernels combine like standard deviations, so the probes'
+// box gets the variance width^2 / 12 less the blur's (box of 2r+1 taps: r (r + 1) / 3; Gaussian:
+// sigma^2, its truncation ignored). Without this the blur and the penumbra's filter stacked: on
+// backyard the default 5-tap blur widened every soft filterable technique's penumbra beyond the
+// area light's.
+PENUMBRA_INLINE float softWidthBeyondBlur(float width, LookupSettings ls) {
+  float r = float(ls.blurRadius);
+  float blurVariance = ls.blurKernel == kKernelGaussian ? ls.blurSigma * ls.blurSigma
+                                                        : r * (r + 1.0f) / 3.0f;
+  return sqrt(max(width * width - 12.0f * blurVariance, 0.0f));
 }
 
 // Mip-mapped soft lookups probe the box of `width` texels at kSoftProbeSide^2 points, each probe
