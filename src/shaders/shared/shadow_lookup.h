@@ -166,8 +166,9 @@ PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSetti
   float share = 1.0f / float(kSoftProbeSide * kSoftProbeSide);
   for (int j = 0; j < kSoftProbeSide; ++j) {
     for (int i = 0; i < kSoftProbeSide; ++i) {
-      FilteredChannels f = filterChannels(s, ls, technique, p, uv + softProbeOffset(i, j, width, size),
-                                          probe.uvDx, probe.uvDy, receiverDepth);
+      vec2 at = uv + softProbeOffset(i, j, width, size);
+      FilteredChannels f =
+          filterChannels(s, ls, technique, p, at, probe.uvDx, probe.uvDy, receiverDepth);
       for (int c = range.x; c <= range.y; ++c) acc[c] = accumulateTap(acc[c], f.values[c], share);
     }
   }
