@@ -238,5 +238,19 @@ TEST(AreaLight, LightSizesOutOfRangeAreRefusedWithTheRange) {
   EXPECT_THROW(checkLightSize(sun), Error);
 }
 
+TEST(AreaLight, LightSizeOverridesAreCheckedAgainstTheFinalLightsKind) {
+  Scene scene = makeBuiltinScene("penumbrae");  // directional
+  SceneOverrides o;
+  o.lightSize = 0.05f;
+  applyOverrides(scene, o);
+  EXPECT_EQ(scene.light.size, 0.05f);
+  o.lightSize = 5.0f;  // a spot light's range, not a directional light's
+  EXPECT_THROW(applyOverrides(scene, o), Error);
+  o.lightPosition = glm::vec3(0.0f, 8.0f, 0.0f);  // the same size on a spot light
+  applyOverrides(scene, o);
+  EXPECT_EQ(scene.light.kind, LightKind::Spot);
+  EXPECT_EQ(scene.light.size, 5.0f);
+}
+
 }  // namespace
 }  // namespace penumbra

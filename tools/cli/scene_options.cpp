@@ -1,5 +1,6 @@
 // Scene and view options. The view file is JSON (docs/scenes.md):
 //   {"light": {"direction": [x, y, z]} or {"position": [...], "target": [...], "spot_angle": deg},
+//    with an optional "size" (Light::size),
 //    "camera": {"position": [x, y, z], "target": [x, y, z], "fov": deg}}
 #include "scene_options.h"
 
@@ -60,6 +61,8 @@ void readViewFile(const std::string& path, SceneOverrides& o) {
         o.lightTarget = jsonVector(v, at);
       } else if (key == "light" && field == "spot_angle") {
         o.spotAngleDegrees = jsonNumber(v, at);
+      } else if (key == "light" && field == "size") {
+        o.lightSize = jsonNumber(v, at);
       } else if (key == "camera" && field == "position") {
         o.cameraPosition = jsonVector(v, at);
       } else if (key == "camera" && field == "target") {
@@ -69,7 +72,8 @@ void readViewFile(const std::string& path, SceneOverrides& o) {
       } else if (key == "light" || key == "camera") {
         throw Error(
             at + " is not a setting; " + key + " takes " +
-            (key == "light" ? "direction, position, target, spot_angle" : "position, target, fov"));
+            (key == "light" ? "direction, position, target, spot_angle, size"
+                            : "position, target, fov"));
       } else {
         throw Error(where + " is not a setting; the file takes \"light\" and \"camera\"");
       }
