@@ -310,8 +310,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     }
     float width = softFilterTexels(light, d, blockers);
     if (technique == kTechniquePcf) {
-      r.visibility = pcssVisibility(s, ls.shadowMapSize, uv, d, depthPerTexel,
-                                    p.pcf.receiverPlane, p.pcf.bias, width);
+      r.visibility = pcssVisibility(s, ls.shadowMapSize, uv, d, depthPerTexel, p.pcf.receiverPlane,
+                                    p.pcf.bias, width);
       return r;
     }
     // The summed-area box replaces the blur (its minimum is the blur's width); the mip probes
@@ -336,9 +336,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
     return r;
   }
-  FilteredChannels f = softProbes
-                           ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
-                           : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+  FilteredChannels f = softProbes ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
+                                  : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
   if (technique == kTechniqueEsm &&
       esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
     r.diagnostic = 1.0f;

@@ -14,10 +14,10 @@ PENUMBRA_BEGIN_SHARED
 // The light as the lookup sees it. Linear depth d in [0,1] is the distance
 // near + d (far - near): from the light (spot) or along its direction (directional).
 struct SoftLight {
-  float size;            // 0: a point light. Spot: disk diameter, world units; directional: the
-                         // tangent of the angular diameter (penumbra per unit of distance)
-  int perspective;       // 1: spot light, 0: directional
-  float nearDistance;    // world units
+  float size;          // 0: a point light. Spot: disk diameter, world units; directional: the
+                       // tangent of the angular diameter (penumbra per unit of distance)
+  int perspective;     // 1: spot light, 0: directional
+  float nearDistance;  // world units
   float farDistance;
   float texelWorldSize;  // a level-0 texel's world size: directional everywhere, spot at unit
                          // distance (LightView::texelWorldSize)
@@ -166,8 +166,8 @@ PENUMBRA_INLINE SoftFootprint softFootprint(vec2 uvDx, vec2 uvDy, float width, i
 // area light's.
 PENUMBRA_INLINE float softWidthBeyondBlur(float width, LookupSettings ls) {
   float r = float(ls.blurRadius);
-  float blurVariance = ls.blurKernel == kKernelGaussian ? ls.blurSigma * ls.blurSigma
-                                                        : r * (r + 1.0f) / 3.0f;
+  float blurVariance =
+      ls.blurKernel == kKernelGaussian ? ls.blurSigma * ls.blurSigma : r * (r + 1.0f) / 3.0f;
   return sqrt(max(width * width - 12.0f * blurVariance, 0.0f));
 }
 
