@@ -71,7 +71,20 @@ struct Light {
   glm::vec3 position{0.0f, 10.0f, 0.0f};   // spot: where it is
   glm::vec3 target{0.0f};                  // spot: where it points
   float spotAngleDegrees = 60.0f;          // spot: full cone angle
+  // Soft shadows (docs/reference.md, area light): 0 is a point light (hard shadows). Spot: the
+  // diameter in world units of a disk light at `position` facing along the spot axis, [0, 10].
+  // Directional: the tangent of the sun disk's angular diameter, i.e. world units of disk
+  // diameter per world unit of distance, [0, 0.5] (the sun's is 0.0093): a light at infinity has
+  // no size in world units, only this ratio, which is what its penumbra depends on.
+  float size = 0.0f;
 };
+
+// The largest light size of each kind (Light::size).
+inline constexpr float kMaxSpotLightSize = 10.0f;
+inline constexpr float kMaxDirectionalLightSize = 0.5f;
+
+// Throws Error naming the valid range when the light's size is not finite or out of range.
+void checkLightSize(const Light& light);
 
 // A known trouble spot in the default view, in normalised image coordinates (0,0 top left).
 struct TroubleSpot {
@@ -153,13 +166,14 @@ struct SceneOverrides {
   std::optional<glm::vec3> cameraPosition;
   std::optional<glm::vec3> cameraTarget;
   std::optional<float> cameraFovDegrees;  // vertical, (0, 170]
+  std::optional<float> lightSize;         // Light::size, checked against the final light's kind
 
   bool empty() const;
 };
 
 // Applies the overrides; throws Error for non-finite values, a zero light direction, both a
 // light direction and a light position, a camera or spot light looking at its own position,
-// or angles out of range.
+// angles or a light size out of range.
 void applyOverrides(Scene& scene, const SceneOverrides& overrides);
 
 }  // namespace penumbra

@@ -15,11 +15,28 @@
 namespace penumbra::compare {
 namespace {
 
-gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique technique) {
+// PCF matched to the prefilter is the filtered reference; under an area light PCF is PCSS with
+// its own parameters, measured like any other technique.
+bool pcfIsReference(const ComparisonRequest& request, Technique technique, bool areaLight) {
+  return technique == Technique::Pcf && request.matchPcfKernel && !areaLight;
+}
+
+gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique technique,
+                               bool areaLight = false) {
   gl::RenderSettings s = request.settings;
   s.technique = technique;
-  if (technique == Technique::Pcf && request.matchPcfKernel) s.params.pcf = pcfMatchingPrefilter(s);
+  if (pcfIsReference(request, technique, areaLight)) s.params.pcf = pcfMatchingPrefilter(s);
   return s;
+}
+
+// The frame's reference: the area light's when the light has a size, else the filtered one.
+gl::RenderResult referenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
+                              const gl::FrameView& view, bool areaLight, int supersample) {
+  if (areaLight) {
+    return renderer.renderAreaLightReference(request.settings, view, request.areaLightSamples,
+                                             supersample);
+  }
+  return renderer.renderReference(request.settings, view, supersample);
 }
 
 }  // namespace
@@ -57,6 +74,7 @@ void validateRequest(const ComparisonRequest& request, const gl::Renderer& rende
                 std::to_string(1 << int(std::floor(std::log2(double(size))))) + " or " +
                 std::to_string(2 << int(std::floor(std::log2(double(size))))));
   }
+  checkAreaLightSamples(request.areaLightSamples);
   if (!(request.tau > 0.0 && request.tau < 1.0)) {
     throw Error("leak threshold tau " + std::to_string(request.tau) + " is out of range (0, 1)");
   }
@@ -82,6 +100,16 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   result.scene = loadScene(request.scene);
   applyOverrides(result.scene, request.view);
   requireCascadableLight(request.settings.cascades, result.scene.light);
+  result.areaLight = result.scene.light.size > 0.0f;
+  const bool areaLight = result.areaLight;
+  for (Technique t : request.techniques) {
+    try {
+      gl::Renderer::checkSoftShadows(settingsFor(request, t, areaLight), result.scene.light);
+    } catch (const Error& e) {
+      throw Error("scene '" + request.scene + "' cannot run with technique '" +
+                  std::string(techniqueId(t)) + "': " + e.what());
+    }
+  }
   result.request = request;
   result.device = renderer.deviceDescription();
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
@@ -101,7 +129,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   for (size_t frame = 0; frame < path.size(); ++frame) {
     const gl::FrameView view{path[frame], result.scene.light};
     step("reference, frame " + std::to_string(frame + 1));
-    const gl::RenderResult reference = renderer.renderReference(request.settings, view, 1);
+    const gl::RenderResult reference = referenceFor(request, renderer, view, areaLight, 1);
     references.push_back(reference.visibility);
     if (frame == 0) {
       result.referenceColor = reference.color;
@@ -124,13 +152,13 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       result.worstRegion.clear();
       step("supersampled ground truth");
       result.groundTruthVisibility =
-          renderer.renderReference(request.settings, view, request.supersample).visibility;
+          referenceFor(request, renderer, view, areaLight, request.supersample).visibility;
       result.techniques.resize(request.techniques.size());
       double worst = -1.0;
       for (size_t k = 0; k < request.techniques.size(); ++k) {
         const Technique t = request.techniques[k];
         step(std::string(techniqueId(t)) + ", frame 1");
-        const gl::RenderResult r = renderer.render(settingsFor(request, t), view);
+        const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight), view);
         TechniqueResult& out = result.techniques[k];
         out.technique = t;
         out.params = r.params;
@@ -147,15 +175,16 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         out.error = signedVisibilityError(r.visibility, reference.visibility, result.coverage);
         visibilities[k].push_back(r.visibility);
         masks[k].push_back(litSurfaceMask(r.lookup));
-        const bool pcfIsReference = t == Technique::Pcf && request.matchPcfKernel;
-        if (!pcfIsReference && out.filtered.maxAbsolute > worst && out.filtered.worstX >= 0) {
+        if (!pcfIsReference(request, t, areaLight) && out.filtered.maxAbsolute > worst &&
+            out.filtered.worstX >= 0) {
           worst = out.filtered.maxAbsolute;
           result.worstTechnique = std::string(techniqueId(t));
           result.worstX = out.filtered.worstX;
           result.worstY = out.filtered.worstY;
         }
       }
-      if (result.worstX >= 0) {
+      // The curves plot the filtered reference's kernel, which an area light does not have.
+      if (result.worstX >= 0 && !areaLight) {
         result.worstReceiverDepth = reference.lookup.at(result.worstX, result.worstY, 2);
         // The pixel's own cascade and its kernel (in a blend band the reference also mixes in
         // the next cascade; the curves show the deciding one).
@@ -170,7 +199,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     for (size_t k = 0; k < request.techniques.size(); ++k) {
       const Technique t = request.techniques[k];
       step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
-      const gl::RenderResult r = renderer.render(settingsFor(request, t), view);
+      const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight), view);
       visibilities[k].push_back(r.visibility);
       masks[k].push_back(litSurfaceMask(r.lookup));
       // Times of the last frame: warm, without the driver's first-use shader compilation.
@@ -198,7 +227,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       const Technique t = request.techniques[k];
       CascadeShimmer shimmer;
       for (CascadeFit fit : {CascadeFit::Stabilized, CascadeFit::Tight}) {
-        gl::RenderSettings settings = settingsFor(request, t);
+        gl::RenderSettings settings = settingsFor(request, t, areaLight);
         settings.cascades.fit = fit;
         std::vector<Image> frames, covered;
         for (size_t frame = 0; frame < path.size(); ++frame) {
@@ -218,8 +247,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   if (result.scene.troubleSpots.empty()) {
     std::vector<Image> errors;
     for (const TechniqueResult& t : result.techniques) {
-      const bool pcfIsReference = t.technique == Technique::Pcf && request.matchPcfKernel;
-      if (!pcfIsReference) errors.push_back(t.error);
+      if (!pcfIsReference(request, t.technique, areaLight)) errors.push_back(t.error);
     }
     result.scene.troubleSpots = largestErrorRegions(errors, 3);
   }

@@ -88,6 +88,7 @@ ordered_json settingsJson(const ComparisonRequest& r) {
           {"ground_truth_supersampling", r.supersample},
           {"camera_path_frames", r.pathFrames},
           {"tau", r.tau},
+          {"area_light_samples", r.areaLightSamples},
           {"pcf_kernel_matched_to_prefilter", r.matchPcfKernel},
           {"cascades", ordered_json::parse(gl::cascadeSettingsJson(s.cascades))}};
 }
@@ -136,6 +137,13 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
          "exact PCF of the raw depth under each technique's effective kernel (blur x lookup), "
          "receiver-plane depth per tap; frame 0 (docs/reference.md)"},
         {"ground_truth", "the filtered reference averaged over supersample^2 sub-pixel positions"},
+        {"area_light",
+         r.areaLight ? "light size " + std::to_string(r.scene.light.size) +
+                           ": both references are the area-light reference (mean of hard tests "
+                           "from " +
+                           std::to_string(r.request.areaLightSamples) +
+                           " stratified points on the light's disk) in place of the filtered one"
+                     : std::string("none: a point light")},
         {"columns",
          "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
          "including minification aliasing; temporal_flicker: along the camera path against the "
@@ -169,6 +177,25 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   writeText(dir / "metrics.csv", csv.str());
 }
 
+// The reference the errors are measured against (docs/reference.md).
+std::string referenceName(const ComparisonResult& r) {
+  return r.areaLight ? "area-light reference" : "filtered reference";
+}
+
+// Soft shadows: what stands in for the filtered reference wherever this page names it.
+std::string areaLightNote(const ComparisonResult& r) {
+  if (!r.areaLight) return {};
+  std::ostringstream h;
+  h << "<p><b>Soft shadows, light size " << r.scene.light.size
+    << "</b>: the reference is the <b>area-light reference</b>, the mean of the hard shadow tests "
+       "of "
+    << r.request.areaLightSamples
+    << " shadow maps rendered from stratified points of the light's disk; the ground truth is "
+       "it supersampled. Read \"filtered reference\" below as the area-light reference "
+       "(docs/reference.md).</p>\n";
+  return h.str();
+}
+
 // How PCF ran: matched to the prefilter (the reference itself where the lookup allows) or with
 // the user's own parameters.
 std::string pcfNote(const ComparisonResult& r) {
@@ -176,6 +203,10 @@ std::string pcfNote(const ComparisonResult& r) {
       std::any_of(r.techniques.begin(), r.techniques.end(),
                   [](const TechniqueResult& t) { return t.technique == Technique::Pcf; });
   if (!hasPcf) return {};
+  if (r.areaLight) {
+    return "<p><b>PCF is PCSS</b> under the area light: blocker search, penumbra estimate and a "
+           "variable kernel (docs/techniques.md), with its own bias.</p>\n";
+  }
   if (r.request.matchPcfKernel) {
     return "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
            "receiver-plane test: it is the filtered reference itself for point and bilinear "
@@ -253,6 +284,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << cascades.blendBand << "; the reference is evaluated in each pixel's cascade)";
   }
   h << ".</p>\n"
+    << areaLightNote(r)
     << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's "
        "effective kernel "
        "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the "
@@ -263,8 +295,8 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "<code>metrics.json</code>.</p>\n"
     << pcfNote(r)
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
-    << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the filtered reference; click a column to "
-       "sort.</p>\n<table id=\"metrics\"><thead><tr>"
+    << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the " << referenceName(r)
+    << "; click a column to sort.</p>\n<table id=\"metrics\"><thead><tr>"
     << "<th>technique</th><th>rank</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR "
        "dB</th><th>leak "
        "share</th>"
@@ -302,10 +334,10 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
   }
   h << "<h2>References</h2>\n<div class=\"row\"><figure><img src=\"images/reference_shaded.png\" "
        "alt=\"reference\">"
-    << "<figcaption>filtered reference, shaded</figcaption></figure><figure><img "
-       "src=\"images/reference_visibility.png\" "
-    << "alt=\"reference visibility\"><figcaption>filtered reference "
-       "visibility</figcaption></figure><figure>"
+    << "<figcaption>" << referenceName(r)
+    << ", shaded</figcaption></figure><figure><img src=\"images/reference_visibility.png\" "
+    << "alt=\"reference visibility\"><figcaption>" << referenceName(r)
+    << " visibility</figcaption></figure><figure>"
     << "<img src=\"images/ground_truth_visibility.png\" alt=\"ground truth "
        "visibility\"><figcaption>supersampled "
     << "ground truth visibility</figcaption></figure></div>\n";
@@ -379,7 +411,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   // Visibility is a quantity, not light: its value is the grey level (no sRGB encoding).
   writeGrey16Png(r.referenceVisibility, dir / "images" / "reference_visibility.png");
   writeGrey16Png(r.groundTruthVisibility, dir / "images" / "ground_truth_visibility.png");
-  tiles.push_back({dir / "images" / "reference_shaded.png", "filtered reference"});
+  tiles.push_back({dir / "images" / "reference_shaded.png", referenceName(r)});
   for (const TroubleSpot& spot : r.scene.troubleSpots) {
     writeColorPng(crop(r.referenceColor, spot.rect, 3),
                   dir / "crops" / ("reference_" + slug(spot.name) + ".png"));
@@ -389,7 +421,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     const std::string id(techniqueId(t.technique));
     writeColorPng(t.color, dir / "images" / (id + "_shaded.png"));
     writeGrey16Png(t.visibility, dir / "images" / (id + "_visibility.png"));
-    plotErrorHeatMap(t.error, range, id + ": visibility error against the filtered reference",
+    plotErrorHeatMap(t.error, range, id + ": visibility error against the " + referenceName(r),
                      dir / "images" / (id + "_error.png"));
     for (const TroubleSpot& spot : r.scene.troubleSpots) {
       writeColorPng(crop(t.color, spot.rect, 3),
@@ -404,10 +436,10 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
       tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
   plotParetoScatter(byMemory, "technique memory (MiB, log scale)",
-                    "RMSE against the filtered reference", r.scene.name + ": error against memory",
+                    "RMSE against the " + referenceName(r), r.scene.name + ": error against memory",
                     true, dir / "plots" / "error_vs_memory.png");
   plotParetoScatter(byTime, "frame time (wall ms, log scale)",
-                    "RMSE against the filtered reference", r.scene.name + ": error against time",
+                    "RMSE against the " + referenceName(r), r.scene.name + ": error against time",
                     true, dir / "plots" / "error_vs_time.png");
   const bool hasCurves = !r.worstRegion.empty();
   if (hasCurves) {

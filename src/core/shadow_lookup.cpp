@@ -185,7 +185,8 @@ LookupSample CpuShadowLookup::lookup(const LookupPixel& p) const {
   const shaders::LookupSources sources{textures_.get()};
   const shaders::ShadowSample s =
       shaders::shadowLookup(sources, textures_->settings, int(config_.technique), config_.params,
-                            p.uv, p.receiverDepth, p.uvDx, p.uvDy, p.depthPerTexel);
+                            p.uv, p.receiverDepth, p.uvDx, p.uvDy, p.depthPerTexel,
+                            config_.softLight);
   return {s.visibility, s.diagnostic};
 }
 

@@ -150,6 +150,7 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   program.set("spotAxis", glm::normalize(frame.light.target - frame.light.position));
   program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
   program.set("normalOffsetTexels", settings.normalOffsetTexels);
+  program.set("lightSize", frame.light.size);
   program.set("ambient", settings.ambient);
   program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
   setChannelSampling(maps.filter.channels(), maps.filter.shape().levels, settings);

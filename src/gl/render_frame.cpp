@@ -15,6 +15,7 @@
 #include "shared/cascade_selection.h"
 #include "shared/shading.h"
 #include "shared/summed_area.h"
+#include "box_downsample.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -32,8 +33,19 @@ CascadeFrame singleMap(const LightView& view) {
   return one;
 }
 
+double failureRatePercent(const Image& diagnostic) {
+  size_t drawn = 0, failed = 0;
+  for (float v : diagnostic.data()) {
+    drawn += v >= 0.0f;
+    failed += v > 0.5f;
+  }
+  return drawn == 0 ? 0.0 : 100.0 * double(failed) / double(drawn);
+}
+
+}  // namespace
+
 // Box-averages factor x factor blocks.
-Image downsample(const Image& image, int factor) {
+Image boxDownsample(const Image& image, int factor) {
   if (factor == 1) return image;
   Image out(image.width() / factor, image.height() / factor, image.channels());
   const float weight = 1.0f / float(factor * factor);
@@ -50,17 +62,6 @@ Image downsample(const Image& image, int factor) {
   }
   return out;
 }
-
-double failureRatePercent(const Image& diagnostic) {
-  size_t drawn = 0, failed = 0;
-  for (float v : diagnostic.data()) {
-    drawn += v >= 0.0f;
-    failed += v > 0.5f;
-  }
-  return drawn == 0 ? 0.0 : 100.0 * double(failed) / double(drawn);
-}
-
-}  // namespace
 
 LookupPixel lookupPixelAt(const RenderResult& r, int x, int y) {
   LookupPixel p;
@@ -98,8 +99,27 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
   return render(settings, FrameView{scene.camera, scene.light});
 }
 
+void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& light) {
+  checkLightSize(light);
+  if (light.size == 0.0f) return;
+  if (settings.cascades.count > 1) {
+    throw Error("soft shadows (light size " + std::to_string(light.size) +
+                ") are not supported with cascades: use one map (--cascades 1)");
+  }
+  const bool filterable =
+      settings.technique != Technique::Pcf && settings.technique != Technique::Hard;
+  if (filterable &&
+      (settings.filter == FilterMode::Point || settings.filter == FilterMode::Bilinear)) {
+    throw Error(std::string("soft shadows for ") + std::string(techniqueId(settings.technique)) +
+                " widen the filter by mip level or summed-area box: use --filter trilinear, "
+                "anisotropic or sat, not " +
+                std::string(filterModeName(settings.filter)));
+  }
+}
+
 RenderResult Renderer::render(const RenderSettings& settings, const FrameView& view) {
   validate(settings);
+  checkSoftShadows(settings, view.light);
   RenderResult result = renderFrame(settings, view, false);
   if (settings.technique == Technique::Esm &&
       result.params.esm.classifier != shaders::kEsmClassifyNone) {
@@ -126,9 +146,9 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   completeReferenceOnCpu(full);
   if (supersample == 1) return full;
   RenderResult result;
-  result.color = downsample(full.color, supersample);
-  result.visibility = downsample(full.visibility, supersample);
-  result.diagnostic = downsample(full.diagnostic, supersample);
+  result.color = boxDownsample(full.color, supersample);
+  result.visibility = boxDownsample(full.visibility, supersample);
+  result.diagnostic = boxDownsample(full.diagnostic, supersample);
   result.params = full.params;
   result.cascadeFrame = full.cascadeFrame;
   result.cascadeBlurs = full.cascadeBlurs;

@@ -103,6 +103,9 @@ void applyView(const std::string& key, const json& value, const std::string& sou
       o.lightTarget = vector3(v, at);
     } else if (key == "light" && field == "spot_angle") {
       o.spotAngleDegrees = float(number(v, at, 1e-3, 170.0));
+    } else if (key == "light" && field == "size") {
+      // The widest any light takes; applyOverrides checks it against the light's kind.
+      o.lightSize = float(number(v, at, 0.0, std::max(kMaxSpotLightSize, kMaxDirectionalLightSize)));
     } else if (key == "camera" && field == "position") {
       o.cameraPosition = vector3(v, at);
     } else if (key == "camera" && field == "target") {
@@ -112,7 +115,7 @@ void applyView(const std::string& key, const json& value, const std::string& sou
     } else {
       at.fail(
           std::string("is not a setting; ") + key + " takes " +
-          (key == "light" ? "direction, position, target, spot_angle" : "position, target, fov"));
+          (key == "light" ? "direction, position, target, spot_angle, size" : "position, target, fov"));
     }
   }
   if (key == "light" && o.lightDirection && o.lightPosition) {
@@ -349,6 +352,7 @@ std::string settingsJson(const Settings& s) {
   if (v.lightPosition) light["position"] = vectorJson(*v.lightPosition);
   if (v.lightTarget) light["target"] = vectorJson(*v.lightTarget);
   if (v.spotAngleDegrees) light["spot_angle"] = shortest(*v.spotAngleDegrees);
+  if (v.lightSize) light["size"] = shortest(*v.lightSize);
   if (v.cameraPosition) camera["position"] = vectorJson(*v.cameraPosition);
   if (v.cameraTarget) camera["target"] = vectorJson(*v.cameraTarget);
   if (v.cameraFovDegrees) camera["fov"] = shortest(*v.cameraFovDegrees);

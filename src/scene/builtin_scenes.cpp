@@ -191,6 +191,37 @@ Scene planar() {
   return s;
 }
 
+// Soft shadows' case (issue 11, PCSS: Fernando 2005): square plates floating at four heights
+// and posts of three heights on the ground, so an area light's penumbrae widen with each
+// blocker's distance to the ground (w = size (z_r - z_b) / z_b, soft_shadow.h) and narrow to the
+// posts' feet (contact hardening).
+Scene penumbrae() {
+  Scene s = sceneWithGround("penumbrae",
+                            "plates at four heights and posts of three heights: an area light's "
+                            "penumbrae widen with the blocker-receiver distance",
+                            glm::vec3(0.0f), 4.5f);
+  Mesh plates = makeMesh(kStoneAlbedo);
+  const float heights[4] = {0.2f, 0.6f, 1.2f, 2.2f};
+  for (int i = 0; i < 4; ++i) {
+    addBox(plates, glm::vec3(-3.3f + 2.0f * float(i), heights[i], -1.6f),
+           glm::vec3(0.55f, 0.03f, 0.55f));
+  }
+  Mesh posts = makeMesh(kWoodAlbedo);
+  const float postHeights[3] = {0.4f, 1.2f, 2.4f};
+  for (int i = 0; i < 3; ++i) {
+    addBox(posts, glm::vec3(-2.6f + 2.0f * float(i), 0.5f * postHeights[i], 0.9f),
+           glm::vec3(0.1f, 0.5f * postHeights[i], 0.1f));
+  }
+  s.meshes.push_back(std::move(plates));
+  s.meshes.push_back(std::move(posts));
+  s.camera = {glm::vec3(0.0f, 5.5f, 5.5f), glm::vec3(0.0f, 0.0f, 0.3f), 50.0f};
+  s.light = directional(glm::vec3(0.45f, -1.0f, 0.5f));
+  s.troubleSpots = {{"high plate penumbra", {0.6f, 0.2f, 0.95f, 0.55f}},
+                    {"low plate contact", {0.05f, 0.25f, 0.4f, 0.55f}},
+                    {"post shadows", {0.2f, 0.55f, 0.8f, 0.85f}}};
+  return s;
+}
+
 // Cascaded shadow maps' case: objects receding to the horizon along a street, seen at eye
 // height. One map over the whole scene gives the near objects a few texels each.
 Scene street() {
@@ -228,19 +259,20 @@ struct SceneEntry {
   Scene (*make)();
 };
 
-constexpr std::array<SceneEntry, 9> kScenes{{{"backyard", backyard},
-                                             {"bench", bench},
-                                             {"contact", contact},
-                                             {"spheres", spheres},
-                                             {"overlap", overlap},
-                                             {"minification", minification},
-                                             {"planar", planar},
-                                             {"street", street},
-                                             {"foliage", scene::makeFoliageScene}}};
+constexpr std::array<SceneEntry, 10> kScenes{{{"backyard", backyard},
+                                              {"bench", bench},
+                                              {"contact", contact},
+                                              {"spheres", spheres},
+                                              {"overlap", overlap},
+                                              {"minification", minification},
+                                              {"planar", planar},
+                                              {"street", street},
+                                              {"foliage", scene::makeFoliageScene},
+                                              {"penumbrae", penumbrae}}};
 
-constexpr std::array<std::string_view, 9> kSceneNames{
-    "backyard", "bench",  "contact", "spheres", "overlap",
-    "minification", "planar", "street",  "foliage"};
+constexpr std::array<std::string_view, 10> kSceneNames{
+    "backyard",     "bench",  "contact", "spheres", "overlap",
+    "minification", "planar", "street",  "foliage", "penumbrae"};
 
 }  // namespace
 

@@ -28,9 +28,20 @@ float checkedAngle(float degrees, const char* what) {
 
 }  // namespace
 
+void checkLightSize(const Light& light) {
+  const bool spot = light.kind == LightKind::Spot;
+  const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
+  if (!(light.size >= 0.0f && light.size <= most)) {
+    throw Error("light size " + std::to_string(light.size) + " is out of range [0, " +
+                std::to_string(most) + "] for a " +
+                (spot ? "spot light (world units of disk diameter)"
+                      : "directional light (tangent of its angular diameter)"));
+  }
+}
+
 bool SceneOverrides::empty() const {
   return !lightDirection && !lightPosition && !lightTarget && !spotAngleDegrees &&
-         !cameraPosition && !cameraTarget && !cameraFovDegrees;
+         !cameraPosition && !cameraTarget && !cameraFovDegrees && !lightSize;
 }
 
 void applyOverrides(Scene& scene, const SceneOverrides& o) {
@@ -63,6 +74,8 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
       !(glm::length(scene.light.target - scene.light.position) > 1e-6f)) {
     throw Error("the spot light at " + text(scene.light.position) + " aims at its own position");
   }
+  if (o.lightSize) scene.light.size = *o.lightSize;
+  checkLightSize(scene.light);  // also a file's light, whose kind an override may have changed
   if (o.cameraPosition) scene.camera.position = checked(o.cameraPosition, "camera position");
   if (o.cameraTarget) scene.camera.target = checked(o.cameraTarget, "camera target");
   if (o.cameraFovDegrees) {

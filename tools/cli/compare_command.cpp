@@ -37,6 +37,9 @@ struct CompareOptions {
   // Sized for a two-core machine without a GPU: the whole report in about 20 s.
   RenderOptions render = compareRenderDefaults();
   int supersample = 4;
+  int areaSamples = kMinAreaLightSamples;
+  bool filterGiven = false;  // --filter on the command line
+  bool blurGiven = false;    // --blur
   int frames = 4;
   double tau = 0.05;
   std::string outDir = "out/compare";
@@ -64,7 +67,16 @@ void runCompare(const CompareOptions& o) {
     }
   }
   request.settings = resolved.render;
+  // Soft shadows of the filterable techniques widen their filter by mip level: without a
+  // --filter, a light size makes the lookups trilinear (bilinear ones cannot widen).
+  // The area-light reference has no prefilter either: without a --blur, the penumbra alone sets
+  // the filter's width. A settings file's values are the user's: they are kept as given.
+  if (request.view.lightSize && *request.view.lightSize > 0.0f && o.settingsFile.empty()) {
+    if (!o.filterGiven) request.settings.filter = FilterMode::Trilinear;
+    if (!o.blurGiven) request.settings.blur.radius = 0;
+  }
   request.supersample = o.supersample;
+  request.areaLightSamples = o.areaSamples;
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
@@ -110,6 +122,10 @@ void registerCompareCommand(CLI::App& app) {
   o->command = cmd;
   cmd->add_option("--supersample", o->supersample, "ground-truth sub-pixels per side, 1..8")
       ->capture_default_str();
+  cmd->add_option("--area-samples", o->areaSamples,
+                  "with --light-size: point samples of the area-light reference, side^2 with side "
+                  "in [8, 32]")
+      ->capture_default_str();
   cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")
       ->capture_default_str();
   cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
@@ -121,7 +137,11 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_flag("--force", o->force,
                 "replace --out even when it is not a penumbra report (deletes everything in it)");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  cmd->callback([o] { runCompare(*o); });
+  cmd->callback([o, cmd] {
+    o->filterGiven = cmd->get_option("--filter")->count() > 0;
+    o->blurGiven = cmd->get_option("--blur")->count() > 0;
+    runCompare(*o);
+  });
 }
 
 }  // namespace penumbra::cli

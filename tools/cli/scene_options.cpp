@@ -1,6 +1,6 @@
 // Scene and view options. The view file is JSON (docs/scenes.md, read by
 // penumbra/gl/settings_json.h): {"light": {"direction": [x, y, z]} or {"position": [...],
-// "target": [...], "spot_angle": deg}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
+// "target": [...], "spot_angle": deg, optional "size": Light::size}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
 #include "scene_options.h"
 
 #include <iostream>
@@ -38,6 +38,9 @@ void addSceneOptions(CLI::App& app, SceneOptions& o) {
                  "X,Y,Z: a spot light here, aimed at --light-target or the scene's centre");
   app.add_option("--light-target", o.lightTarget, "X,Y,Z: where the spot light points");
   app.add_option("--spot-angle", o.spotAngle, "spot light's full cone angle in degrees, (0, 170]");
+  app.add_option("--light-size", o.lightSize,
+                 "soft shadows: spot light's disk diameter in world units, [0, 10]; directional "
+                 "light's angular diameter as a tangent, [0, 0.5] (docs/reference.md)");
   app.add_option("--camera-pos", o.cameraPosition, "X,Y,Z: the camera's position");
   app.add_option("--camera-target", o.cameraTarget, "X,Y,Z: the point the camera looks at");
   app.add_option("--camera-fov", o.cameraFov, "vertical field of view in degrees, (0, 170]");
@@ -66,6 +69,7 @@ SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
     overrides.cameraTarget = parseVector(o.cameraTarget, "--camera-target");
   }
   if (o.cameraFov != 0.0f) overrides.cameraFovDegrees = o.cameraFov;
+  if (o.lightSize) overrides.lightSize = o.lightSize;
   return overrides;
 }
 

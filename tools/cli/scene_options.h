@@ -1,9 +1,10 @@
 // Command-line options that choose the scene and set its camera and light (render, compare):
 // --scene NAME|PATH, --light-dir, --light-pos, --light-target, --spot-angle, --camera-pos,
-// --camera-target, --camera-fov and --view FILE.json holding the same settings.
+// --camera-target, --camera-fov, --light-size and --view FILE.json holding the same settings.
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 
 #include "penumbra/scene.h"
@@ -16,6 +17,7 @@ struct SceneOptions {
   std::string lightDirection, lightPosition, lightTarget, cameraPosition, cameraTarget;  // "x,y,z"
   float spotAngle = 0.0f;  // 0: not given
   float cameraFov = 0.0f;
+  std::optional<float> lightSize;  // Light::size
 };
 
 void addSceneOptions(CLI::App& app, SceneOptions& options);

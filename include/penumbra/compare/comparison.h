@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/area_light.h"
 #include "penumbra/depth_distribution.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/metrics.h"
@@ -29,6 +30,10 @@ struct ComparisonRequest {
   // Off when the user set any PCF parameter: PCF then runs with `settings.params.pcf` as given
   // and the report says it is not matched.
   bool matchPcfKernel = true;
+  // With a light size (view.lightSize or the scene's light): the area-light reference's point
+  // samples per light disk (penumbra/area_light.h), replacing the filtered reference; PCF is then
+  // PCSS, not matched.
+  int areaLightSamples = kMinAreaLightSamples;
 };
 
 // Shimmer (frameToFrameChange) of one technique with cascades fitted both ways, measured side by
@@ -66,7 +71,10 @@ struct ComparisonResult {
   ComparisonRequest request;
   std::string device;
   Image referenceColor;
-  Image referenceVisibility;    // the filtered reference, frame 0
+  // True when the scene's light has a size: the references are the area-light reference and its
+  // supersampled version (docs/reference.md), not the filtered reference.
+  bool areaLight = false;
+  Image referenceVisibility;    // the filtered (or area-light) reference, frame 0
   Image groundTruthVisibility;  // supersampled, frame 0
   Image coverage;               // 1 where the shadow test decides the shading (litSurfaceMask)
   std::vector<TechniqueResult> techniques;

@@ -141,6 +141,10 @@ class Renderer {
   // (GL_NVX_gpu_memory_info, GL_ATI_meminfo) or, where the GL does not say, half the machine's
   // RAM. Throws Error saying which and why, and for memory the largest shadow-map size that fits.
   void validate(const RenderSettings& settings) const;
+  // Refuses a light size out of range, and soft shadows (Light::size > 0) with cascades or, for
+  // the filterable techniques, with a filter that cannot widen (point, bilinear). render() calls
+  // it with the frame's light.
+  static void checkSoftShadows(const RenderSettings& settings, const Light& light);
 
   // Caps the memory validate() lets one render plan for, below what the GL offers (several
   // renderers sharing a device, tests). 0 removes the cap.
@@ -162,6 +166,16 @@ class Renderer {
   RenderResult renderReference(const RenderSettings& settings, const FrameView& view,
                                int supersample);
   RenderResult renderReference(const Scene& scene, const RenderSettings& settings, int supersample);
+
+  // The area-light reference (docs/reference.md) of view.light, a light with a size: per pixel,
+  // the mean of the hard shadow tests (receiver plane, no bias beyond rounding) of `samples`
+  // shadow maps rendered from stratified points on the light's disk (penumbra/area_light.h), at
+  // supersample x supersample sub-pixels averaged (1: the reference; 4 or more: its supersampled
+  // ground truth). Colour is each sample light's shading averaged. lookup, receiverPlane,
+  // uvDerivatives and cascades are those of the light's centre (one more render, the last, so
+  // readDepthMap reads the centre's map). One map only (no cascades), MSAA off.
+  RenderResult renderAreaLightReference(const RenderSettings& settings, const FrameView& view,
+                                        int samples, int supersample);
 
   // A cascade's light-pass linear depth (sample 0 under MSAA) of the last render, row 0 at the
   // bottom.

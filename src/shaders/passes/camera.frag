@@ -34,6 +34,7 @@ uniform vec3 lightPosition;   // spot
 uniform vec3 spotAxis;        // spot: unit direction from the light to its target
 uniform float spotCosine;     // spot: cos(half cone angle)
 uniform float normalOffsetTexels;
+uniform float lightSize;  // Light::size: 0 hard, else soft (shared/soft_shadow.h)
 // 0: one map, uv through lightClipFromView. 1: cascades, boxes on the light's view plane.
 uniform int cascaded;
 uniform int cascadeCount;
@@ -106,8 +107,14 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
   return vec2(clamp(referenceVisibility(sources, settings, uv, receiver, uvDx, uvDy,
                                         depthPerTexel), 0.0f, 1.0f), 0.0f);
 #else
+  SoftLight light;
+  light.size = lightSize;
+  light.perspective = lightPerspective;
+  light.nearDistance = lightNear;
+  light.farDistance = lightFar;
+  light.texelWorldSize = cascadeTexelWorldSize[cascade];
   ShadowSample shadow = shadowLookup(sources, settings, technique, params, uv, receiver, uvDx,
-                                     uvDy, depthPerTexel);
+                                     uvDy, depthPerTexel, light);
   return vec2(shadow.visibility, shadow.diagnostic);
 #endif
 }

@@ -10,6 +10,7 @@
 #include "lookup_footprint.h"
 #include "mip_span.h"
 #include "prelude.h"
+#include "soft_shadow.h"
 #include "summed_area.h"
 #include "technique_dispatch.h"
 PENUMBRA_BEGIN_SHARED
@@ -148,6 +149,35 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
   return f;
 }
 
+// The soft variant's filtered channels for the mip-mapped filter modes: the box of `width` texels
+// (the penumbra) as kSoftProbeSide^2 probes (soft_shadow.h), each channel reduced over them by its
+// own reduction (mean, min, max or log-space mean).
+PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSettings ls,
+                                                    int technique, TechniqueParams p, vec2 uv,
+                                                    float width, float receiverDepth) {
+  int size = ls.shadowMapSize;
+  SoftFootprint probe =
+      softFootprint(vec2(0.0f), vec2(0.0f), width / float(kSoftProbeSide), size, ls.filterMode);
+  ivec2 range = receiverChannelRange(technique, p, receiverDepth);
+  ChannelAccumulator acc[kMaxChannels];
+  for (int c = range.x; c <= range.y; ++c) {
+    acc[c] = startReduction(channelReduction(technique, c, p), p.esm.exponent);
+  }
+  float share = 1.0f / float(kSoftProbeSide * kSoftProbeSide);
+  for (int j = 0; j < kSoftProbeSide; ++j) {
+    for (int i = 0; i < kSoftProbeSide; ++i) {
+      vec2 at = uv + softProbeOffset(i, j, width, size);
+      FilteredChannels f =
+          filterChannels(s, ls, technique, p, at, probe.uvDx, probe.uvDy, receiverDepth);
+      for (int c = range.x; c <= range.y; ++c) acc[c] = accumulateTap(acc[c], f.values[c], share);
+    }
+  }
+  FilteredChannels result;
+  for (int c = 0; c < kMaxChannels; ++c) result.values[c] = 0.0f;
+  for (int c = range.x; c <= range.y; ++c) result.values[c] = reductionResult(acc[c]);
+  return result;
+}
+
 // A level-0 depth for PCF: the channel texture holds raw depth for PCF and the hard test; ESM's
 // fallback reads the light pass's depth, which its prefilter never touched.
 PENUMBRA_INLINE float pcfDepthTexel(LookupSources s, bool fromLightDepth, ivec2 texel) {
@@ -261,12 +291,38 @@ struct ShadowSample {
 
 // The whole lookup for a receiver at uv (its screen derivatives uvDx, uvDy) and linear light-space
 // depth receiverDepth (clamped to [0,1]), with the receiver plane's depth gradient per texel.
+// A light with a size (soft_shadow.h) makes PCF PCSS and widens every filterable technique's
+// footprint to the penumbra its blocker search estimates; the hard test stays hard.
 PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, int technique,
                                           TechniqueParams p, vec2 uv, float receiverDepth,
-                                          vec2 uvDx, vec2 uvDy, vec2 depthPerTexel) {
+                                          vec2 uvDx, vec2 uvDy, vec2 depthPerTexel,
+                                          SoftLight light) {
   ShadowSample r;
   r.diagnostic = 0.0f;
   float d = clamp(receiverDepth, 0.0f, 1.0f);
+  bool softProbes = false;  // the penumbra, not the pixel's footprint, sets the filter width
+  float softWidth = 0.0f;
+  if (light.size > 0.0f && technique != kTechniqueHard) {
+    BlockerEstimate blockers = searchBlockers(s, ls.shadowMapSize, light, uv, d, depthPerTexel);
+    if (blockers.share == 0.0f) {
+      r.visibility = 1.0f;  // nothing between the receiver and any point of the light
+      return r;
+    }
+    float width = softFilterTexels(light, d, blockers);
+    if (technique == kTechniquePcf) {
+      r.visibility = pcssVisibility(s, ls.shadowMapSize, uv, d, depthPerTexel, p.pcf.receiverPlane,
+                                    p.pcf.bias, width);
+      return r;
+    }
+    // The summed-area box replaces the blur (its minimum is the blur's width); the mip probes
+    // come after it.
+    if (ls.filterMode != kFilterSummedArea) width = softWidthBeyondBlur(width, ls);
+    SoftFootprint footprint = softFootprint(uvDx, uvDy, width, ls.shadowMapSize, ls.filterMode);
+    softProbes = ls.filterMode != kFilterSummedArea && any(notEqual(footprint.uvDx, uvDx));
+    softWidth = width;
+    uvDx = footprint.uvDx;
+    uvDy = footprint.uvDy;
+  }
   if (technique == kTechniquePcf || technique == kTechniqueHard) {
     PcfParams pcf = p.pcf;
     pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
@@ -280,7 +336,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
     return r;
   }
-  FilteredChannels f = filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+  FilteredChannels f = softProbes ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
+                                  : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
   if (technique == kTechniqueEsm &&
       esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
     r.diagnostic = 1.0f;

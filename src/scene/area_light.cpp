@@ -1,0 +1,81 @@
+// Point samples of a disk area light (penumbra/area_light.h).
+#include "penumbra/area_light.h"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/gtc/constants.hpp>
+#include <string>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+// Two unit vectors perpendicular to `axis` and to each other.
+void perpendicularBasis(glm::vec3 axis, glm::vec3& a, glm::vec3& b) {
+  const glm::vec3 helper =
+      std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  a = glm::normalize(glm::cross(axis, helper));
+  b = glm::cross(axis, a);
+}
+
+// Shirley and Chiu's concentric map of [-1,1]^2 onto the unit disk.
+glm::vec2 concentricDisk(glm::vec2 square) {
+  if (square.x == 0.0f && square.y == 0.0f) return glm::vec2(0.0f);
+  const float quarter = 0.25f * glm::pi<float>();
+  float radius = 0.0f, angle = 0.0f;
+  if (std::abs(square.x) > std::abs(square.y)) {
+    radius = square.x;
+    angle = quarter * (square.y / square.x);
+  } else {
+    radius = square.y;
+    angle = 2.0f * quarter - quarter * (square.x / square.y);
+  }
+  return radius * glm::vec2(std::cos(angle), std::sin(angle));
+}
+
+}  // namespace
+
+void checkAreaLightSamples(int count) {
+  const int side = int(std::lround(std::sqrt(double(std::max(count, 0)))));
+  if (count < kMinAreaLightSamples || count > kMaxAreaLightSamples || side * side != count) {
+    throw Error("area-light samples " + std::to_string(count) +
+                " must be a square side^2 with side in [8, 32] (64, 81, 100, ..., 1024)");
+  }
+}
+
+std::vector<glm::vec2> stratifiedDiskSamples(int count) {
+  checkAreaLightSamples(count);
+  const int side = int(std::lround(std::sqrt(double(count))));
+  std::vector<glm::vec2> points;
+  points.reserve(size_t(count));
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const glm::vec2 square((float(i) + 0.5f) / float(side), (float(j) + 0.5f) / float(side));
+      points.push_back(concentricDisk(2.0f * square - 1.0f));
+    }
+  }
+  return points;
+}
+
+Light areaLightSample(const Light& light, glm::vec2 diskPoint) {
+  Light sample = light;
+  sample.size = 0.0f;
+  const float radius = 0.5f * light.size;
+  glm::vec3 a, b;
+  if (light.kind == LightKind::Spot) {
+    perpendicularBasis(glm::normalize(light.target - light.position), a, b);
+    const glm::vec3 offset = radius * (diskPoint.x * a + diskPoint.y * b);
+    sample.position += offset;
+    sample.target += offset;
+  } else {
+    // The light travels along `direction`; a point of the disk at unit distance towards the
+    // light sends its light along -(towards + offset).
+    const glm::vec3 travel = glm::normalize(light.direction);
+    perpendicularBasis(travel, a, b);
+    sample.direction = glm::normalize(travel - radius * (diskPoint.x * a + diskPoint.y * b));
+  }
+  return sample;
+}
+
+}  // namespace penumbra

@@ -1,0 +1,176 @@
+// Soft shadows on the GPU: the area-light reference against the analytic penumbra of a disk
+// light over a straight edge, and its convergence as the light's sample count grows; the
+// renderer's soft lookups (PCSS and the filterable techniques' widened filters) against the CPU
+// twin running the same shared code.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <glm/gtc/constants.hpp>
+#include <string>
+#include <vector>
+
+#include "gl_test_context.h"
+#include "penumbra/area_light.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/params.h"
+#include "penumbra/shadow_lookup.h"
+
+namespace penumbra {
+namespace {
+
+// A horizontal quad facing +y over [x0, x1] x [z0, z1] at height y.
+void addQuad(Mesh& mesh, float x0, float x1, float z0, float z1, float y) {
+  const uint32_t base = uint32_t(mesh.vertices.size());
+  for (glm::vec2 c : {glm::vec2(x0, z0), glm::vec2(x1, z0), glm::vec2(x1, z1), glm::vec2(x0, z1)}) {
+    mesh.vertices.push_back({glm::vec3(c.x, y, c.y), glm::vec3(0.0f, 1.0f, 0.0f)});
+  }
+  for (uint32_t i : {0u, 2u, 1u, 0u, 3u, 2u}) mesh.indices.push_back(base + i);
+}
+
+constexpr float kPlateHeight = 1.0f;
+constexpr float kSunSize = 0.5f;  // tangent of the angular diameter
+
+// The ground and, at kPlateHeight, a plate over x < 0 whose straight edge runs along z; the sun
+// straight above, seen from under the plate's height so the ground beneath it shows.
+Scene edgeScene() {
+  Scene s;
+  s.name = "edge";
+  Mesh ground;
+  addQuad(ground, -2.5f, 2.5f, -2.5f, 2.5f, 0.0f);
+  Mesh plate;
+  addQuad(plate, -2.5f, 0.0f, -2.0f, 2.0f, kPlateHeight);
+  s.meshes = {ground, plate};
+  s.camera = {glm::vec3(0.0f, 0.6f, 2.4f), glm::vec3(0.0f, 0.0f, 0.0f), 45.0f};
+  s.light.kind = LightKind::Directional;
+  s.light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  s.light.size = kSunSize;
+  return s;
+}
+
+// The share of the unit disk below the chord at height t in [-1, 1]: (pi - acos t + t sqrt(1 -
+// t^2)) / pi. A ground point x from the edge's foot sees the sun's disk through the edge shifted
+// by h (size / 2) per unit of disk radius, so it is lit by the part of the disk below
+// t = x / (h size / 2).
+double analyticDiskEdgeVisibility(double x) {
+  const double t = std::clamp(x / (double(kPlateHeight) * 0.5 * double(kSunSize)), -1.0, 1.0);
+  return (glm::pi<double>() - std::acos(t) + t * std::sqrt(1.0 - t * t)) / glm::pi<double>();
+}
+
+struct EdgeErrors {
+  double rmse = 0.0;
+  double maxAbsolute = 0.0;
+  int pixels = 0;
+};
+
+class SoftShadowGpu : public testing::GlTest {};
+
+EdgeErrors edgeErrors(gl::Renderer& renderer, const Scene& scene, int samples) {
+  gl::RenderSettings s;
+  s.shadowMapSize = 1024;  // 71 texels across the penumbra
+  s.width = 96;
+  s.height = 64;
+  renderer.setScene(scene);
+  const gl::RenderResult r =
+      renderer.renderAreaLightReference(s, gl::FrameView{scene.camera, scene.light}, samples, 1);
+  const glm::mat4 worldFromClip =
+      glm::inverse(clipFromView(scene.camera, float(s.width) / float(s.height), scene.bounds()) *
+                   viewFromWorld(scene.camera));
+  EdgeErrors e;
+  double sum = 0.0;
+  for (int y = 0; y < s.height; ++y) {
+    for (int x = 0; x < s.width; ++x) {
+      if (r.lookup.at(x, y, 3) < 1.0f) continue;  // lit-facing surfaces inside the map
+      const glm::vec2 ndc((float(x) + 0.5f) / float(s.width) * 2.0f - 1.0f,
+                          1.0f - (float(y) + 0.5f) / float(s.height) * 2.0f);
+      const glm::vec4 a = worldFromClip * glm::vec4(ndc, -1.0f, 1.0f);
+      const glm::vec4 b = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
+      const glm::vec3 near = glm::vec3(a) / a.w, far = glm::vec3(b) / b.w;
+      const glm::vec3 ground = near + (far - near) * (near.y / (near.y - far.y));
+      // The penumbra (|x| < 0.125) and some of the umbra and light around it, away from the
+      // plate's other edges.
+      if (std::abs(ground.x) > 0.2f || std::abs(ground.z) > 1.2f) continue;
+      const double error = double(r.visibility.at(x, y)) - analyticDiskEdgeVisibility(ground.x);
+      sum += error * error;
+      e.maxAbsolute = std::max(e.maxAbsolute, std::abs(error));
+      ++e.pixels;
+    }
+  }
+  e.rmse = std::sqrt(sum / std::max(e.pixels, 1));
+  return e;
+}
+
+TEST_F(SoftShadowGpu, AreaLightReferenceEqualsTheAnalyticDiskPenumbraAndConvergesWithSamples) {
+  gl::Renderer renderer(*context);
+  const Scene scene = edgeScene();
+  const EdgeErrors coarse = edgeErrors(renderer, scene, 64);
+  const EdgeErrors fine = edgeErrors(renderer, scene, 256);
+  std::printf(
+      "area-light reference vs analytic disk-edge penumbra: 64 samples RMSE %.4f max "
+      "%.4f, 256 samples RMSE %.4f max %.4f (%d pixels)\n",
+      coarse.rmse, coarse.maxAbsolute, fine.rmse, fine.maxAbsolute, fine.pixels);
+  ASSERT_GT(fine.pixels, 300);  // the penumbra's neighbourhood fills a band of the frame
+  // A straight chord crosses at most about 2 side cells of the side x side stratified grid, each
+  // off by at most 1/N: max error <= 2 side / N = 2 / side (0.25 for 64 samples, 0.125 for
+  // 256); the map's texels move the edge by up to half a texel (1/140 of the penumbra), 0.005
+  // of visibility at the steepest.
+  EXPECT_LT(coarse.maxAbsolute, 0.25 + 0.005);
+  // Those cells' errors are independent, each within 1/N: RMSE <= sqrt(2 side) / N (0.0625).
+  EXPECT_LT(coarse.rmse, std::sqrt(16.0) / 64.0);
+  EXPECT_LT(fine.maxAbsolute, 0.125 + 0.005);
+  // Converges: the RMSE falls with the samples (stratified sampling of an edge: as N^-3/4,
+  // 2.8x from 64 to 256; asked for 2x). Measured on llvmpipe: 0.0225 (64), 0.0033 (1024).
+  EXPECT_LT(fine.rmse, 0.5 * coarse.rmse);
+}
+
+TEST_F(SoftShadowGpu, SoftLookupsEqualTheCpuTwinOnThePenumbraeScene) {
+  gl::Renderer renderer(*context);
+  Scene scene = makeBuiltinScene("penumbrae");
+  scene.light.size = 0.3f;  // penumbrae wider than the pixels: the probes decide
+  const LightView view = fitLightView(scene);
+  struct Case {
+    Technique technique;
+    FilterMode filter;
+  };
+  for (const Case c :
+       {Case{Technique::Pcf, FilterMode::Point}, Case{Technique::Vsm, FilterMode::Trilinear},
+        Case{Technique::Evsm4, FilterMode::Trilinear},
+        Case{Technique::Msm, FilterMode::SummedArea}}) {
+    gl::RenderSettings s;
+    s.technique = c.technique;
+    s.filter = c.filter;
+    s.shadowMapSize = 256;
+    s.width = 96;
+    s.height = 54;
+    s.blur = {BlurKernel::Box, 1, 1.0f};
+    const gl::RenderResult r = renderer.render(scene, s);
+    LookupConfig config{c.technique, r.params,     c.filter,
+                        s.blur,      s.anisotropy, renderer.halfFloatRounding()};
+    config.softLight = {scene.light.size, 0, view.nearDistance, view.farDistance,
+                        view.texelWorldSize(s.shadowMapSize)};
+    const CpuShadowLookup twin(renderer.readDepthMap(), config);
+    std::vector<float> errors;
+    for (int y = 0; y < s.height; ++y) {
+      for (int x = 0; x < s.width; ++x) {
+        if (r.lookup.at(x, y, 3) <= 0.0f) continue;
+        errors.push_back(
+            std::abs(twin.lookup(gl::lookupPixelAt(r, x, y)).visibility - r.visibility.at(x, y)));
+      }
+    }
+    std::sort(errors.begin(), errors.end());
+    ASSERT_GT(errors.size(), 1000u);
+    const float p99 = errors[size_t(0.99 * double(errors.size()))];
+    std::printf("%s %s: %zu pixels, p99 %.2e, max %.2e\n",
+                std::string(techniqueId(c.technique)).c_str(),
+                std::string(filterModeName(c.filter)).c_str(), errors.size(), p99, errors.back());
+    // Both sides run shared/soft_shadow.h; only rounding differs (fp32 in another order, the
+    // texture unit's 8-bit filter weights for trilinear lookups): 99% of pixels within 2e-3, the
+    // rest where a search or filter tap rounds to the neighbouring texel.
+    EXPECT_LT(p99, 2e-3f) << techniqueId(c.technique);
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
