@@ -279,6 +279,20 @@ void lightSection(ViewerState& state, Changes& changes) {
     changes.render |=
         ImGui::SliderFloat("spot angle", &light.spotAngleDegrees, 1.0f, 170.0f, "%.1f deg");
   }
+  // Light::size: a spot light's disk diameter in world units, a directional light's tangent of
+  // its angular diameter (docs/techniques.md); 0 is a point light's hard shadow.
+  const bool spot = light.kind == LightKind::Spot;
+  const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
+  if (light.size > most) {  // the other kind's range: a directional light takes at most 0.5
+    light.size = most;
+    changes.render = true;
+  }
+  changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most,
+                                       spot ? "%.3f (disk diameter)" : "%.4f (tan of diameter)");
+  if (ImGui::IsItemHovered()) {
+    ImGui::SetTooltip("soft shadows: PCSS for pcf, contact-hardening filters for the filterable "
+                      "techniques (trilinear, anisotropic or sat filtering); 0: hard-edged light");
+  }
   ImGui::TextDisabled("shift + drag in the scene moves the light");
 }
 

@@ -455,6 +455,7 @@ gl::Settings settingsToSave(const ViewerState& state) {
     v.lightTarget = state.light.target;
     v.spotAngleDegrees = state.light.spotAngleDegrees;
   }
+  if (state.light.size > 0.0f) v.lightSize = state.light.size;
   return s;
 }
 
