@@ -96,7 +96,7 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
        << ". Scene <code>" << escapeHtml(context.scene) << "</code>; one warm-up frame, then "
        << context.repeats << " timed frames per case (median, min-max). Command: <code>"
        << escapeHtml(context.command) << "</code>.</p>\n"
-       << "<p>The papers' times come from their 2007-2010 GPUs; what can be compared is each "
+       << "<p>The papers' times come from their GPUs (GeForce 8800 GTX, GTX 280); what can be compared is each "
           "ratio against the experiment's baseline, and how cost grows.</p>\n";
   for (const ExperimentResult& r : results) {
     const Experiment& e = r.experiment;

@@ -1,6 +1,6 @@
 // `penumbra bench`: the seed papers' performance experiments rerun with penumbra, as ratios
 // measured side by side in one run (warm-up, repeats, medians and spread), each beside the
-// paper's own figure. Absolute times on the papers' 2007-2010 GPUs say nothing about ours; the
+// paper's own figure. Absolute times on the papers' GPUs (GeForce 8800 GTX, GTX 280) say nothing of ours; the
 // ratios between techniques, and how cost grows with the kernel, are what can be compared.
 #pragma once
 
