@@ -77,12 +77,16 @@ std::vector<std::string> exponentFindings(const std::vector<CaseMeasurement>& ca
         ms.push_back(m.medianMs - base);
       }
     }
-    std::string line = s + ": " + format2(first) + " ms at the smallest kernel, " +
-                       format2(last) + " ms at the largest";
-    if (k.size() >= 3 && ms.back() > 0.1 * base) {
-      line += "; the cost above the 1x1 case grows as k^" + format2(fittedExponent(k, ms));
+    std::string line = s + ": " + format2(first) + " ms at the smallest kernel, " + format2(last) +
+                       " ms at the largest";
+    if (!(last - base > 0.1 * base)) {
+      line += "; flat: the largest kernel costs within a tenth of the 1x1 case";
+    } else if (k.size() >= 3) {
+      line += "; the cost above the 1x1 case grows as k^" + format2(fittedExponent(k, ms)) +
+              " (a fixed cost that the 1x1 case does not pay, such as a blur pass that 1x1 "
+              "skips, lowers the exponent)";
     } else {
-      line += "; flat: the cost above the 1x1 case stays within a tenth of it";
+      line += "; too few kernels cost more than the 1x1 case to fit an exponent";
     }
     findings.push_back(line + ".");
   }

@@ -92,14 +92,20 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
        << "text-align:right}td:first-child,th:first-child{text-align:left}"
        << ".note{color:#555;font-size:90%}</style></head><body>\n"
        << "<h1>The papers' performance experiments, rerun</h1>\n"
-       << "<p>Device: " << escapeHtml(context.device) << ". Timing: " << escapeHtml(results.empty() ? "" : results[0].timing)
-       << ". Scene <code>" << escapeHtml(context.scene) << "</code>; one warm-up frame, then "
-       << context.repeats << " timed frames per case (median, min-max). Command: <code>"
-       << escapeHtml(context.command) << "</code>.</p>\n"
-       << "<p>The papers' times come from their GPUs (GeForce 8800 GTX, GTX 280); what can be compared is each "
+       << "<p>Device: " << escapeHtml(context.device)
+       << ". Timing: " << escapeHtml(results.empty() ? "" : results[0].timing) << ". Scene <code>"
+       << escapeHtml(context.scene) << "</code>; one warm-up frame, then " << context.repeats
+       << " timed frames per case (median, min-max). Command: <code>" << escapeHtml(context.command)
+       << "</code>.</p>\n"
+       << "<p>The papers' times come from their GPUs (GeForce 8800 GTX, GTX 280); what can be "
+          "compared is each "
           "ratio against the experiment's baseline, and how cost grows.</p>\n";
   for (const ExperimentResult& r : results) {
     const Experiment& e = r.experiment;
+    const gl::RenderSettings& first = e.cases.front().settings;
+    const std::string sizes = "Measured at " + std::to_string(first.shadowMapSize) + "² (" +
+                              std::to_string(first.width) + "x" + std::to_string(first.height) +
+                              " frame).";
     ordered_json cases = ordered_json::array();
     for (const CaseMeasurement& m : r.cases) {
       cases.push_back(caseJson(m));
@@ -116,18 +122,20 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
                            {"baseline", e.baselineSeries},
                            {"timing", r.timing},
                            {"cases", cases}});
-    page << "<h2 id=\"" << e.id << "\">" << escapeHtml(e.title) << "</h2>\n<p>" << escapeHtml(e.claim)
+    page << "<h2 id=\"" << e.id << "\">" << escapeHtml(e.title) << "</h2>\n<p>"
+         << escapeHtml(e.claim) << " " << escapeHtml(sizes)
          << "</p>\n<table><tr><th>case</th><th>median ms</th><th>min-max ms</th>"
          << "<th>shadow memory MiB</th><th>time / " << escapeHtml(e.baselineSeries)
          << "</th><th>paper</th><th>memory / " << escapeHtml(e.baselineSeries)
          << "</th><th>paper</th></tr>\n";
     for (const CaseMeasurement& m : r.cases) {
       const BenchCase& c = m.benchCase;
-      page << "<tr><td>" << escapeHtml(c.label) << "</td><td>" << fixedDigits(m.medianMs, 1) << "</td><td>"
-           << fixedDigits(m.minMs, 1) << "-" << fixedDigits(m.maxMs, 1) << "</td><td>"
-           << fixedDigits(double(m.shadowBytes) / 1048576.0, 1) << "</td><td>" << fixedDigits(m.timeRatio, 2)
-           << "</td><td>" << (c.paperTimeRatio ? fixedDigits(*c.paperTimeRatio, 2) : "")
-           << "</td><td>" << fixedDigits(m.memoryRatio, 2) << "</td><td>"
+      page << "<tr><td>" << escapeHtml(c.label) << "</td><td>" << fixedDigits(m.medianMs, 1)
+           << "</td><td>" << fixedDigits(m.minMs, 1) << "-" << fixedDigits(m.maxMs, 1)
+           << "</td><td>" << fixedDigits(double(m.shadowBytes) / 1048576.0, 1) << "</td><td>"
+           << fixedDigits(m.timeRatio, 2) << "</td><td>"
+           << (c.paperTimeRatio ? fixedDigits(*c.paperTimeRatio, 2) : "") << "</td><td>"
+           << fixedDigits(m.memoryRatio, 2) << "</td><td>"
            << (c.paperMemoryRatio ? fixedDigits(*c.paperMemoryRatio, 2) : "") << "</td></tr>\n";
     }
     page << "</table>\n";
@@ -139,17 +147,16 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
     }
     if (!e.xLabel.empty()) {
       plotSweep(r, dir / "plots" / (e.id + ".png"));
-      page << "<p><img src=\"plots/" << e.id << ".png\" alt=\"" << escapeHtml(e.title) << "\"></p>\n";
+      page << "<p><img src=\"plots/" << e.id << ".png\" alt=\"" << escapeHtml(e.title)
+           << "\"></p>\n";
     }
     for (const std::string& line : r.findings) page << "<p>" << escapeHtml(line) << "</p>\n";
   }
   page << "</body></html>\n";
-  const ordered_json record = {{"device", context.device},
-                               {"timing", results.empty() ? "" : results[0].timing},
-                               {"scene", context.scene},
-                               {"repeats", context.repeats},
-                               {"command", context.command},
-                               {"experiments", experiments}};
+  const ordered_json record = {
+      {"device", context.device},   {"timing", results.empty() ? "" : results[0].timing},
+      {"scene", context.scene},     {"repeats", context.repeats},
+      {"command", context.command}, {"experiments", experiments}};
   std::ofstream(dir / "bench.json") << record.dump(2) << "\n";
   std::ofstream(dir / "bench.csv") << csv.str();
   std::ofstream(dir / "index.html") << page.str();

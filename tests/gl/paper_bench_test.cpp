@@ -34,17 +34,17 @@ TEST_F(PaperBench, GumbauCasesAreSetAgainstVsmWithTheirFormatsMemory) {
   ASSERT_EQ(r.cases.size(), 4u);
   // Channel texture and blur scratch per texel: VSM rg32f 8 bytes, ESM r32f 4, the power CDF's
   // three channels rgba32f 16 or rgba16f 8 (image formats have no RGB).
-  const std::map<std::string, double> memory{{"VSM", 1.0},
-                                             {"ESM", 0.5},
-                                             {"power CDF, 32-bit", 2.0},
-                                             {"power CDF, 16-bit", 1.0}};
+  const std::map<std::string, double> memory{
+      {"VSM", 1.0}, {"ESM", 0.5}, {"power CDF, 32-bit", 2.0}, {"power CDF, 16-bit", 1.0}};
   for (const compare::CaseMeasurement& m : r.cases) {
     EXPECT_EQ(m.memoryRatio, memory.at(m.benchCase.series)) << m.benchCase.label;
     EXPECT_EQ(m.frameMs.size(), 2u);
     EXPECT_TRUE(m.medianMs > 0.0 && std::isfinite(m.medianMs)) << m.benchCase.label;
     EXPECT_TRUE(m.minMs <= m.medianMs && m.medianMs <= m.maxMs) << m.benchCase.label;
-    if (m.benchCase.series == "VSM") EXPECT_EQ(m.timeRatio, 1.0);
-    else EXPECT_NEAR(m.timeRatio, m.medianMs / r.cases[0].medianMs, 1e-12);
+    if (m.benchCase.series == "VSM")
+      EXPECT_EQ(m.timeRatio, 1.0);
+    else
+      EXPECT_NEAR(m.timeRatio, m.medianMs / r.cases[0].medianMs, 1e-12);
   }
 }
 

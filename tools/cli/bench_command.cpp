@@ -45,7 +45,8 @@ struct BenchOptions {
 
 std::string experimentList() {
   std::string list;
-  for (const std::string& id : compare::paperExperimentIds()) list += (list.empty() ? "" : ", ") + id;
+  for (const std::string& id : compare::paperExperimentIds())
+    list += (list.empty() ? "" : ", ") + id;
   return list;
 }
 
@@ -112,8 +113,8 @@ void runBench(const BenchOptions& o) {
   std::ostringstream csv;
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio\n";
   std::cout << "Wall-clock medians of " << o.repeat << " warm frames on "
-            << renderer.deviceDescription() << " (" << scene.name << ", "
-            << settings.shadowMapSize << "², " << (2 * settings.blur.radius + 1) << "-tap "
+            << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
+            << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
             << filterModeName(settings.filter) << "):\n\n"
             << "| technique | format | pass | ms | minimal kernel | ms | ratio |\n"
@@ -122,10 +123,9 @@ void runBench(const BenchOptions& o) {
     settings.technique = t;
     const gl::PassBenchResult r = gl::benchPasses(renderer, scene, settings, o.repeat);
     for (const gl::PassTiming& p : r.passes) {
-      std::cout << std::fixed << std::setprecision(1) << "| " << techniqueId(t) << " | "
-                << r.format << " | " << p.pass << " | " << p.passMs << " | " << p.baseline
-                << " | " << p.baselineMs << " | " << std::setprecision(2) << p.ratio()
-                << " |\n";
+      std::cout << std::fixed << std::setprecision(1) << "| " << techniqueId(t) << " | " << r.format
+                << " | " << p.pass << " | " << p.passMs << " | " << p.baseline << " | "
+                << p.baselineMs << " | " << std::setprecision(2) << p.ratio() << " |\n";
       csv << techniqueId(t) << "," << r.format << "," << p.pass << "," << p.passMs << ","
           << p.baseline << "," << p.baselineMs << "," << p.ratio() << "\n";
       rows.push_back({{"technique", techniqueId(t)},
@@ -140,8 +140,9 @@ void runBench(const BenchOptions& o) {
   const nlohmann::ordered_json record = {
       {"experiment", "passes"},
       {"device", renderer.deviceDescription()},
-      {"timing", "wall-clock medians (glFinish around each pass); llvmpipe's timer queries see "
-                 "only submission"},
+      {"timing",
+       "wall-clock medians (glFinish around each pass); llvmpipe's timer queries see "
+       "only submission"},
       {"scene", scene.name},
       {"shadow_map_size", settings.shadowMapSize},
       {"blur_taps", 2 * settings.blur.radius + 1},
@@ -158,8 +159,8 @@ void runBench(const BenchOptions& o) {
 
 void registerBenchCommand(CLI::App& app) {
   auto o = std::make_shared<BenchOptions>();
-  CLI::App* cmd = app.add_subcommand(
-      "bench", "Performance experiments measured side by side in one run.");
+  CLI::App* cmd =
+      app.add_subcommand("bench", "Performance experiments measured side by side in one run.");
   cmd->add_option("-e,--experiment", o->experiments,
                   "the papers' experiments to rerun, comma-separated, or all: " + experimentList())
       ->delimiter(',');

@@ -1,7 +1,8 @@
 // `penumbra bench`: the seed papers' performance experiments rerun with penumbra, as ratios
 // measured side by side in one run (warm-up, repeats, medians and spread), each beside the
-// paper's own figure. Absolute times on the papers' GPUs (GeForce 8800 GTX, GTX 280) say nothing of ours; the
-// ratios between techniques, and how cost grows with the kernel, are what can be compared.
+// paper's own figure. Absolute times on the papers' GPUs (GeForce 8800 GTX, GTX 280) say nothing of
+// ours; the ratios between techniques, and how cost grows with the kernel, are what can be
+// compared.
 #pragma once
 
 #include <optional>
@@ -45,6 +46,10 @@ struct BenchSizes {
   int height = 540;
   int scalingShadowMapSize = 1024;  // kernel-scaling runs 31x31 PCF: kept smaller on llvmpipe
 };
+
+// The papers' "k x k Gauss filter" as penumbra's prefilter: radius (k - 1)/2, sigma a quarter of
+// the width (at least half a texel); k = 1 is no filter. Shared by the bench and the figures.
+BlurSpec paperGaussFilter(int k);
 
 // The experiments' ids in the order they run.
 std::vector<std::string> paperExperimentIds();

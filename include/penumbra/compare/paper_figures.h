@@ -33,7 +33,7 @@ struct FigureItem {
   std::string paper;     // what the paper showed
   std::string measured;  // what penumbra measured, with the numbers
   bool agrees = true;
-  std::string verdict;   // agreement, or the disagreement and why
+  std::string verdict;  // agreement, or the disagreement and why
   std::vector<std::string> images;
   std::string tableHtml;  // a table of numbers, where the item is one
 };
