@@ -30,8 +30,12 @@ gl::PassTimes medianPasses(const std::vector<gl::PassTimes>& frames) {
   return m;
 }
 
+// What the papers count as a technique's memory: the storage a shadow map keeps between frames
+// (channels and their mips, the summed-area table, ESM's Z-max pyramid). The blur's scratch is
+// a transient a renderer shares across maps, and whether a frame needs it depends on how the
+// prefilter runs (none when fused: docs/renderer.md), not on the technique.
 uint64_t shadowStorageBytes(const gl::MemoryReport& m) {
-  return m.technique + m.summedArea + m.scratch + m.auxiliary;
+  return m.technique + m.summedArea + m.auxiliary;
 }
 
 const CaseMeasurement* baselineOf(const std::vector<CaseMeasurement>& all, const BenchCase& c,

@@ -35,11 +35,10 @@ void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters
   glBindTextureUnit(0, light.depthTexture());
   glBindImageTexture(0, texture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
   base.dispatch(groups(size_), groups(size_), unsigned(layers_));
-  const Program& reduce = programs.compute(
-      "passes/mip_reduce.comp",
-      {{"CHANNEL_FORMAT", "r32f"}, {"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}});
   const ChannelLayout depthOnly{1, 1, 1, StorageFormat::Float32};
-  reduceMipLevels(reduce, parameters, texture_, depthOnly, layers_, size_, levels_);
+  const Program& reduce = mipReduceProgram(
+      programs, {{"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}}, depthOnly);
+  mipChain_.reduce(reduce, parameters, texture_, GL_R32F, layers_, size_, levels_);
   checkErrors("building the Z-max pyramid");
 }
 

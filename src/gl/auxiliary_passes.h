@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "mip_chain_pass.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/layer_placement.h"
 #include "program_cache.h"
@@ -25,6 +26,7 @@ class ZmaxPyramid {
 
  private:
   Texture texture_;  // 2D array, one R32F layer per cascade, full mip chain
+  MipChainPass mipChain_;
   int levels_ = 0, size_ = 0, layers_ = 0;
 };
 

@@ -6,8 +6,8 @@
 #include <algorithm>
 
 #include "gl_formats.h"
-#include "shared/constants.h"
 #include "penumbra/channel_layout.h"
+#include "shared/constants.h"
 
 namespace penumbra::gl {
 namespace {
@@ -19,10 +19,14 @@ struct FrameTarget {
   int bytesPerPixel;
 };
 constexpr FrameTarget kFrameTargets[] = {
-    {"frame lookup target", GL_RGBA32F, 16}, {"frame receiver-plane target", GL_RG32F, 8},
-    {"frame colour target", GL_RGBA16F, 8},  {"frame visibility target", GL_R32F, 4},
-    {"frame diagnostic target", GL_R32F, 4}, {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
-    {"frame uv-derivatives target", GL_RGBA32F, 16}, {"frame cascade target", GL_RG32F, 8},
+    {"frame lookup target", GL_RGBA32F, 16},
+    {"frame receiver-plane target", GL_RG32F, 8},
+    {"frame colour target", GL_RGBA16F, 8},
+    {"frame visibility target", GL_R32F, 4},
+    {"frame diagnostic target", GL_R32F, 4},
+    {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
+    {"frame uv-derivatives target", GL_RGBA32F, 16},
+    {"frame cascade target", GL_RG32F, 8},
 };
 
 }  // namespace
@@ -38,7 +42,22 @@ int channelLevelsFor(const RenderSettings& s) {
 }
 
 bool blursIntoScratch(const RenderSettings& s) {
-  return prefiltersChannels(s.technique) && s.blur.radius > 0 && s.filter != FilterMode::SummedArea;
+  // One map whose kernel runs fused needs no intermediate; cascades keep it, since a cascade's
+  // kernel (scaled to the same world width) may outgrow the fused tile.
+  return prefiltersChannels(s.technique) && s.blur.radius > 0 &&
+         s.filter != FilterMode::SummedArea &&
+         !(s.cascades.count == 1 && fusesPrefilter(s, s.blur.radius));
+}
+
+bool fusesPrefilter(const RenderSettings& s, int radius) {
+  return s.fusePrefilter && prefiltersChannels(s.technique) && s.filter != FilterMode::SummedArea &&
+         radius > 0 && radius <= kMaxFusedBlurRadius && s.msaaSamples == 1 &&
+         techniqueStorage(s.technique, s.params) == StorageFormat::Float32;
+}
+
+bool fusesPrefilter(const RenderSettings& s, std::span<const BlurSpec> cascadeBlurs) {
+  return std::all_of(cascadeBlurs.begin(), cascadeBlurs.end(),
+                     [&](const BlurSpec& b) { return fusesPrefilter(s, b.radius); });
 }
 
 bool buildsSummedAreaTable(const RenderSettings& s) {

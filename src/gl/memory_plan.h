@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <string_view>
 #include <vector>
 
@@ -16,6 +17,15 @@ namespace penumbra::gl {
 bool prefiltersChannels(Technique technique);  // not PCF or the hard test (raw depth)
 int channelLevelsFor(const RenderSettings& settings);
 bool blursIntoScratch(const RenderSettings& settings);
+// The largest kernel radius the fused prefilter's tile holds: its shared memory, (2r + 16)^2 +
+// 16 (2r + 16) RGBA32F texels, stays within 32 KiB, the least GL 4.5 guarantees
+// (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE).
+inline constexpr int kMaxFusedBlurRadius = 10;
+// Whether a kernel of this radius runs as the fused prefilter under these settings
+// (RenderSettings::fusePrefilter): a blur, 32-bit float channels, one light-pass sample.
+bool fusesPrefilter(const RenderSettings& settings, int radius);
+// Whether this frame's prefilter runs fused: every cascade's kernel does.
+bool fusesPrefilter(const RenderSettings& settings, std::span<const BlurSpec> cascadeBlurs);
 bool buildsSummedAreaTable(const RenderSettings& settings);
 bool buildsZmaxPyramid(const RenderSettings& settings);
 bool placesLayersByLloyd(const RenderSettings& settings);

@@ -1,19 +1,24 @@
 // The minimal kernels: a copy of the depth into every channel layer (beside encode), a plain
-// separable blur of whole texels with the same taps (beside the prefilter) and the driver's own
-// mipmap generation (beside the mip pass), on textures like the channel texture.
+// separable blur of whole texels with the same taps (beside the prefilter; both beside the fused
+// prefilter), the driver's own mipmap generation (beside the mip pass) and plain 64-bit prefix
+// sums (beside the summed-area table), on textures like the channel texture.
 #include "penumbra/gl/pass_bench.h"
 
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <functional>
+#include <optional>
+#include <span>
 
 #include "channel_dispatch.h"
 #include "gl_formats.h"
 #include "gpu_timer.h"
+#include "memory_plan.h"
 #include "penumbra/error.h"
-#include "penumbra/metrics.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/metrics.h"
 #include "program_cache.h"
 
 namespace penumbra::gl {
@@ -27,19 +32,50 @@ Texture arrayTexture(unsigned format, int size, int layers, int levels) {
   return t;
 }
 
-// Times `work` `repeats` times after one warm-up run; the median wall time.
-template <typename Work>
-double timeMedian(int repeats, Work work) {
-  work();
+// A minimal kernel and its times: timed once after each frame the renderer renders, so that load
+// on the machine falls on the passes and their minimal kernels alike.
+struct MinimalKernel {
+  explicit MinimalKernel(std::function<void()> w) : work(std::move(w)) {}
+  std::function<void()> work;
   std::vector<double> times;
-  GpuTimer timer;
-  for (int i = 0; i < repeats; ++i) {
+  void time(bool gpuTime) {
+    GpuTimer timer;
     timer.begin();
     work();
     timer.end();
-    times.push_back(timer.wallMilliseconds());
+    times.push_back(gpuTime ? timer.gpuMilliseconds() : timer.wallMilliseconds());
   }
-  return median(times);
+  double median() const { return penumbra::median(times); }
+};
+
+// The renderer's own pass times over `repeats` frames after a warm-up frame (shader compilation,
+// resources), each frame followed by one timed run of every minimal kernel in `kernels`
+// (warmed up too). Times are GPU timer queries where they measure execution, else wall time
+// between glFinish calls.
+struct FramePasses {
+  std::vector<double> encode, prefilter, mipsOrSat;
+};
+
+FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
+                         int repeats, bool gpuTime, std::span<MinimalKernel* const> kernels) {
+  FramePasses p;
+  renderer.render(scene, settings);
+  for (MinimalKernel* k : kernels) k->work();
+  for (int i = 0; i < repeats; ++i) {
+    const RenderResult r = renderer.render(scene, settings);
+    const PassTimes& t = gpuTime ? r.gpuTimes : r.wallTimes;
+    p.encode.push_back(t.encode);
+    p.prefilter.push_back(t.prefilter);
+    p.mipsOrSat.push_back(t.mipsOrSat);
+    for (MinimalKernel* k : kernels) k->time(gpuTime);
+  }
+  return p;
+}
+
+std::vector<double> sums(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> s(a.size());
+  for (size_t i = 0; i < a.size(); ++i) s[i] = a[i] + b[i];
+  return s;
 }
 
 }  // namespace
@@ -53,18 +89,16 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     throw Error(std::string(techniqueId(settings.technique)) +
                 " has no prefilter passes to measure (it filters after the test)");
   }
-  if (settings.cascades.count != 1 || settings.filter == FilterMode::SummedArea) {
-    throw Error("bench --passes measures one map with mips or none (no cascades, no sat)");
+  if (settings.cascades.count != 1) {
+    throw Error("bench --passes measures one map (--cascades 1): the minimal kernels run on one");
   }
+  const bool summedArea = settings.filter == FilterMode::SummedArea;
+  const bool blurs = settings.blur.radius > 0 && !summedArea;
+  const bool gpuTime = renderer.timerQueriesMeasureExecution();
   renderer.setScene(scene);
-  std::vector<double> encode, prefilter, mips;
-  renderer.render(scene, settings);  // warm-up: shader compilation, resources
-  for (int i = 0; i < repeats; ++i) {
-    const RenderResult r = renderer.render(scene, settings);
-    encode.push_back(r.wallTimes.encode);
-    prefilter.push_back(r.wallTimes.prefilter);
-    mips.push_back(r.wallTimes.mipsOrSat);
-  }
+  RenderSettings separate = settings;
+  separate.fusePrefilter = false;
+  renderer.render(scene, separate);  // the channel texture's mip levels, for the kernels' textures
 
   const ChannelLayout layout = channelLayout(settings.technique, settings.params);
   const unsigned format = internalFormat(layout);
@@ -78,47 +112,88 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   Texture channels = arrayTexture(format, size, layout.layers, levels);
   Texture scratch = arrayTexture(format, size, layout.layers, 1);
 
-  const Program& copy = programs.compute("passes/baseline_copy.comp", defines);
-  setSize(copy, "size", size);
-  copy.set("layerCount", layout.layers);
-  const double copyMs = timeMedian(repeats, [&] {
+  const Program& copyProgram = programs.compute("passes/baseline_copy.comp", defines);
+  setSize(copyProgram, "size", size);
+  copyProgram.set("layerCount", layout.layers);
+  MinimalKernel copy{[&] {
     glBindTextureUnit(0, depth.id());
     bindChannelImage(channels, layout, 0);
-    copy.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
-  });
+    copyProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+  }};
 
-  const Program& blur = programs.compute("passes/baseline_blur.comp", defines);
+  const Program& blurProgram = programs.compute("passes/baseline_blur.comp", defines);
   const std::vector<float> weights = blurWeights(settings.blur);
-  glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
+  glProgramUniform1fv(blurProgram.id(), glGetUniformLocation(blurProgram.id(), "weights"),
                       GLsizei(weights.size()), weights.data());
-  blur.set("radius", settings.blur.radius);
-  blur.set("layerCount", layout.layers);
-  setSize(blur, "size", size);
-  const GLint direction = glGetUniformLocation(blur.id(), "direction");
-  const double blurMs = timeMedian(repeats, [&] {
+  blurProgram.set("radius", settings.blur.radius);
+  blurProgram.set("layerCount", layout.layers);
+  setSize(blurProgram, "size", size);
+  const GLint direction = glGetUniformLocation(blurProgram.id(), "direction");
+  MinimalKernel blur{[&] {
     glBindTextureUnit(0, channels.id());
     bindChannelImage(scratch, layout, 0);
-    glProgramUniform2i(blur.id(), direction, 1, 0);
-    blur.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    glProgramUniform2i(blurProgram.id(), direction, 1, 0);
+    blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
     glBindTextureUnit(0, scratch.id());
     bindChannelImage(channels, layout, 0);
-    glProgramUniform2i(blur.id(), direction, 0, 1);
-    blur.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
-  });
+    glProgramUniform2i(blurProgram.id(), direction, 0, 1);
+    blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+  }};
+
+  MinimalKernel generateMips{[&] { glGenerateTextureMipmap(channels.id()); }};
+
+  const int channelCount = layout.channels;
+  std::optional<Buffer> prefixSums;  // as large as the table: only when it is measured
+  if (summedArea) prefixSums.emplace(summedAreaSizes(channelCount, size).sums);
+  const Program& rows = programs.compute("passes/baseline_prefix_sums.comp", {{"AXIS", "0"}});
+  const Program& columns = programs.compute("passes/baseline_prefix_sums.comp", {{"AXIS", "1"}});
+  for (const Program* p : {&rows, &columns}) {
+    setSize(*p, "size", size);
+    p->set("channelCount", channelCount);
+    p->set("layersPerCascade", layout.layers);
+  }
+  MinimalKernel prefix{[&] {
+    glBindTextureUnit(0, channels.id());
+    prefixSums->bindStorage(3);
+    rows.dispatch(groups(size, 64), unsigned(channelCount));
+    columns.dispatch(groups(size, 64), unsigned(channelCount));
+  }};
+
+  std::vector<MinimalKernel*> beside{&copy};
+  if (blurs) beside.push_back(&blur);
+  if (summedArea) beside.push_back(&prefix);
+  if (!summedArea && levels > 1) beside.push_back(&generateMips);
+  const FramePasses passes = renderPasses(renderer, scene, separate, repeats, gpuTime, beside);
 
   PassBenchResult result;
   result.technique = settings.technique;
+  result.timing = gpuTime ? "GPU timer queries" : "wall clock (glFinish around each pass)";
   result.format = imageFormatQualifier(layout) + " x " + std::to_string(layout.layers) +
                   (layout.layers == 1 ? " layer" : " layers");
-  result.passes.push_back({"encode", median(encode), "copy depth to every layer", copyMs});
-  result.passes.push_back({"prefilter", median(prefilter),
-                           "plain separable blur, " + std::to_string(2 * settings.blur.radius + 1) +
-                               " taps",
-                           blurMs});
-  if (levels > 1) {
-    const double generateMs =
-        timeMedian(repeats, [&] { glGenerateTextureMipmap(channels.id()); });
-    result.passes.push_back({"mips", median(mips), "glGenerateTextureMipmap", generateMs});
+  result.passes.push_back(
+      {"encode", median(passes.encode), "copy depth to every layer", copy.median()});
+  const std::string taps = std::to_string(2 * settings.blur.radius + 1) + " taps";
+  if (blurs) {
+    result.passes.push_back(
+        {"prefilter", median(passes.prefilter), "plain separable blur, " + taps, blur.median()});
+  }
+  if (summedArea) {
+    result.passes.push_back({"summed-area table", median(passes.mipsOrSat),
+                             "plain 64-bit row and column prefix sums", prefix.median()});
+  } else if (levels > 1) {
+    result.passes.push_back(
+        {"mips", median(passes.mipsOrSat), "glGenerateTextureMipmap", generateMips.median()});
+  }
+  if (fusesPrefilter(settings, settings.blur.radius)) {
+    // The fused dispatch does both passes' work: it stands beside both minimal kernels, timed
+    // after each of its own frames.
+    copy.times.clear();
+    blur.times.clear();
+    const std::vector<MinimalKernel*> both{&copy, &blur};
+    const FramePasses fused = renderPasses(renderer, scene, settings, repeats, gpuTime, both);
+    result.passes.push_back(
+        {"encode + prefilter, fused", median(sums(fused.encode, fused.prefilter)),
+         "copy + plain separable blur, " + taps, median(sums(copy.times, blur.times))});
   }
   checkErrors("bench --passes");
   return result;

@@ -166,6 +166,16 @@ Texture::Texture(unsigned target) {
   glCreateTextures(target, 1, &texture_);
 }
 
+Texture Texture::view(const Texture& source, unsigned target, unsigned format, int firstLevel,
+                      int levels, int layers) {
+  Texture view;
+  // A view's name must be generated but never bound: glGenTextures, not glCreateTextures.
+  glGenTextures(1, &view.texture_);
+  glTextureView(view.texture_, target, source.id(), format, GLuint(firstLevel), GLuint(levels), 0,
+                GLuint(layers));
+  return view;
+}
+
 Texture::Texture(Texture&& other) noexcept : texture_(std::exchange(other.texture_, 0)) {}
 
 Texture& Texture::operator=(Texture&& other) noexcept {

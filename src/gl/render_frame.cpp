@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 
+#include "box_downsample.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
@@ -15,7 +16,6 @@
 #include "shared/cascade_selection.h"
 #include "shared/shading.h"
 #include "shared/summed_area.h"
-#include "box_downsample.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -196,8 +196,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   frame.cascaded = settings.cascades.count > 1;
   frame.cascades = frame.cascaded
-                       ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range, view.light,
-                                     s.sceneBounds, settings.shadowMapSize)
+                       ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range,
+                                     view.light, s.sceneBounds, settings.shadowMapSize)
                        : singleMap(frame.lightView);
   const int count = frame.cascades.count;
   s.cascadeBlurs.assign(1, settings.blur);
@@ -237,8 +237,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     }
     s.auxiliaryTimer.end();
     s.filter.prepare(channelShapeFor(settings, count));
-    s.filter.encode(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples);
-    s.filter.prefilter(s.programs, s.parameters, settings.technique, s.params, s.cascadeBlurs);
+    s.filter.prefilter(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples,
+                       settings.technique, s.params, s.cascadeBlurs,
+                       fusesPrefilter(settings, s.cascadeBlurs));
   } else {
     s.zmax.release();
     s.lloyd.release();
@@ -248,12 +249,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
 
   s.camera.prepare(settings.width, settings.height);
-  const ShadowMaps maps{s.light,
-                        s.filter,
-                        s.zmax.built() ? &s.zmax.texture() : nullptr,
-                        s.zmax.levels(),
-                        *s.blurCumulative,
-                        s.cascadeBlurs};
+  const ShadowMaps maps{
+      s.light,         s.filter,          s.zmax.built() ? &s.zmax.texture() : nullptr,
+      s.zmax.levels(), *s.blurCumulative, s.cascadeBlurs};
   s.camera.render(s.programs, s.parameters, *s.scene, settings, frame, maps, reference);
 
   RenderResult result;
@@ -302,8 +300,7 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
       found = std::make_unique<CpuShadowLookup>(
           readDepthMap(cascade),
           LookupConfig{Technique::Hard, settings.params, settings.filter,
-                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
-                       s.limits.halfRounding,
+                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy, s.limits.halfRounding,
                        r.cascadeFrame.kernelScale(cascade, size)});
     }
     return *found;
@@ -325,8 +322,8 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
         other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
         other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
         other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
-        other.depthPerTexel = shaders::cascadeDepthPerTexel(
-            pixel.depthPerTexel * float(size) / extent, next, size);
+        other.depthPerTexel =
+            shaders::cascadeDepthPerTexel(pixel.depthPerTexel * float(size) / extent, next, size);
         v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
       }
       const glm::vec3 albedo(r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2));
@@ -358,9 +355,9 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,
                       GL_FLOAT, depth.data().data());
   s.filter.prepare(channelShapeFor(single, 1));
-  s.filter.encode(s.programs, s.parameters, s.uploadedDepth->id(), 1);
   s.cascadeBlurs.assign(1, single.blur);
-  s.filter.prefilter(s.programs, s.parameters, single.technique, s.params, s.cascadeBlurs);
+  s.filter.prefilter(s.programs, s.parameters, s.uploadedDepth->id(), 1, single.technique, s.params,
+                     s.cascadeBlurs, fusesPrefilter(single, s.cascadeBlurs));
 }
 
 Image Renderer::readDepthMap(int cascade) const {
@@ -402,9 +399,9 @@ Image Renderer::readChannels(int level, int cascade) const {
   const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
   // Every cascade's layers come back, cascade by cascade; channel c of a cascade is component
   // c of its layers (4 per layer when there are several).
-  Image all = readTexture(s.filter.channels().id(), level, size, size,
-                          layout.layers * shape.cascades, layout.componentsPerTexel,
-                          formats[layout.componentsPerTexel], false);
+  Image all =
+      readTexture(s.filter.channels().id(), level, size, size, layout.layers * shape.cascades,
+                  layout.componentsPerTexel, formats[layout.componentsPerTexel], false);
   Image trimmed(size, size, layout.channels);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
@@ -431,7 +428,8 @@ Image Renderer::readZmaxLevel(int level) const {
 }
 
 std::vector<SplitSample> Renderer::readSplitSamples() const {
-  if (!state_->lloyd.placed()) throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
+  if (!state_->lloyd.placed())
+    throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
   return state_->lloyd.readSamples();
 }
 

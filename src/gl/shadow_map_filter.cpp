@@ -15,6 +15,8 @@ namespace penumbra::gl {
 
 namespace {
 constexpr unsigned kGroup = kChannelGroup;
+// The fused prefilter's work group: TILE x TILE texels (kMaxFusedBlurRadius assumes 16).
+constexpr int kFusedTile = 16;
 }  // namespace
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
@@ -64,33 +66,16 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
   return shape;
 }
 
-void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
-                     const Texture& texture, const ChannelLayout& layout, int layers, int size,
-                     int levels, unsigned sampler) {
-  parameters.bind();
-  reduce.set("layerCount", layers);
-  glBindTextureUnit(0, texture.id());
-  glBindSampler(0, sampler);
-  for (int level = 0; level + 1 < levels; ++level) {
-    const int source = std::max(1, size >> level);
-    const int target = std::max(1, size >> (level + 1));
-    reduce.set("sourceLevel", level);
-    setSize(reduce, "sourceSize", source);
-    setSize(reduce, "targetSize", target);
-    bindChannelImage(texture, layout, level + 1);
-    reduce.dispatch(groups(target, kGroup), groups(target, kGroup));
+const Program& mipReduceProgram(ProgramCache& programs, std::vector<ShaderDefine> reductions,
+                                const ChannelLayout& layout) {
+  const bool allMean = std::any_of(reductions.begin(), reductions.end(),
+                                   [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
+  if (allMean && layout.format != StorageFormat::Unorm8) {
+    reductions.push_back({"BILINEAR_MEAN", "1"});
+  } else if (!allMean && layout.channels == 1) {
+    reductions.push_back({"GATHER_ONE_CHANNEL", "1"});
   }
-  glBindSampler(0, 0);
-}
-
-Sampler levelBilinearSampler() {
-  Sampler sampler;
-  // Bilinear within the level textureLod names, never a blend with the next (being written).
-  glSamplerParameteri(sampler.id(), GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-  glSamplerParameteri(sampler.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-  glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glSamplerParameteri(sampler.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  return sampler;
+  return programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);
 }
 
 void ShadowMapFilter::prepare(const ChannelShape& shape) {
@@ -111,12 +96,43 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
   satStats_.reset();
   satSums_.reset();
   if (shape.summedArea) {
-    const SummedAreaSizes bytes = summedAreaSizes(shape.layout.channels * shape.cascades, shape.size);
+    const SummedAreaSizes bytes =
+        summedAreaSizes(shape.layout.channels * shape.cascades, shape.size);
     satRows_.emplace(bytes.rows);
     satStats_.emplace(bytes.stats);
     satSums_.emplace(bytes.sums);
   }
   checkErrors("allocating the technique's channels");
+}
+
+void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& parameters,
+                                unsigned depthTexture, int samples, Technique technique,
+                                const TechniqueParams& params,
+                                std::span<const BlurSpec> cascadeBlurs, bool fused) {
+  const bool filtersAfterTest = technique == Technique::Pcf || technique == Technique::Hard;
+  std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
+  for (ShaderDefine& d : reductionDefines(technique, params, shape_.layout)) {
+    defines.push_back(std::move(d));
+  }
+  encodeTimer.begin();
+  if (!fused) encode(programs, parameters, depthTexture, samples);
+  encodeTimer.end();
+  prefilterTimer.begin();
+  if (fused) {
+    encodeAndBlurFused(programs, parameters, depthTexture, defines, cascadeBlurs);
+  } else if (!filtersAfterTest && shape_.scratch) {
+    blurSeparately(programs, parameters, defines, cascadeBlurs);
+  }
+  prefilterTimer.end();
+  mipsTimer.begin();
+  if (!filtersAfterTest && shape_.levels > 1) {
+    mipChain_.reduce(mipReduceProgram(programs, defines, shape_.layout), parameters, channels_,
+                     internalFormat(shape_.layout), shape_.layout.layers * shape_.cascades,
+                     shape_.size, shape_.levels);
+  }
+  if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
+  mipsTimer.end();
+  checkErrors("prefiltering the channels");
 }
 
 void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& parameters,
@@ -130,63 +146,59 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
   encode.set("sampleCount", samples);
   glBindTextureUnit(0, depthTexture);
   bindChannelImage(channels_, shape_.layout, 0);
-  encodeTimer.begin();
   encode.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup),
                   unsigned(shape_.cascades));
-  encodeTimer.end();
 }
 
-void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& parameters,
-                                Technique technique, const TechniqueParams& params,
-                                std::span<const BlurSpec> cascadeBlurs) {
-  const bool filtersAfterTest = technique == Technique::Pcf || technique == Technique::Hard;
-  std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
-  for (ShaderDefine& d : reductionDefines(technique, params, shape_.layout)) {
-    defines.push_back(std::move(d));
+void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,
+                                     const std::vector<ShaderDefine>& defines,
+                                     std::span<const BlurSpec> cascadeBlurs) {
+  const Program& blur = programs.compute("passes/blur.comp", defines);
+  parameters.bind();
+  blur.set("layerCount", shape_.layout.layers);
+  setSize(blur, "size", shape_.size);
+  const GLint direction = glGetUniformLocation(blur.id(), "direction");
+  for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
+    const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
+    const std::vector<float> weights = blurWeights(spec);
+    glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
+                        GLsizei(weights.size()), weights.data());
+    blur.set("radius", spec.radius);
+    blur.set("layerBase", cascade * shape_.layout.layers);
+    // Horizontal into scratch, vertical back: both through the same program.
+    glBindTextureUnit(0, channels_.id());
+    bindChannelImage(scratch_, shape_.layout, 0);
+    glProgramUniform2i(blur.id(), direction, 1, 0);
+    blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+    glBindTextureUnit(0, scratch_.id());
+    bindChannelImage(channels_, shape_.layout, 0);
+    glProgramUniform2i(blur.id(), direction, 0, 1);
+    blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
   }
-  prefilterTimer.begin();
-  if (!filtersAfterTest && shape_.scratch) {
-    const Program& blur = programs.compute("passes/blur.comp", defines);
+}
+
+void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const ParameterBlock& parameters,
+                                         unsigned depthTexture,
+                                         const std::vector<ShaderDefine>& defines,
+                                         std::span<const BlurSpec> cascadeBlurs) {
+  glBindTextureUnit(0, depthTexture);
+  bindChannelImage(channels_, shape_.layout, 0);
+  for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
+    const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
+    std::vector<ShaderDefine> fusedDefines = defines;
+    fusedDefines.push_back({"APRON", std::to_string(spec.radius)});
+    fusedDefines.push_back({"TILE", std::to_string(kFusedTile)});
+    const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
     parameters.bind();
-    blur.set("layerCount", shape_.layout.layers);
-    setSize(blur, "size", shape_.size);
-    const GLint direction = glGetUniformLocation(blur.id(), "direction");
-    for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
-      const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
-      const std::vector<float> weights = blurWeights(spec);
-      glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
-                          GLsizei(weights.size()), weights.data());
-      blur.set("radius", spec.radius);
-      blur.set("layerBase", cascade * shape_.layout.layers);
-      // Horizontal into scratch, vertical back: both through the same program.
-      glBindTextureUnit(0, channels_.id());
-      bindChannelImage(scratch_, shape_.layout, 0);
-      glProgramUniform2i(blur.id(), direction, 1, 0);
-      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
-      glBindTextureUnit(0, scratch_.id());
-      bindChannelImage(channels_, shape_.layout, 0);
-      glProgramUniform2i(blur.id(), direction, 0, 1);
-      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
-    }
+    const std::vector<float> weights = blurWeights(spec);
+    glProgramUniform1fv(fused.id(), glGetUniformLocation(fused.id(), "weights"),
+                        GLsizei(weights.size()), weights.data());
+    setSize(fused, "size", shape_.size);
+    fused.set("cascade", cascade);
+    fused.set("layerCount", shape_.layout.layers);
+    fused.dispatch(groups(shape_.size, kFusedTile), groups(shape_.size, kFusedTile),
+                   unsigned(shape_.layout.layers));
   }
-  prefilterTimer.end();
-  mipsTimer.begin();
-  if (!filtersAfterTest && shape_.levels > 1) {
-    // Mean channels in float or 16-bit storage take one bilinear sample per 2x2 block; 8-bit
-    // unorm storage keeps the exact four-fetch sum (llvmpipe filters it in 8-bit fixed point).
-    std::vector<ShaderDefine> mipDefines = defines;
-    const bool allMean = std::any_of(defines.begin(), defines.end(),
-                                     [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
-    if (allMean && shape_.layout.format != StorageFormat::Unorm8) {
-      mipDefines.push_back({"BILINEAR_MEAN", "1"});
-    }
-    reduceMipLevels(programs.compute("passes/mip_reduce.comp", mipDefines), parameters,
-                    channels_, shape_.layout, shape_.layout.layers * shape_.cascades,
-                    shape_.size, shape_.levels, levelBilinear_.id());
-  }
-  if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
-  mipsTimer.end();
-  checkErrors("prefiltering the channels");
 }
 
 void ShadowMapFilter::buildSummedAreaTable(ProgramCache& programs) {

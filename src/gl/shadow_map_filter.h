@@ -8,6 +8,7 @@
 #include <span>
 
 #include "gpu_timer.h"
+#include "mip_chain_pass.h"
 #include "penumbra/channel_layout.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/program.h"
@@ -28,19 +29,17 @@ struct ChannelShape {
 
 ChannelShape channelShapeFor(const RenderSettings& settings, int cascades);
 
-// Bilinear within one named level, clamped to the edge.
-Sampler levelBilinearSampler();
-
 class ShadowMapFilter {
  public:
   void prepare(const ChannelShape& shape);
-  // Depth (2D array, one layer per cascade, or its multisample twin) -> channels at level 0.
-  void encode(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
-              int samples);
-  // Blurs each cascade with its own kernel, then builds mips or the summed-area table. PCF and
-  // the hard test read raw depth: nothing to do for them.
-  void prefilter(ProgramCache& programs, const ParameterBlock& parameters, Technique technique,
-                 const TechniqueParams& params, std::span<const BlurSpec> cascadeBlurs);
+  // Depth (2D array, one layer per cascade, or its multisample twin) -> the technique's channels,
+  // each cascade blurred with its own kernel, then mips or the summed-area table. `fused`: encode
+  // and blur in one dispatch per cascade (passes/prefilter_fused.comp; fusesPrefilter decides),
+  // else encode, then the two axes through the scratch texture. PCF and the hard test read raw
+  // depth: the channels are their depth, nothing to blur.
+  void prefilter(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
+                 int samples, Technique technique, const TechniqueParams& params,
+                 std::span<const BlurSpec> cascadeBlurs, bool fused);
 
   const ChannelShape& shape() const { return shape_; }
   const Texture& channels() const { return channels_; }
@@ -54,21 +53,29 @@ class ShadowMapFilter {
   GpuTimer encodeTimer, prefilterTimer, mipsTimer;
 
  private:
+  void encode(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
+              int samples);
+  void blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,
+                      const std::vector<ShaderDefine>& defines,
+                      std::span<const BlurSpec> cascadeBlurs);
+  void encodeAndBlurFused(ProgramCache& programs, const ParameterBlock& parameters,
+                          unsigned depthTexture, const std::vector<ShaderDefine>& defines,
+                          std::span<const BlurSpec> cascadeBlurs);
   void buildSummedAreaTable(ProgramCache& programs);
 
   ChannelShape shape_;
   bool prepared_ = false;
   Texture channels_;  // 2D array: layout.layers x cascades layers, `levels` levels
   Texture scratch_;   // 2D array, one level: the blur's intermediate
-  Sampler levelBilinear_ = levelBilinearSampler();  // the mip pass's one-sample 2x2 means
+  MipChainPass mipChain_;
   std::optional<Buffer> satRows_, satStats_, satSums_;
 };
 
-// Fills levels 1..levels-1 of a 2D-array texture (`layers` layers of `size`^2 at level 0) with
-// `reduce` (passes/mip_reduce.comp in the layout's image format), `sampler` bound for its
-// bilinear reads (0: the texture's own state, for texelFetch-only variants).
-void reduceMipLevels(const Program& reduce, const ParameterBlock& parameters,
-                     const Texture& texture, const ChannelLayout& layout, int layers, int size,
-                     int levels, unsigned sampler = 0);
+// The mip pass's program for a layout's reductions (passes/mip_reduce.frag): mean channels in
+// float or 16-bit storage take one bilinear sample per 2x2 block (8-bit unorm storage keeps the
+// exact four-fetch sum: llvmpipe filters it in 8-bit fixed point); one channel reduced otherwise
+// takes one gather per block.
+const Program& mipReduceProgram(ProgramCache& programs, std::vector<ShaderDefine> reductions,
+                                const ChannelLayout& layout);
 
 }  // namespace penumbra::gl

@@ -5,6 +5,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
+#include <vector>
 
 #include "gl_test_context.h"
 #include "penumbra/error.h"
@@ -23,18 +25,33 @@ gl::RenderSettings small(Technique technique) {
   return s;
 }
 
+void expectTimed(const gl::PassBenchResult& r, const std::vector<std::string>& passes) {
+  ASSERT_EQ(r.passes.size(), passes.size());
+  for (size_t i = 0; i < passes.size(); ++i) {
+    EXPECT_EQ(r.passes[i].pass, passes[i]);
+    EXPECT_TRUE(r.passes[i].passMs > 0.0 && std::isfinite(r.passes[i].passMs)) << passes[i];
+    EXPECT_TRUE(r.passes[i].baselineMs > 0.0 && std::isfinite(r.passes[i].baselineMs)) << passes[i];
+  }
+}
+
 TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   gl::Renderer renderer(*context);
-  const gl::PassBenchResult r =
+  // RGBA32F: the separate passes, and the fused one beside both their minimal kernels.
+  const gl::PassBenchResult evsm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Evsm4), 2);
-  EXPECT_EQ(r.format, "rgba32f x 1 layer");
-  ASSERT_EQ(r.passes.size(), 3u);  // trilinear: encode, prefilter and mips
-  const char* passes[] = {"encode", "prefilter", "mips"};
-  for (size_t i = 0; i < 3; ++i) {
-    EXPECT_EQ(r.passes[i].pass, passes[i]);
-    EXPECT_TRUE(r.passes[i].passMs > 0.0 && std::isfinite(r.passes[i].passMs));
-    EXPECT_TRUE(r.passes[i].baselineMs > 0.0 && std::isfinite(r.passes[i].baselineMs));
-  }
+  EXPECT_EQ(evsm.format, "rgba32f x 1 layer");
+  EXPECT_EQ(evsm.timing, renderer.timerQueriesMeasureExecution()
+                             ? "GPU timer queries"
+                             : "wall clock (glFinish around each pass)");
+  expectTimed(evsm, {"encode", "prefilter", "mips", "encode + prefilter, fused"});
+  // 16-bit storage rounds the blur's intermediate: no fused pass.
+  expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Msm), 1),
+              {"encode", "prefilter", "mips"});
+  // The summed-area filter: encode and the table, no blur.
+  gl::RenderSettings sat = small(Technique::Vsm);
+  sat.filter = gl::FilterMode::SummedArea;
+  expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), sat, 1),
+              {"encode", "summed-area table"});
 }
 
 TEST_F(PassBench, TechniquesWithoutAPrefilterAreRefused) {

@@ -112,7 +112,10 @@ void runBench(const BenchOptions& o) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   std::ostringstream csv;
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio\n";
-  std::cout << "Wall-clock medians of " << o.repeat << " warm frames on "
+  const std::string timing = renderer.timerQueriesMeasureExecution()
+                                 ? "GPU timer queries"
+                                 : "wall clock (glFinish around each pass)";
+  std::cout << "Medians of " << o.repeat << " warm frames, " << timing << ", on "
             << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
             << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
@@ -140,9 +143,10 @@ void runBench(const BenchOptions& o) {
   const nlohmann::ordered_json record = {
       {"experiment", "passes"},
       {"device", renderer.deviceDescription()},
-      {"timing",
-       "wall-clock medians (glFinish around each pass); llvmpipe's timer queries see "
-       "only submission"},
+      {"timing", "medians of " + timing +
+                     (renderer.timerQueriesMeasureExecution()
+                          ? ""
+                          : "; a software rasteriser's timer queries see only submission")},
       {"scene", scene.name},
       {"shadow_map_size", settings.shadowMapSize},
       {"blur_taps", 2 * settings.blur.radius + 1},
@@ -165,8 +169,9 @@ void registerBenchCommand(CLI::App& app) {
                   "the papers' experiments to rerun, comma-separated, or all: " + experimentList())
       ->delimiter(',');
   cmd->add_flag("--passes", o->passes,
-                "each prefilter pass (encode, blur, mips) beside a minimal kernel with the same "
-                "reads and writes, as a ratio");
+                "each prefilter pass (encode, blur, the fused encode + blur, mips or with --filter "
+                "sat the summed-area table) beside a minimal kernel with the same reads and "
+                "writes, as a ratio");
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);

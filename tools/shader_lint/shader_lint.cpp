@@ -53,7 +53,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 }
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
-// CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA and ZMAX (0 and 1).
+// CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, AXIS and
+// the reduction switches (0 and 1), and APRON (the fused prefilter's smallest and largest radius).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -80,6 +81,11 @@ std::vector<Defines> variants(const std::string& source) {
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});
   expand("REFERENCE", {"0", "1"});
+  expand("APRON", {"1", "10"});  // the fused prefilter's kernel radius: 1..kMaxFusedBlurRadius
+  expand("AXIS", {"0", "1"});
+  expand("ALL_MEAN", {"0", "1"});
+  expand("BILINEAR_MEAN", {"0", "1"});
+  expand("GATHER_ONE_CHANNEL", {"0", "1"});
   return result;
 }
 
@@ -121,9 +127,10 @@ int main(int argc, char** argv) {
                       "#include \"" + path + "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
       // Summed-area code needs 64-bit integers, enabled before any declaration.
       if (library.expand(target).source.find("SUMMED_AREA") != std::string::npos) {
-        library.addFile(target, "#if SUMMED_AREA\n#extension GL_ARB_gpu_shader_int64 : require\n"
-                                "#endif\n#include \"" + path +
-                                    "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
+        library.addFile(target,
+                        "#if SUMMED_AREA\n#extension GL_ARB_gpu_shader_int64 : require\n"
+                        "#endif\n#include \"" +
+                            path + "\"\nlayout(local_size_x = 1) in;\nvoid main() {}\n");
       }
       stage = "comp";
     }

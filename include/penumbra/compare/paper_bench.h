@@ -63,7 +63,7 @@ struct CaseMeasurement {
   double minMs = 0.0;
   double maxMs = 0.0;
   gl::PassTimes medianPasses;  // per pass, medians over the timed frames
-  uint64_t shadowBytes = 0;    // channel texture, summed-area table, scratch and auxiliary
+  uint64_t shadowBytes = 0;    // channel texture, summed-area table and auxiliary (no scratch)
   double timeRatio = 0.0;      // median over the baseline's median
   double memoryRatio = 0.0;
 };

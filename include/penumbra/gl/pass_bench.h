@@ -10,7 +10,7 @@
 namespace penumbra::gl {
 
 struct PassTiming {
-  std::string pass;      // "encode", "prefilter", "mips"
+  std::string pass;      // "encode", "prefilter", "encode + prefilter, fused", "mips", ...
   double passMs = 0.0;   // the renderer's pass, median wall time of the warm frames
   std::string baseline;  // what the minimal kernel does
   double baselineMs = 0.0;
@@ -20,13 +20,16 @@ struct PassTiming {
 struct PassBenchResult {
   Technique technique = Technique::Vsm;
   std::string format;  // the channel texture's format, e.g. "rgba32f x 1 layer"
+  std::string timing;  // "GPU timer queries" or "wall clock (...)"
   std::vector<PassTiming> passes;
 };
 
-// Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) and runs the minimal
-// kernels as many times on textures of the channel texture's format, size and layers; medians
-// of wall-clock times (llvmpipe's timer queries see only submission). PCF and the hard test have
-// no prefilter: they are refused.
+// Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) with the separate
+// passes and, where the settings allow it, with the fused prefilter, and runs the minimal kernels
+// as many times on textures of the channel texture's format, size and layers; medians of GPU
+// timer queries on vendor drivers, of wall-clock times on software rasterisers (llvmpipe's
+// queries see only submission). The mip chain or, with the sat filter, the summed-area table.
+// PCF and the hard test have no prefilter, cascades have several maps: they are refused.
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats);
 

@@ -68,6 +68,10 @@ class Texture {
  public:
   Texture() = default;
   explicit Texture(unsigned target);
+  // A view of `levels` levels from `firstLevel` and every one of `layers` layers of `source`
+  // (immutable storage) in `format`, as a texture of `target` (glTextureView).
+  static Texture view(const Texture& source, unsigned target, unsigned format, int firstLevel,
+                      int levels, int layers);
   Texture(Texture&& other) noexcept;
   Texture& operator=(Texture&& other) noexcept;
   ~Texture();

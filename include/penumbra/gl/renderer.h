@@ -39,6 +39,10 @@ struct RenderSettings {
   BlurSpec blur{BlurKernel::Gaussian, 2, 1.0f};  // prefilter; radius 0 = none. With the
                                                  // summed-area filter the radius is the box minimum
   FilterMode filter = FilterMode::Trilinear;
+  // Encode and both blur axes in one dispatch over a shared-memory tile where it gives the same
+  // bits (32-bit float channels, no MSAA, kernels up to kMaxFusedBlurRadius: docs/renderer.md);
+  // false: always the separate encode and per-axis passes (bench --passes times both).
+  bool fusePrefilter = true;
   int anisotropy = 16;  // [1, 16], used by the anisotropic filter
   int width = 960;      // frame size in pixels, [1, GL_MAX_TEXTURE_SIZE]
   int height = 540;
@@ -63,7 +67,7 @@ struct FrameView {
 struct PassTimes {  // milliseconds per pass
   double light = 0.0;
   double encode = 0.0;
-  double prefilter = 0.0;  // separable blur
+  double prefilter = 0.0;  // separable blur; with a fused prefilter, encode and blur (encode 0)
   double mipsOrSat = 0.0;  // mip chain or summed-area table
   double auxiliary = 0.0;  // ESM's Z-max pyramid or LVSM's Lloyd split placement
   double camera = 0.0;
@@ -115,10 +119,10 @@ struct RenderResult {
   // Per pixel, row 0 at the top: the cascade whose lookup (uv, receiver plane, derivatives
   // above) decides, -1 outside every map; and the blend weight of the next cascade.
   Image cascades;
-  CascadeFrame cascadeFrame;            // the frame's cascades (count 1: one map, identity box)
-  std::vector<BlurSpec> cascadeBlurs;   // the prefilter kernel of each cascade
-  DepthRange depthBounds;               // the depth range the cascades split
-  PassTimes gpuTimes;   // GL_TIME_ELAPSED queries: exact on vendor drivers
+  CascadeFrame cascadeFrame;           // the frame's cascades (count 1: one map, identity box)
+  std::vector<BlurSpec> cascadeBlurs;  // the prefilter kernel of each cascade
+  DepthRange depthBounds;              // the depth range the cascades split
+  PassTimes gpuTimes;                  // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
 };

@@ -1,5 +1,5 @@
 // Z-max pyramid, level 0: the light pass's depth (the farthest sample under MSAA) for ESM's Z-max
-// failure classification (ESM paper §3.3); passes/mip_reduce.comp with FORCE_REDUCTION max builds
+// failure classification (ESM paper §3.3); passes/mip_reduce.frag with FORCE_REDUCTION max builds
 // the levels above it.
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0, r32f) uniform writeonly image2DArray zmaxImage;

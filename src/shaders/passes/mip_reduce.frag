@@ -1,0 +1,78 @@
+// One mip level down, one layer: each texel reduces the 2x2 block below it by its channel's
+// reduction; with an odd source size the last texel also takes the leftover row/column
+// (shared/mip_span.h). FORCE_REDUCTION overrides the technique's reduction (the Z-max pyramid
+// uses kReduceMax). A fragment pass, not a compute pass: the rasteriser writes the level in the
+// texture's own tiling, as the driver's mipmap generation does, where imageStore scatters
+// (2x slower on llvmpipe, docs/results/passes-llvmpipe-2026-12-01.md).
+#include "../lib/layer_reduction.glsl"
+#include "../shared/mip_span.h"
+
+// The source level alone (a view of one level): level 0 here, and never the level being drawn.
+layout(binding = 0) uniform sampler2DArray source;
+
+uniform ivec2 sourceSize;
+uniform ivec2 targetSize;
+uniform int layer;
+
+#ifndef BILINEAR_MEAN
+#define BILINEAR_MEAN 0
+#endif
+#ifndef GATHER_ONE_CHANNEL
+#define GATHER_ONE_CHANNEL 0
+#endif
+
+layout(location = 0) out vec4 reduced;
+
+void main() {
+  ivec2 p = ivec2(gl_FragCoord.xy);
+  ivec2 xs = mipSourceSpan(p.x, targetSize.x, sourceSize.x);
+  ivec2 ys = mipSourceSpan(p.y, targetSize.y, sourceSize.y);
+#if BILINEAR_MEAN
+  // Every channel a mean and a plain 2x2 block: one bilinear sample at the block's shared corner
+  // weighs its four texels 1/4 each, one fetch instead of four.
+  if (xs.y - xs.x == 1 && ys.y - ys.x == 1) {
+    reduced = textureLod(source, vec3(vec2(xs.y, ys.y) / vec2(sourceSize), float(layer)), 0.0f);
+    return;
+  }
+#endif
+#if GATHER_ONE_CHANNEL
+  // One channel, reduced by other than a mean (ESM's log-space mean, the Z-max pyramid's max):
+  // one gather at the block's shared corner returns its four texels, reduced in the same order
+  // as the loop below — (x0, y0), (x1, y0), (x0, y1), (x1, y1) are the gather's w, z, x, y.
+  if (xs.y - xs.x == 1 && ys.y - ys.x == 1) {
+    vec4 block =
+        textureGather(source, vec3(vec2(xs.y, ys.y) / vec2(sourceSize), float(layer)), 0);
+    ChannelAccumulator acc = startReduction(layerChannelReduction(layer, 0), params.esm.exponent);
+    acc = accumulateTap(acc, block.w, 0.25f);
+    acc = accumulateTap(acc, block.z, 0.25f);
+    acc = accumulateTap(acc, block.x, 0.25f);
+    acc = accumulateTap(acc, block.y, 0.25f);
+    reduced = vec4(reductionResult(acc), 0.0f, 0.0f, 0.0f);
+    return;
+  }
+#endif
+  float weight = 1.0f / float((xs.y - xs.x + 1) * (ys.y - ys.x + 1));
+  // Each source texel is fetched once for all four channels.
+#if ALL_MEAN
+  vec4 sum = vec4(0.0f);
+  for (int y = ys.x; y <= ys.y; ++y) {
+    for (int x = xs.x; x <= xs.y; ++x) {
+      sum = accumulateMeanTexel(sum, texelFetch(source, ivec3(x, y, layer), 0), weight);
+    }
+  }
+  reduced = sum;
+#else
+  ChannelAccumulator acc[4];
+  for (int c = 0; c < 4; ++c) {
+    acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
+  }
+  for (int y = ys.x; y <= ys.y; ++y) {
+    for (int x = xs.x; x <= xs.y; ++x) {
+      vec4 texel = texelFetch(source, ivec3(x, y, layer), 0);
+      for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
+    }
+  }
+  reduced = vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
+                 reductionResult(acc[3]));
+#endif
+}

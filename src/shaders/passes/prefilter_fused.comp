@@ -1,0 +1,74 @@
+// The whole prefilter of one cascade in one dispatch: encode and both axes of the separable blur
+// over a shared-memory tile. Each work group loads its TILE^2 texels and an APRON-wide border of
+// depth once, encodes each into shared memory (encode fused into the first axis: the encoded
+// channels never go through a texture), blurs the rows of the tile and its border into shared
+// memory, then the columns, and writes only the result: one texture write per texel where the
+// separate passes write three (encode, horizontal, vertical) and fetch 2 * taps + 1 texels.
+// Same taps, order and fp32 accumulation as encode.comp + blur.comp; clamping the loads to the
+// map clamps every tap as those do, so 32-bit float channels come out the same to the bit (the
+// renderer takes this path only for them: 16- and 8-bit storage rounds the horizontal result
+// in the scratch texture, which the CPU reference reproduces).
+#include "../lib/layer_reduction.glsl"
+
+#ifndef TILE
+#define TILE 16
+#endif
+// APRON: the kernel's radius, at compile time, so the shared arrays have their size.
+const int kSpan = TILE + 2 * APRON;
+
+layout(local_size_x = TILE, local_size_y = TILE) in;
+layout(binding = 0) uniform sampler2DArray depthMap;  // one layer per cascade
+layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channels;
+
+uniform float weights[2 * kMaxBlurRadius + 1];
+uniform ivec2 size;
+uniform int cascade;
+uniform int layerCount;  // channel layers per cascade
+
+shared vec4 encoded[kSpan * kSpan];  // the tile and its border, row by row
+shared vec4 rows[kSpan * TILE];      // the horizontal pass: the tile's columns, every row
+
+// The kernel over the taps at first, first + stride, ... of `encoded` (fromEncoded) or `rows`.
+vec4 reduceTaps(int first, int stride, bool fromEncoded, int layer) {
+#if ALL_MEAN
+  vec4 sum = vec4(0.0f);
+  for (int i = 0; i <= 2 * APRON; ++i) {
+    vec4 texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
+    sum = accumulateMeanTexel(sum, texel, weights[i]);
+  }
+  return sum;
+#else
+  ChannelAccumulator acc[4];
+  for (int c = 0; c < 4; ++c) {
+    acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
+  }
+  for (int i = 0; i <= 2 * APRON; ++i) {
+    vec4 texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
+    for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weights[i]);
+  }
+  return vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
+              reductionResult(acc[3]));
+#endif
+}
+
+void main() {
+  int layer = int(gl_WorkGroupID.z);  // the channel layer within the cascade
+  ivec2 origin = ivec2(gl_WorkGroupID.xy) * TILE - APRON;
+  int local = int(gl_LocalInvocationIndex);
+  for (int i = local; i < kSpan * kSpan; i += TILE * TILE) {
+    ivec2 q = clamp(origin + ivec2(i % kSpan, i / kSpan), ivec2(0), size - 1);
+    encoded[i] = encodeTexelLayer(technique, texelFetch(depthMap, ivec3(q, cascade), 0).x, layer,
+                                  params);
+  }
+  barrier();
+  for (int i = local; i < kSpan * TILE; i += TILE * TILE) {
+    int x = i % TILE, y = i / TILE;
+    rows[i] = reduceTaps(y * kSpan + x, 1, true, layer);
+  }
+  barrier();
+  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+  if (p.x >= size.x || p.y >= size.y) return;
+  ivec2 l = ivec2(gl_LocalInvocationID.xy);
+  imageStore(channels, ivec3(p, cascade * layerCount + layer),
+             reduceTaps(l.y * TILE + l.x, TILE, false, layer));
+}

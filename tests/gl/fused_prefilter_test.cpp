@@ -1,0 +1,76 @@
+// The fused prefilter (encode and both blur axes in one dispatch over a shared-memory tile) gives
+// the separate passes' channels: the same taps, order and fp32 arithmetic, with the tile's border
+// clamped at the map's edges as the separate passes clamp each tap. Map sizes that are and are
+// not multiples of the 16-texel tile, kernels from one texel to the largest the tile holds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "gl_test_context.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/params.h"
+
+namespace penumbra {
+namespace {
+
+class FusedPrefilter : public testing::GlTest {};
+
+TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("backyard");
+  struct Case {
+    Technique technique;
+    const char* param;  // on top of the defaults, or nullptr
+  };
+  // Every reduction the fused path meets: means (VSM, EVSM4, LVSM's layers), ESM's log-space
+  // mean and linear mean, the power CDF's min and max, several texel layers.
+  const Case cases[] = {{Technique::Vsm, nullptr},           {Technique::Evsm4, nullptr},
+                        {Technique::Esm, "filtering=log"},   {Technique::Esm, "filtering=linear"},
+                        {Technique::PowerCdf, "layers=3"},   {Technique::Csm, "storage=float32"},
+                        {Technique::Lvsm, "storage=float32"}};
+  for (const Case& k : cases) {
+    for (const int size : {96, 100}) {
+      for (const int radius : {1, 10}) {  // 10: kMaxFusedBlurRadius
+        gl::RenderSettings s;
+        s.technique = k.technique;
+        if (k.param != nullptr) {
+          const std::vector<Technique> one{k.technique};
+          applyParamAssignment(one, s.params, k.param);
+        }
+        s.shadowMapSize = size;
+        s.width = 32;
+        s.height = 18;
+        s.filter = gl::FilterMode::Bilinear;
+        s.blur = {BlurKernel::Gaussian, radius, 0.5f * float(radius)};
+        const std::string what = std::string(techniqueId(k.technique)) + " " +
+                                 (k.param ? k.param : "") + " " + std::to_string(size) +
+                                 "^2 radius " + std::to_string(radius);
+        const gl::RenderResult fused = renderer.render(scene, s);
+        // The fused path ran: one map with a fused prefilter needs no scratch texture.
+        ASSERT_EQ(fused.memory.scratch, 0u) << what;
+        const Image fusedChannels = renderer.readChannels(0);
+        s.fusePrefilter = false;
+        const gl::RenderResult separate = renderer.render(scene, s);
+        ASSERT_GT(separate.memory.scratch, 0u) << what;
+        const Image separateChannels = renderer.readChannels(0);
+        ASSERT_EQ(fusedChannels.data().size(), separateChannels.data().size());
+        int bad = 0;
+        for (size_t i = 0; i < fusedChannels.data().size(); ++i) {
+          const float a = fusedChannels.data()[i], b = separateChannels.data()[i];
+          // Same arithmetic in the same order: equal up to the compiler contracting a multiply
+          // and an add into one fma in one shader and not the other (half an ulp per tap).
+          const float tolerance = 1e-6f * std::max(1.0f, std::abs(b));
+          if (!(std::abs(a - b) <= tolerance) && ++bad <= 3) {
+            ADD_FAILURE() << what << " value " << i << " (texel "
+                          << i / size_t(fusedChannels.channels()) << "): fused " << a
+                          << " separate " << b;
+          }
+        }
+        EXPECT_EQ(bad, 0) << what;
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace penumbra
