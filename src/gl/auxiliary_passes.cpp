@@ -27,6 +27,7 @@ void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters
     levels_ = mipLevelCount(size_, size_);
     texture_ = Texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(texture_.id(), levels_, GL_R32F, size_, size_, layers_);
+    levelViews_ = levelViews(texture_, GL_R32F, levels_, layers_);
   }
   const Program& base =
       programs.compute("passes/zmax_base.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
@@ -36,13 +37,15 @@ void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters
   glBindImageTexture(0, texture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
   base.dispatch(groups(size_), groups(size_), unsigned(layers_));
   const ChannelLayout depthOnly{1, 1, 1, StorageFormat::Float32};
-  const Program& reduce = mipReduceProgram(
-      programs, {{"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}}, depthOnly);
-  mipChain_.reduce(reduce, parameters, texture_, GL_R32F, layers_, size_, levels_);
+  mipChain_.reduce(
+      mipReducePrograms(programs, {{"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}},
+                        depthOnly),
+      parameters, texture_, levelViews_, layers_, size_);
   checkErrors("building the Z-max pyramid");
 }
 
 void ZmaxPyramid::release() {
+  levelViews_.clear();
   texture_ = Texture();
   levels_ = 0;
 }

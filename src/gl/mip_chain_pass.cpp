@@ -22,11 +22,18 @@ MipChainPass::~MipChainPass() {
   glDeleteVertexArrays(1, &vertexArray_);
 }
 
-void MipChainPass::reduce(const Program& reduce, const ParameterBlock& parameters,
-                          const Texture& texture, unsigned format, int layers, int size,
-                          int levels) {
+std::vector<Texture> levelViews(const Texture& texture, unsigned format, int levels, int layers) {
+  std::vector<Texture> views;
+  for (int level = 0; level < levels; ++level) {
+    views.push_back(Texture::view(texture, GL_TEXTURE_2D_ARRAY, format, level, 1, layers));
+  }
+  return views;
+}
+
+void MipChainPass::reduce(const MipReducePrograms& programs, const ParameterBlock& parameters,
+                          const Texture& texture, std::span<const Texture> views, int layers,
+                          int size) {
   parameters.bind();
-  reduce.use();
   glBindVertexArray(vertexArray_);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glDisable(GL_DEPTH_TEST);
@@ -34,20 +41,21 @@ void MipChainPass::reduce(const Program& reduce, const ParameterBlock& parameter
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_CULL_FACE);
   glBindSampler(0, bilinear_.id());
-  const GLint layerUniform = glGetUniformLocation(reduce.id(), "layer");
-  for (int level = 0; level + 1 < levels; ++level) {
+  for (size_t level = 0; level + 1 < views.size(); ++level) {
     const int source = std::max(1, size >> level);
     const int target = std::max(1, size >> (level + 1));
-    const Texture view = Texture::view(texture, GL_TEXTURE_2D_ARRAY, format, level, 1, layers);
-    glBindTextureUnit(0, view.id());
+    const Program& reduce = source == 2 * target ? programs.halving : programs.general;
+    reduce.use();
+    glBindTextureUnit(0, views[level].id());
     glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "sourceSize"), source,
                        source);
     glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "targetSize"), target,
                        target);
+    const GLint layerUniform = glGetUniformLocation(reduce.id(), "layer");
     glViewport(0, 0, target, target);
     for (int layer = 0; layer < layers; ++layer) {
-      glNamedFramebufferTextureLayer(framebuffer_, GL_COLOR_ATTACHMENT0, texture.id(), level + 1,
-                                     layer);
+      glNamedFramebufferTextureLayer(framebuffer_, GL_COLOR_ATTACHMENT0, texture.id(),
+                                     GLint(level) + 1, layer);
       glProgramUniform1i(reduce.id(), layerUniform, layer);
       glDrawArrays(GL_TRIANGLES, 0, 3);
     }

@@ -66,8 +66,8 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
   return shape;
 }
 
-const Program& mipReduceProgram(ProgramCache& programs, std::vector<ShaderDefine> reductions,
-                                const ChannelLayout& layout) {
+MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDefine> reductions,
+                                    const ChannelLayout& layout) {
   const bool allMean = std::any_of(reductions.begin(), reductions.end(),
                                    [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
   if (allMean && layout.format != StorageFormat::Unorm8) {
@@ -75,7 +75,11 @@ const Program& mipReduceProgram(ProgramCache& programs, std::vector<ShaderDefine
   } else if (!allMean && layout.channels == 1) {
     reductions.push_back({"GATHER_ONE_CHANNEL", "1"});
   }
-  return programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);
+  const Program& general =
+      programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);
+  reductions.push_back({"HALVING", "1"});
+  return {programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions),
+          general};
 }
 
 void ShadowMapFilter::prepare(const ChannelShape& shape) {
@@ -86,6 +90,9 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
   channels_ = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
                      shape.size, layers);
+  channelLevels_ = shape.levels > 1
+                       ? levelViews(channels_, internalFormat(shape.layout), shape.levels, layers)
+                       : std::vector<Texture>{};
   scratch_ = Texture();
   if (shape.scratch) {
     scratch_ = Texture(GL_TEXTURE_2D_ARRAY);
@@ -126,9 +133,8 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   prefilterTimer.end();
   mipsTimer.begin();
   if (!filtersAfterTest && shape_.levels > 1) {
-    mipChain_.reduce(mipReduceProgram(programs, defines, shape_.layout), parameters, channels_,
-                     internalFormat(shape_.layout), shape_.layout.layers * shape_.cascades,
-                     shape_.size, shape_.levels);
+    mipChain_.reduce(mipReducePrograms(programs, defines, shape_.layout), parameters, channels_,
+                     channelLevels_, shape_.layout.layers * shape_.cascades, shape_.size);
   }
   if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
   mipsTimer.end();

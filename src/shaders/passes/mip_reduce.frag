@@ -20,18 +20,32 @@ uniform int layer;
 #ifndef GATHER_ONE_CHANNEL
 #define GATHER_ONE_CHANNEL 0
 #endif
+// HALVING: the source level is exactly twice the target on both axes (an even size), so every
+// texel reduces the plain 2x2 block at 2p, 2p + 1: no spans to work out per fragment.
+#ifndef HALVING
+#define HALVING 0
+#endif
 
 layout(location = 0) out vec4 reduced;
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
+#if HALVING
+  ivec2 xs = ivec2(2 * p.x, 2 * p.x + 1);
+  ivec2 ys = ivec2(2 * p.y, 2 * p.y + 1);
+  const bool plainBlock = true;
+  vec2 corner = gl_FragCoord.xy / vec2(targetSize);  // (2p + 1) / (2 targetSize)
+#else
   ivec2 xs = mipSourceSpan(p.x, targetSize.x, sourceSize.x);
   ivec2 ys = mipSourceSpan(p.y, targetSize.y, sourceSize.y);
+  bool plainBlock = xs.y - xs.x == 1 && ys.y - ys.x == 1;
+  vec2 corner = vec2(xs.y, ys.y) / vec2(sourceSize);
+#endif
 #if BILINEAR_MEAN
   // Every channel a mean and a plain 2x2 block: one bilinear sample at the block's shared corner
   // weighs its four texels 1/4 each, one fetch instead of four.
-  if (xs.y - xs.x == 1 && ys.y - ys.x == 1) {
-    reduced = textureLod(source, vec3(vec2(xs.y, ys.y) / vec2(sourceSize), float(layer)), 0.0f);
+  if (plainBlock) {
+    reduced = textureLod(source, vec3(corner, float(layer)), 0.0f);
     return;
   }
 #endif
@@ -39,9 +53,8 @@ void main() {
   // One channel, reduced by other than a mean (ESM's log-space mean, the Z-max pyramid's max):
   // one gather at the block's shared corner returns its four texels, reduced in the same order
   // as the loop below — (x0, y0), (x1, y0), (x0, y1), (x1, y1) are the gather's w, z, x, y.
-  if (xs.y - xs.x == 1 && ys.y - ys.x == 1) {
-    vec4 block =
-        textureGather(source, vec3(vec2(xs.y, ys.y) / vec2(sourceSize), float(layer)), 0);
+  if (plainBlock) {
+    vec4 block = textureGather(source, vec3(corner, float(layer)), 0);
     ChannelAccumulator acc = startReduction(layerChannelReduction(layer, 0), params.esm.exponent);
     acc = accumulateTap(acc, block.w, 0.25f);
     acc = accumulateTap(acc, block.z, 0.25f);
