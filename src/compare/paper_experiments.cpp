@@ -212,7 +212,14 @@ Experiment kernelScaling(const BenchSizes& z) {
       e.cases.push_back(c);
     };
     add("PCF", Technique::Pcf, FilterMode::Point);
+    // The claim is about separate passes (2k taps per texel); the fused tile's cost grows with
+    // its border's loads too ((16 + k - 1)^2 per 256 texels), so it is its own series, over the
+    // kernels it takes.
     add("VSM, separable blur", Technique::Vsm, FilterMode::Bilinear);
+    e.cases.back().settings.fusePrefilter = false;
+    if (k == 1 || (k - 1) / 2 <= gl::kMaxFusedBlurRadius) {
+      add("VSM, fused blur", Technique::Vsm, FilterMode::Bilinear);
+    }
     add("VSM, summed-area table", Technique::Vsm, FilterMode::SummedArea);
   }
   return e;

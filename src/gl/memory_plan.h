@@ -17,10 +17,6 @@ namespace penumbra::gl {
 bool prefiltersChannels(Technique technique);  // not PCF or the hard test (raw depth)
 int channelLevelsFor(const RenderSettings& settings);
 bool blursIntoScratch(const RenderSettings& settings);
-// The largest kernel radius the fused prefilter's tile holds: its shared memory, (2r + 16)^2 +
-// 16 (2r + 16) RGBA32F texels, stays within 32 KiB, the least GL 4.5 guarantees
-// (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE).
-inline constexpr int kMaxFusedBlurRadius = 10;
 // Whether a kernel of this radius runs as the fused prefilter under these settings
 // (RenderSettings::fusePrefilter): a blur, 32-bit float channels, one light-pass sample.
 bool fusesPrefilter(const RenderSettings& settings, int radius);

@@ -65,17 +65,27 @@ TEST_F(PaperBench, EachKernelIsSetAgainstTheBaselineOfTheSameKernel) {
   }
 }
 
-TEST(PaperBenchFit, ExponentOfAPowerLawIsItsPower) {
-  const std::vector<double> k{3, 5, 7, 11, 31};
-  std::vector<double> square, linear;
+TEST(PaperBenchFit, PowerLawWithAFixedCostIsRecovered) {
+  const std::vector<double> k{3, 5, 7, 11, 15, 21, 31};
+  std::vector<double> square, linear, pure;
   for (double x : k) {
-    square.push_back(0.7 * x * x);
-    linear.push_back(2.5 * x);
+    square.push_back(4.0 + 0.7 * x * x);  // PCF: a dispatch's fixed cost plus k^2 taps
+    linear.push_back(40.0 + 2.5 * x);     // a blur pass's fixed cost plus 2k taps
+    pure.push_back(1.5 * std::pow(x, 1.5));
   }
-  EXPECT_NEAR(compare::fittedExponent(k, square), 2.0, 1e-12);
-  EXPECT_NEAR(compare::fittedExponent(k, linear), 1.0, 1e-12);
-  EXPECT_THROW(compare::fittedExponent({3}, {1}), Error);
-  EXPECT_THROW(compare::fittedExponent({3, 3}, {1, 2}), Error);
+  // The exponent is found on a grid of 0.001; offset and scale are then exact least squares for
+  // it, so they carry the exponent's rounding only (well within 1e-3 relative here).
+  const compare::PowerLawFit s = compare::fitPowerLaw(k, square);
+  EXPECT_NEAR(s.exponent, 2.0, 1e-9);
+  EXPECT_NEAR(s.offset, 4.0, 1e-6);
+  EXPECT_NEAR(s.scale, 0.7, 1e-9);
+  const compare::PowerLawFit l = compare::fitPowerLaw(k, linear);
+  EXPECT_NEAR(l.exponent, 1.0, 1e-9);
+  EXPECT_NEAR(l.offset, 40.0, 1e-6);
+  EXPECT_NEAR(compare::fitPowerLaw(k, pure).exponent, 1.5, 1e-9);
+  EXPECT_THROW(compare::fitPowerLaw({3, 5}, {1, 2}), Error);
+  EXPECT_THROW(compare::fitPowerLaw({3, 3, 3}, {1, 2, 3}), Error);
+  EXPECT_THROW(compare::fitPowerLaw({3, 5, 7}, {1, NAN, 3}), Error);
 }
 
 TEST(PaperBenchIds, UnknownExperimentsListTheValidOnes) {

@@ -80,8 +80,14 @@ struct ExperimentResult {
 ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
                                     const Experiment& experiment, int repeats);
 
-// The fitted exponent b of time = a k^b over a series (least squares in log-log), for the
-// kernel-scaling claim (PCF k², separable blur k, summed-area table flat).
-double fittedExponent(const std::vector<double>& k, const std::vector<double>& ms);
+// time = offset + scale k^exponent, least squares over a series, the exponent to 0.001 in
+// [0, 4], for the kernel-scaling claim (PCF k², separable blur k, summed-area table flat). The
+// offset holds a pass's fixed cost, which would otherwise read as slower growth. Throws Error for
+// fewer than three pairs, fewer than two distinct kernels, non-positive kernels, or non-finite
+// times.
+struct PowerLawFit {
+  double offset = 0.0, scale = 0.0, exponent = 0.0;
+};
+PowerLawFit fitPowerLaw(const std::vector<double>& k, const std::vector<double>& ms);
 
 }  // namespace penumbra::compare

@@ -31,6 +31,11 @@ enum class Overlay {
   Cascades,  // tints each pixel by its cascade (blended in the blend band)
 };
 
+// The largest kernel radius the fused prefilter's tile holds (RenderSettings::fusePrefilter):
+// its shared memory, (2r + 16)^2 + 16 (2r + 16) RGBA32F texels, stays within 32 KiB, the least
+// GL 4.5 guarantees (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE).
+inline constexpr int kMaxFusedBlurRadius = 10;
+
 struct RenderSettings {
   Technique technique = Technique::Vsm;
   TechniqueParams params = defaultTechniqueParams();
