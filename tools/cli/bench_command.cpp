@@ -95,9 +95,22 @@ void runBench(const BenchOptions& o) {
     return;
   }
   if (printTechniqueListIfAsked(o.technique)) return;
-  const std::vector<Technique> techniques = selectedTechniques(o.technique);
+  std::vector<Technique> techniques = selectedTechniques(o.technique);
   gl::RenderSettings settings = toRenderSettings(o.render);
   settings.params = selectedParams(o.technique, techniques);
+  // PCF and the hard test filter after the test: "all" means the techniques with a prefilter,
+  // naming them is an error before anything runs.
+  const auto withoutPrefilter = [](Technique t) {
+    return t == Technique::Pcf || t == Technique::Hard;
+  };
+  if (o.technique.techniques == "all") {
+    std::erase_if(techniques, withoutPrefilter);
+  } else if (const auto t = std::find_if(techniques.begin(), techniques.end(), withoutPrefilter);
+             t != techniques.end()) {
+    throw Error(std::string(techniqueId(*t)) +
+                " has no prefilter passes to measure (it filters after the test): choose "
+                "techniques that prefilter, or all");
+  }
   Scene scene = loadScene(o.scene.scene);
   applyOverrides(scene, sceneOverrides(o.scene));
   checkOutputPath(o.outDir);
