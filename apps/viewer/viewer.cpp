@@ -7,6 +7,7 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -18,6 +19,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/image_io.h"
+#include "reference_job.h"
 #include "scene_texture.h"
 #include "settings_panel.h"
 #include "viewer_state.h"
@@ -28,6 +30,21 @@ namespace {
 
 constexpr float kPanelWidth = 430.0f;
 constexpr size_t kTimeHistory = 120;  // frames in the rolling time graph
+// Waits for events between frames: while the reference computes, often enough to show its
+// progress; idle, long (any event wakes the window at once).
+constexpr double kProgressWaitSeconds = 1.0 / 30.0;
+constexpr double kIdleWaitSeconds = 0.25;
+// Fly mode: W A S D Q E move this many scene radii per second; one frame moves at most this
+// long's worth (a frame stalled by a shader compile must not throw the camera out of the scene).
+constexpr float kFlySpeedRadiiPerSecond = 0.5f;
+constexpr float kLongestFlyStepSeconds = 0.25f;
+// The error view shows the reference's new rows at most this often (and once complete).
+constexpr double kProgressRefreshSeconds = 0.1;
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 void setMessage(ViewerState& state, std::string message, bool isError) {
   state.message = std::move(message);
@@ -50,7 +67,9 @@ class Viewer {
   Viewer(const ViewerOptions& options, gl::Settings settings, ViewerWindow& window)
       : options_(options), window_(window), renderer_(context_) {
     state_.settings = std::move(settings);
+    takeSplitSettings(state_);
     state_.showPanel = !options.hidePanel;
+    if (options.fly) state_.cameraMode = CameraMode::Fly;
     state_.view = parseView(options.show);
     if (options.probeX >= 0 && options.probeY >= 0) probePixel_ = {options.probeX, options.probeY};
     if (!options.split.empty()) {
@@ -67,14 +86,23 @@ class Viewer {
     int frame = 0;
     bool renderNeeded = true;
     bool displayNeeded = true;
+    int idleFrames = 0;
     while (!window_.shouldClose()) {
-      window_.beginFrame();
+      // Scripted runs draw without waiting, but for the reference's progress; interactive ones
+      // sleep once nothing has moved for two frames (ImGui settles in one).
+      const bool pending = referencePending();
+      const double wait = pending                                   ? kProgressWaitSeconds
+                          : options_.frames == 0 && idleFrames >= 2 ? kIdleWaitSeconds
+                                                                    : 0.0;
+      window_.beginFrame(wait);
+      const Clock::time_point frameStart = Clock::now();
       Changes changes;
       if (state_.showPanel) {
         FrameStats stats{result_ ? &*result_ : nullptr, renderer_.deviceDescription()};
         changes = drawSettingsPanel(state_, stats, kPanelWidth);
       }
-      if (options_.frames == 0) handleInput(changes);  // scripted runs take no input
+      bool moving = false;
+      if (options_.frames == 0) moving = handleInput(changes);  // scripted runs take no input
       applyFileChanges(changes);
       if (changes.scene) {
         if (tryOrReport([&] {
@@ -85,11 +113,13 @@ class Viewer {
         }
       }
       renderNeeded |= changes.render;
+      const bool rendered = renderNeeded;
       if (renderNeeded) {
         renderFrame();
         renderNeeded = false;
         displayNeeded = true;
       }
+      displayNeeded |= followReference();
       if (displayNeeded || changes.display) {
         showDisplay();
         displayNeeded = false;
@@ -97,7 +127,9 @@ class Viewer {
       updateProbe();
       drawWindow();
       ++frame;
-      const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
+      // Scripted runs end once the reference the error view needs is complete.
+      const bool lastScripted =
+          options_.frames > 0 && frame >= options_.frames && !referencePending();
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
       if (lastScripted && !options_.saveSettings.empty()) {
         gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
@@ -112,6 +144,10 @@ class Viewer {
         });
       }
       window_.swapBuffers();
+      recordFrameTime(millisecondsSince(frameStart), pending && !rendered);
+      const bool idle =
+          !rendered && !changes.display && !changes.scene && !moving && !ImGui::IsAnyMouseDown();
+      idleFrames = idle ? idleFrames + 1 : 0;
       if (lastScripted) break;
     }
   }
@@ -161,22 +197,96 @@ class Viewer {
         state_.gpuTimes.pop_front();
         state_.wallTimes.pop_front();
       }
-      reference_.reset();  // computed again when the error view asks for it
-      depthMaps_.clear();  // read again when the cursor probes a pixel
+      resultSettings_ = settings;
+      // The reference is started again when the error view asks for it; a running one stops.
+      referenceJob_.reset();
+      reference_.reset();
+      referenceRowsShown_ = -1;
+      depthMaps_.clear();  // read again when the probe or the reference needs them
       probe_.reset();
       if (state_.messageIsError) state_.message.clear();
     });
+  }
+
+  // The error view's reference: none yet, or not yet complete.
+  bool referencePending() const {
+    return state_.view == View::Error && result_ &&
+           (!referenceJob_ || (!referenceJob_->complete() && referenceJob_->failure().empty()));
+  }
+
+  // Starts the reference of the last render on the background thread, from the render's lookup
+  // inputs and its depth maps read back here (GL stays on this thread).
+  void startReference() {
+    readDepthMaps();
+    referenceJob_ = std::make_unique<ReferenceJob>(*result_, depthMaps_, resultSettings_,
+                                                   renderer_.halfFloatRounding());
+    referenceRowsShown_ = -1;
+    pendingFrames_ = 0;
+    longestPendingFrameMs_ = 0.0;
+  }
+
+  // Whether the reference has new rows to show (at most every kProgressRefreshSeconds, and once
+  // complete); keeps the panel's status line and reports a failure.
+  bool followReference() {
+    if (state_.view != View::Error || !referenceJob_) return false;
+    const ReferenceJob& job = *referenceJob_;
+    const int rows = job.rowsDone();
+    char status[160];
+    if (!job.failure().empty()) {
+      if (options_.frames > 0) throw Error("the filtered reference failed: " + job.failure());
+      if (!state_.messageIsError) setMessage(state_, job.failure(), true);
+      state_.referenceStatus = "filtered reference failed";
+      return false;
+    }
+    if (job.complete()) {
+      std::snprintf(status, sizeof status,
+                    "filtered reference: %.0f ms on a background thread; %d frames drawn "
+                    "meanwhile, the longest %.1f ms",
+                    job.seconds() * 1000.0, pendingFrames_, longestPendingFrameMs_);
+    } else {
+      std::snprintf(status, sizeof status, "computing the filtered reference... %d%% (%.1f s)",
+                    100 * rows / std::max(job.rows(), 1), job.seconds());
+    }
+    if (job.complete() && referenceRowsShown_ != rows && options_.frames > 0) {
+      std::cout << "penumbra-viewer: " << status << "\n";
+    }
+    state_.referenceStatus = status;
+    if (rows == referenceRowsShown_) return false;
+    return job.complete() ||
+           std::chrono::duration<double>(Clock::now() - referenceShownAt_).count() >=
+               kProgressRefreshSeconds;
+  }
+
+  void recordFrameTime(double ms, bool whileReferencePending) {
+    state_.frameMs.push_back(ms);
+    if (state_.frameMs.size() > kTimeHistory) state_.frameMs.pop_front();
+    if (whileReferencePending && referenceJob_ && !referenceJob_->complete()) {
+      ++pendingFrames_;
+      longestPendingFrameMs_ = std::max(longestPendingFrameMs_, ms);
+    }
+  }
+
+  void readDepthMaps() {
+    if (!depthMaps_.empty() || !result_) return;
+    for (int c = 0; c < result_->cascadeFrame.count; ++c) {
+      depthMaps_.push_back(renderer_.readDepthMap(c));
+    }
   }
 
   void showDisplay() {
     if (!result_) return;
     tryOrReport([&] {
       std::optional<Image> map;
-      if (state_.view == View::Error && !reference_) {
-        // The filtered reference of the same settings and view: computed when this view asks for
-        // it, once per rendered frame.
-        reference_ = renderer_.renderReference(currentSettings(), currentView(), 1).visibility;
-        renderer_.render(currentSettings(), currentView());  // the technique's maps back in place
+      if (state_.view == View::Error) {
+        // The filtered reference of the same settings and view, computed on a background thread
+        // once per rendered frame; until it is complete the rows done so far.
+        if (!referenceJob_) startReference();
+        const int rows = referenceJob_->rowsDone();
+        if (rows != referenceRowsShown_) {
+          reference_ = referenceJob_->snapshot();
+          referenceRowsShown_ = rows;
+          referenceShownAt_ = Clock::now();
+        }
       }
       if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(0);
       if (state_.view == View::Channel) {
@@ -187,13 +297,14 @@ class Viewer {
           for (int x = 0; x < channels.width(); ++x) map->at(x, y) = channels.at(x, y, c);
         }
       }
-      DisplayImage image = composeDisplay(
-          state_.view, *result_, reference_ ? &*reference_ : nullptr, map ? &*map : nullptr);
+      const Image* reference = reference_ ? &*reference_ : nullptr;
+      DisplayImage image = composeDisplay(state_.view, *result_, reference, map ? &*map : nullptr,
+                                          referenceRowsShown_);
       if (splitResult_ && !map) {
         // The same view of the right side's render (the reference does not depend on the
         // technique), right of the divider.
-        const DisplayImage right = composeDisplay(state_.view, *splitResult_,
-                                                  reference_ ? &*reference_ : nullptr, nullptr);
+        const DisplayImage right =
+            composeDisplay(state_.view, *splitResult_, reference, nullptr, referenceRowsShown_);
         const size_t from = size_t(dividerPixel()) * 3;
         const size_t row = size_t(image.width) * 3;
         for (int y = 0; y < image.height; ++y) {
@@ -215,11 +326,7 @@ class Viewer {
     // Right of the divider the probe is the right side's; the light pass's depth is the same.
     const bool right = splitResult_ && x >= dividerPixel();
     tryOrReport([&] {
-      if (depthMaps_.empty()) {
-        for (int c = 0; c < result_->cascadeFrame.count; ++c) {
-          depthMaps_.push_back(renderer_.readDepthMap(c));
-        }
-      }
+      readDepthMaps();
       probe_ = probePixel(right ? *splitResult_ : *result_, depthMaps_, x, y);
       probeTechnique_ = right ? state_.splitTechnique : state_.settings.techniques.front();
     });
@@ -266,6 +373,18 @@ class Viewer {
         background->AddText(rightAt, IM_COL32(255, 255, 255, 255), right.c_str());
       }
     }
+    if (referenceJob_ && state_.view == View::Error && !referenceJob_->complete() &&
+        referenceJob_->failure().empty()) {
+      // While the reference computes: its progress at the scene area's bottom left.
+      ImDrawList* background = ImGui::GetBackgroundDrawList();
+      const char* text = state_.referenceStatus.c_str();
+      const ImVec2 size = ImGui::CalcTextSize(text);
+      const ImVec2 at(6.0f, float(texture_.height()) - size.y - 6.0f);
+      background->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 2.0f),
+                                ImVec2(at.x + size.x + 3.0f, at.y + size.y + 2.0f),
+                                IM_COL32(0, 0, 0, 190));
+      background->AddText(at, IM_COL32(255, 255, 255, 255), text);
+    }
     const float below = float(state_.settings.render.height) + 8.0f;
     const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
     if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
@@ -292,13 +411,15 @@ class Viewer {
     if (changes.loadSettings) {
       tryOrReport([&] {
         state_.settings = loadViewerSettings(state_.settingsPath);
+        takeSplitSettings(state_);
         changes.scene = true;
         setMessage(state_, "loaded " + state_.settingsPath, false);
       });
     }
   }
 
-  void handleInput(Changes& changes) {
+  // Returns whether a key holds the camera moving (the loop must not wait for events then).
+  bool handleInput(Changes& changes) {
     const ImGuiIO& io = ImGui::GetIO();
     for (int key : window_.takeKeyPresses()) {  // none while a text field has the keyboard
       if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
@@ -306,23 +427,27 @@ class Viewer {
       // Taken from this frame's back buffer, before the swap.
       if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     }
-    if (!io.WantCaptureKeyboard) {
-      if (state_.cameraMode == CameraMode::Fly) {
-        const float step = 0.02f * std::max(state_.scene.bounds().radius(), 0.1f);
-        glm::vec3 move(0.0f);
-        if (ImGui::IsKeyDown(GLFW_KEY_W)) move.x += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_S)) move.x -= step;
-        if (ImGui::IsKeyDown(GLFW_KEY_D)) move.y += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_A)) move.y -= step;
-        if (ImGui::IsKeyDown(GLFW_KEY_E)) move.z += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.z -= step;
-        if (move != glm::vec3(0.0f)) {
-          flyCamera(state_.camera, move);
-          changes.render = true;
-        }
+    bool moving = false;
+    if (!io.WantCaptureKeyboard && state_.cameraMode == CameraMode::Fly) {
+      // GLFW's key state (held keys send no events), scaled by the frame's time so that the
+      // speed is the same at any frame rate: a slow frame (a render) moves further, not slower.
+      const auto held = [&](int key) { return glfwGetKey(window_.handle(), key) == GLFW_PRESS; };
+      // The first frame of a press: the time since the last frame was spent waiting for it.
+      const float seconds =
+          flying_ ? std::clamp(io.DeltaTime, 0.0f, kLongestFlyStepSeconds) : 1.0f / 60.0f;
+      const float step = kFlySpeedRadiiPerSecond * std::max(state_.scene.bounds().radius(), 0.1f);
+      glm::vec3 direction(0.0f);
+      direction.x = float(held(GLFW_KEY_W)) - float(held(GLFW_KEY_S));
+      direction.y = float(held(GLFW_KEY_D)) - float(held(GLFW_KEY_A));
+      direction.z = float(held(GLFW_KEY_E)) - float(held(GLFW_KEY_Q));
+      if (direction != glm::vec3(0.0f)) {
+        flyCamera(state_.camera, direction * (step * seconds));
+        changes.render = true;
+        moving = true;
       }
     }
-    if (io.WantCaptureMouse) return;
+    flying_ = moving;
+    if (io.WantCaptureMouse) return moving;
     const ImVec2 cursor = io.MousePos;
     const bool mapShown = state_.view == View::ShadowMap || state_.view == View::Channel;
     if (!mapShown && cursor.x >= 0.0f && cursor.y >= 0.0f &&
@@ -356,7 +481,7 @@ class Viewer {
       state_.divider = std::clamp(cursor.x / float(state_.settings.render.width), 0.0f, 1.0f);
       probe_.reset();
       changes.display = true;
-      return;
+      return true;
     }
     const float radiansPerPixel = 0.01f;
     if (dragging[ImGuiMouseButton_Left] && moved) {
@@ -383,6 +508,7 @@ class Viewer {
         changes.render = true;
       }
     }
+    return moving;
   }
 
   // The first column right of the divider.
@@ -412,12 +538,20 @@ class Viewer {
   ViewerState state_;
   std::optional<gl::RenderResult> result_;
   std::optional<gl::RenderResult> splitResult_;  // the split view's right side
+  gl::RenderSettings resultSettings_;            // what result_ was rendered with
+  // The error view's filtered reference: the job computing it, the rows shown so far.
+  std::unique_ptr<ReferenceJob> referenceJob_;
   std::optional<Image> reference_;
+  int referenceRowsShown_ = -1;
+  Clock::time_point referenceShownAt_;
+  int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
+  double longestPendingFrameMs_ = 0.0;
   std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
   std::optional<std::pair<int, int>> probePixel_;
   std::optional<CursorProbe> probe_;
   Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
   bool draggingDivider_ = false;
+  bool flying_ = false;                          // a fly key was held last frame
   bool dragStarted_[3] = {false, false, false};  // per mouse button: pressed over the scene area
   SceneTexture texture_;
   int screenshotCount_ = 0;
@@ -456,7 +590,21 @@ gl::Settings settingsToSave(const ViewerState& state) {
     v.spotAngleDegrees = state.light.spotAngleDegrees;
   }
   if (state.light.size > 0.0f) v.lightSize = state.light.size;
+  s.split.reset();
+  if (state.split) {
+    s.split = gl::SplitSettings{state.splitTechnique, state.splitParams, state.divider};
+  }
   return s;
+}
+
+void takeSplitSettings(ViewerState& state) {
+  state.split = state.settings.split.has_value();
+  if (state.split) {
+    state.splitTechnique = state.settings.split->technique;
+    state.splitParams = state.settings.split->params;
+    state.divider = state.settings.split->divider;
+  }
+  state.settings.split.reset();  // the state's fields hold it from here
 }
 
 void runViewer(const ViewerOptions& options) {
