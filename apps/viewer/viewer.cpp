@@ -223,6 +223,7 @@ class Viewer {
     referenceRowsShown_ = -1;
     pendingFrames_ = 0;
     longestPendingFrameMs_ = 0.0;
+    referenceReported_ = false;
   }
 
   // Whether the reference has new rows to show (at most every kProgressRefreshSeconds, and once
@@ -247,8 +248,9 @@ class Viewer {
       std::snprintf(status, sizeof status, "computing the filtered reference... %d%% (%.1f s)",
                     100 * rows / std::max(job.rows(), 1), job.seconds());
     }
-    if (job.complete() && referenceRowsShown_ != rows && options_.frames > 0) {
+    if (job.complete() && !referenceReported_ && options_.frames > 0) {
       std::cout << "penumbra-viewer: " << status << "\n";
+      referenceReported_ = true;
     }
     state_.referenceStatus = status;
     if (rows == referenceRowsShown_) return false;
@@ -546,6 +548,7 @@ class Viewer {
   Clock::time_point referenceShownAt_;
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
   double longestPendingFrameMs_ = 0.0;
+  bool referenceReported_ = false;  // scripted: its time said on stdout
   std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
   std::optional<std::pair<int, int>> probePixel_;
   std::optional<CursorProbe> probe_;
