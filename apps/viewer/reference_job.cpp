@@ -11,13 +11,14 @@
 
 namespace penumbra::viewer {
 
-ReferenceJob::ReferenceJob(const gl::RenderResult& result, std::vector<Image> depthMaps,
+ReferenceJob::ReferenceJob(std::shared_ptr<const gl::RenderResult> result,
+                           std::shared_ptr<const std::vector<Image>> depthMaps,
                            const gl::RenderSettings& settings, HalfRounding halfRounding)
-    : result_(result),
+    : result_(std::move(result)),
       depthMaps_(std::move(depthMaps)),
       settings_(settings),
       halfRounding_(halfRounding),
-      reference_(result.visibility.width(), result.visibility.height(), 1),
+      reference_(result_->visibility.width(), result_->visibility.height(), 1),
       start_(std::chrono::steady_clock::now()),
       thread_([this](std::stop_token stop) { compute(stop); }) {}
 
@@ -51,17 +52,18 @@ double ReferenceJob::seconds() const {
 // blended with the next cascade's in the blend band.
 void ReferenceJob::compute(const std::stop_token& stop) {
   try {
-    const gl::RenderResult& r = result_;
+    const gl::RenderResult& r = *result_;
+    const std::vector<Image>& depthMaps = *depthMaps_;
     const int size = settings_.shadowMapSize;
     std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
     auto twin = [&](int cascade) -> const CpuShadowLookup& {
       std::unique_ptr<CpuShadowLookup>& found = twins[cascade];
       if (!found) {
-        if (size_t(cascade) >= depthMaps_.size() || size_t(cascade) >= r.cascadeBlurs.size()) {
+        if (size_t(cascade) >= depthMaps.size() || size_t(cascade) >= r.cascadeBlurs.size()) {
           throw Error("the render has no depth map for cascade " + std::to_string(cascade));
         }
         found = std::make_unique<CpuShadowLookup>(
-            depthMaps_[size_t(cascade)],
+            depthMaps[size_t(cascade)],
             LookupConfig{Technique::Hard, r.params, settings_.filter,
                          r.cascadeBlurs[size_t(cascade)], settings_.anisotropy, halfRounding_,
                          r.cascadeFrame.kernelScale(cascade, size)});

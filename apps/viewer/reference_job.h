@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -22,7 +23,8 @@ class ReferenceJob {
  public:
   // `result` and `depthMaps` (Renderer::readDepthMap per cascade) are of the same render of
   // `settings`; `halfRounding` is the renderer's (Renderer::halfFloatRounding). Starts at once.
-  ReferenceJob(const gl::RenderResult& result, std::vector<Image> depthMaps,
+  ReferenceJob(std::shared_ptr<const gl::RenderResult> result,
+               std::shared_ptr<const std::vector<Image>> depthMaps,
                const gl::RenderSettings& settings, HalfRounding halfRounding);
   // Stops the thread (it checks between pixels) and waits for it.
   ~ReferenceJob();
@@ -43,8 +45,9 @@ class ReferenceJob {
  private:
   void compute(const std::stop_token& stop);
 
-  gl::RenderResult result_;  // the lookup inputs (lookup, receiver plane, derivatives, cascades)
-  std::vector<Image> depthMaps_;
+  // The lookup inputs (lookup, receiver plane, derivatives, cascades) and depth maps, as rendered.
+  std::shared_ptr<const gl::RenderResult> result_;
+  std::shared_ptr<const std::vector<Image>> depthMaps_;
   gl::RenderSettings settings_;
   HalfRounding halfRounding_;
   Image reference_;  // rows [0, rowsDone_) written by the thread, then only read

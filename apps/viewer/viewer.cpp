@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -91,7 +92,8 @@ class Viewer {
       // Scripted runs draw without waiting, but for the reference's progress; interactive ones
       // sleep once nothing has moved for two frames (ImGui settles in one).
       const bool pending = referencePending();
-      const double wait = pending                                   ? kProgressWaitSeconds
+      const bool waitingForProbe = probeJob_.valid() || (options_.frames > 0 && probePending());
+      const double wait = pending || waitingForProbe                ? kProgressWaitSeconds
                           : options_.frames == 0 && idleFrames >= 2 ? kIdleWaitSeconds
                                                                     : 0.0;
       window_.beginFrame(wait);
@@ -129,7 +131,7 @@ class Viewer {
       ++frame;
       // Scripted runs end once the reference the error view needs is complete.
       const bool lastScripted =
-          options_.frames > 0 && frame >= options_.frames && !referencePending();
+          options_.frames > 0 && frame >= options_.frames && !referencePending() && !probePending();
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
       if (lastScripted && !options_.saveSettings.empty()) {
         gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
@@ -186,11 +188,13 @@ class Viewer {
         right.technique = state_.splitTechnique;
         right.params = state_.splitParams;
         renderer_.validate(right);
-        splitResult_ = renderer_.render(right, currentView());
+        splitResult_ =
+            std::make_shared<const gl::RenderResult>(renderer_.render(right, currentView()));
       } else {
         splitResult_.reset();
       }
-      result_ = renderer_.render(settings, currentView());
+      result_ = std::make_shared<const gl::RenderResult>(renderer_.render(settings, currentView()));
+      ++renderGeneration_;
       state_.gpuTimes.push_back(result_->gpuTimes);
       state_.wallTimes.push_back(result_->wallTimes);
       if (state_.wallTimes.size() > kTimeHistory) {
@@ -202,8 +206,7 @@ class Viewer {
       referenceJob_.reset();
       reference_.reset();
       referenceRowsShown_ = -1;
-      depthMaps_.clear();  // read again when the probe or the reference needs them
-      probe_.reset();
+      depthMaps_.reset();  // read again when the probe or the reference needs them
       if (state_.messageIsError) state_.message.clear();
     });
   }
@@ -218,7 +221,7 @@ class Viewer {
   // inputs and its depth maps read back here (GL stays on this thread).
   void startReference() {
     readDepthMaps();
-    referenceJob_ = std::make_unique<ReferenceJob>(*result_, depthMaps_, resultSettings_,
+    referenceJob_ = std::make_unique<ReferenceJob>(result_, depthMaps_, resultSettings_,
                                                    renderer_.halfFloatRounding());
     referenceRowsShown_ = -1;
     pendingFrames_ = 0;
@@ -269,10 +272,10 @@ class Viewer {
   }
 
   void readDepthMaps() {
-    if (!depthMaps_.empty() || !result_) return;
-    for (int c = 0; c < result_->cascadeFrame.count; ++c) {
-      depthMaps_.push_back(renderer_.readDepthMap(c));
-    }
+    if (depthMaps_ || !result_) return;
+    std::vector<Image> maps;
+    for (int c = 0; c < result_->cascadeFrame.count; ++c) maps.push_back(renderer_.readDepthMap(c));
+    depthMaps_ = std::make_shared<const std::vector<Image>>(std::move(maps));
   }
 
   void showDisplay() {
@@ -319,19 +322,44 @@ class Viewer {
     });
   }
 
-  // The probe of the pixel under the cursor, computed when the pixel or the render changes.
+  // The probe of the pixel under the cursor, computed on a background thread when the pixel or
+  // the render changes (the curves of every technique take a good part of a second on llvmpipe's
+  // machine): the window shows the last probe until the new one lands. One runs at a time; when
+  // it lands, the next starts for wherever the cursor is then.
   void updateProbe() {
-    if (!result_ || !probePixel_) return;
+    using namespace std::chrono_literals;
+    if (probeJob_.valid() && probeJob_.wait_for(0s) == std::future_status::ready) {
+      tryOrReport([&] {
+        CursorProbe landed = probeJob_.get();  // rethrows the job's Error
+        probe_ = std::move(landed);
+        probeOf_ = probeRequest_;
+        probeTechnique_ =
+            probeOf_.right ? state_.splitTechnique : state_.settings.techniques.front();
+      });
+    }
+    if (!result_ || !probePixel_ || probeJob_.valid()) return;
     const auto [x, y] = *probePixel_;
     if (x >= result_->visibility.width() || y >= result_->visibility.height()) return;
-    if (probe_ && probe_->x == x && probe_->y == y) return;
     // Right of the divider the probe is the right side's; the light pass's depth is the same.
     const bool right = splitResult_ && x >= dividerPixel();
+    const ProbeRequest wanted{x, y, right, renderGeneration_};
+    if (probe_ && probeOf_ == wanted) return;
     tryOrReport([&] {
       readDepthMaps();
-      probe_ = probePixel(right ? *splitResult_ : *result_, depthMaps_, x, y);
-      probeTechnique_ = right ? state_.splitTechnique : state_.settings.techniques.front();
+      probeRequest_ = wanted;
+      probeJob_ = std::async(std::launch::async,
+                             [result = right ? splitResult_ : result_, maps = depthMaps_, x, y] {
+                               return probePixel(*result, *maps, x, y);
+                             });
     });
+  }
+
+  // Scripted runs wait for the probe they were given.
+  bool probePending() const {
+    if (!result_ || !probePixel_) return false;
+    const auto [x, y] = *probePixel_;
+    if (x >= result_->visibility.width() || y >= result_->visibility.height()) return false;
+    return probeJob_.valid() || !probe_ || probeOf_.generation != renderGeneration_;
   }
 
   // The scene area at the top left, one texel per pixel (square maps fitted into the frame).
@@ -481,7 +509,6 @@ class Viewer {
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
     if (draggingDivider_) {
       state_.divider = std::clamp(cursor.x / float(state_.settings.render.width), 0.0f, 1.0f);
-      probe_.reset();
       changes.display = true;
       return true;
     }
@@ -538,9 +565,11 @@ class Viewer {
   gl::CurrentContext context_;
   gl::Renderer renderer_;
   ViewerState state_;
-  std::optional<gl::RenderResult> result_;
-  std::optional<gl::RenderResult> splitResult_;  // the split view's right side
-  gl::RenderSettings resultSettings_;            // what result_ was rendered with
+  // Shared with the background jobs (the reference, the probe), which read them as they were.
+  std::shared_ptr<const gl::RenderResult> result_;
+  std::shared_ptr<const gl::RenderResult> splitResult_;  // the split view's right side
+  uint64_t renderGeneration_ = 0;                        // counts renders
+  gl::RenderSettings resultSettings_;                    // what result_ was rendered with
   // The error view's filtered reference: the job computing it, the rows shown so far.
   std::unique_ptr<ReferenceJob> referenceJob_;
   std::optional<Image> reference_;
@@ -549,9 +578,19 @@ class Viewer {
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
   double longestPendingFrameMs_ = 0.0;
   bool referenceReported_ = false;  // scripted: its time said on stdout
-  std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
+  // The last render's light-pass depth per cascade, read when the probe or the reference needs it.
+  std::shared_ptr<const std::vector<Image>> depthMaps_;
   std::optional<std::pair<int, int>> probePixel_;
   std::optional<CursorProbe> probe_;
+  struct ProbeRequest {
+    int x = -1, y = -1;
+    bool right = false;       // the split view's right side
+    uint64_t generation = 0;  // of the render
+    bool operator==(const ProbeRequest&) const = default;
+  };
+  ProbeRequest probeOf_;       // what probe_ shows
+  ProbeRequest probeRequest_;  // what probeJob_ computes
+  std::future<CursorProbe> probeJob_;
   Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
   bool draggingDivider_ = false;
   bool flying_ = false;                          // a fly key was held last frame
