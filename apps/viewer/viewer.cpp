@@ -97,6 +97,7 @@ class Viewer {
                           : options_.frames == 0 && idleFrames >= 2 ? kIdleWaitSeconds
                                                                     : 0.0;
       window_.beginFrame(wait);
+      const bool probeWasRunning = probeJob_.valid();
       const Clock::time_point frameStart = Clock::now();
       Changes changes;
       if (state_.showPanel) {
@@ -146,7 +147,12 @@ class Viewer {
         });
       }
       window_.swapBuffers();
-      recordFrameTime(millisecondsSince(frameStart), pending && !rendered);
+      const double frameMs = millisecondsSince(frameStart);
+      recordFrameTime(frameMs, pending && !rendered);
+      if (probeWasRunning && probeJob_.valid() && !rendered) {
+        ++probeFrames_;
+        longestProbeFrameMs_ = std::max(longestProbeFrameMs_, frameMs);
+      }
       const bool idle =
           !rendered && !changes.display && !changes.scene && !moving && !ImGui::IsAnyMouseDown();
       idleFrames = idle ? idleFrames + 1 : 0;
@@ -331,6 +337,14 @@ class Viewer {
     if (probeJob_.valid() && probeJob_.wait_for(0s) == std::future_status::ready) {
       tryOrReport([&] {
         CursorProbe landed = probeJob_.get();  // rethrows the job's Error
+        if (options_.frames > 0 && probeOf_.x < 0) {
+          // The scripted run's probe: how long it took, and that the window went on meanwhile.
+          std::printf(
+              "penumbra-viewer: cursor probe: %.0f ms on a background thread; %d frames drawn "
+              "meanwhile, the longest %.1f ms\n",
+              millisecondsSince(probeStarted_), probeFrames_, longestProbeFrameMs_);
+          std::fflush(stdout);
+        }
         probe_ = std::move(landed);
         probeOf_ = probeRequest_;
         probeTechnique_ =
@@ -347,6 +361,9 @@ class Viewer {
     tryOrReport([&] {
       readDepthMaps();
       probeRequest_ = wanted;
+      probeStarted_ = Clock::now();
+      probeFrames_ = 0;
+      longestProbeFrameMs_ = 0.0;
       probeJob_ = std::async(std::launch::async,
                              [result = right ? splitResult_ : result_, maps = depthMaps_, x, y] {
                                return probePixel(*result, *maps, x, y);
@@ -591,6 +608,9 @@ class Viewer {
   ProbeRequest probeOf_;       // what probe_ shows
   ProbeRequest probeRequest_;  // what probeJob_ computes
   std::future<CursorProbe> probeJob_;
+  Clock::time_point probeStarted_;
+  int probeFrames_ = 0;  // frames drawn while probeJob_ ran, and the longest
+  double longestProbeFrameMs_ = 0.0;
   Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
   bool draggingDivider_ = false;
   bool flying_ = false;                          // a fly key was held last frame

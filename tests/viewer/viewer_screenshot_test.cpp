@@ -210,7 +210,14 @@ TEST(Viewer, EveryViewShowsSomethingOtherThanTheShadedFrame) {
 TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
-  const fs::path settings = writeSettings(scratch.path(), "planar", Technique::Vsm);
+  // A wide filter region (a 15-tap blur under trilinear filtering of a 1024² map): hundreds of
+  // taps, a probe that takes a while.
+  const fs::path settings = scratch.path() / "planar.json";
+  writeFile(settings,
+            "{\"scene\": \"planar\", \"technique\": \"vsm\", \"shadow-size\": 1024, "
+            "\"blur\": 15, \"filter\": \"trilinear\", \"width\": " +
+                std::to_string(kFrameWidth) + ", \"height\": " + std::to_string(kFrameHeight) +
+                "}\n");
   const fs::path without = scratch.path() / "without.png";
   const fs::path with = scratch.path() / "with.png";
   ASSERT_EQ(runViewer(settings, without, scratch.path()).exitCode(), 0);
@@ -224,6 +231,19 @@ TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   // The probe window (about 800 x 400 pixels) below the scene area.
   EXPECT_GT(differingPixels(a, b, 0, kFrameHeight + 10, 700, kFrameHeight + 300), 100000);
   EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
+  // The curves are computed on a background thread: the window kept drawing meanwhile (a probe
+  // computed in the frame would draw none), each frame a small part of the probe's time.
+  const std::regex line(
+      R"(cursor probe: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn meanwhile, the longest ([0-9.]+) ms)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, line)) << run.output;
+  const double probeMs = std::stod(m[1]);
+  const int frames = std::stoi(m[2]);
+  const double longestMs = std::stod(m[3]);
+  std::cout << "probe " << probeMs << " ms, " << frames << " frames meanwhile, longest "
+            << longestMs << " ms\n";
+  EXPECT_GE(frames, 3);
+  EXPECT_LT(longestMs, probeMs / 3.0);
 }
 
 TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
