@@ -318,6 +318,13 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
     state.channel = std::min(state.channel, channels - 1);
     changes.display |= ImGui::SliderInt("channel", &state.channel, 0, channels - 1);
   }
+  if ((state.view == View::ShadowMap || state.view == View::Channel) && stats.result != nullptr) {
+    const int cascades = stats.result->cascadeFrame.count;
+    state.mapCascade = std::clamp(state.mapCascade, 0, cascades - 1);
+    if (cascades > 1) {
+      changes.display |= ImGui::SliderInt("cascade", &state.mapCascade, 0, cascades - 1);
+    }
+  }
   if (state.view == View::Error) {
     ImGui::TextDisabled("red: leaks light, blue: over-darkens (+-%.1f saturates)",
                         double(kErrorRange));

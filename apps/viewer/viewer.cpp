@@ -130,9 +130,14 @@ class Viewer {
       updateProbe();
       drawWindow();
       ++frame;
-      // Scripted runs end once the reference the error view needs is complete.
+      // Scripted runs end once the error view shows its complete reference and the probe its
+      // pixel's curves.
       const bool lastScripted =
-          options_.frames > 0 && frame >= options_.frames && !referencePending() && !probePending();
+          options_.frames > 0 && frame >= options_.frames && referenceOnScreen() && !probePending();
+      if (lastScripted && referenceJob_ && referenceJob_->complete()) {
+        followReference();  // the status of the complete reference
+        std::cout << "penumbra-viewer: " << state_.referenceStatus << "\n";
+      }
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
       if (lastScripted && !options_.saveSettings.empty()) {
         gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
@@ -223,6 +228,14 @@ class Viewer {
            (!referenceJob_ || (!referenceJob_->complete() && referenceJob_->failure().empty()));
   }
 
+  // Whether the error view shows its complete reference (it may complete between the frame's
+  // look at it and the screenshot: the next frame shows it).
+  bool referenceOnScreen() const {
+    return state_.view != View::Error || !result_ ||
+           (referenceJob_ &&
+            (!referenceJob_->failure().empty() || referenceRowsShown_ == referenceJob_->rows()));
+  }
+
   // Starts the reference of the last render on the background thread, from the render's lookup
   // inputs and its depth maps read back here (GL stays on this thread).
   void startReference() {
@@ -232,7 +245,6 @@ class Viewer {
     referenceRowsShown_ = -1;
     pendingFrames_ = 0;
     longestPendingFrameMs_ = 0.0;
-    referenceReported_ = false;
   }
 
   // Whether the reference has new rows to show (at most every kProgressRefreshSeconds, and once
@@ -256,10 +268,6 @@ class Viewer {
     } else {
       std::snprintf(status, sizeof status, "computing the filtered reference... %d%% (%.1f s)",
                     100 * rows / std::max(job.rows(), 1), job.seconds());
-    }
-    if (job.complete() && !referenceReported_ && options_.frames > 0) {
-      std::cout << "penumbra-viewer: " << status << "\n";
-      referenceReported_ = true;
     }
     state_.referenceStatus = status;
     if (rows == referenceRowsShown_) return false;
@@ -299,9 +307,10 @@ class Viewer {
           referenceShownAt_ = Clock::now();
         }
       }
-      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(0);
+      const int cascade = std::clamp(state_.mapCascade, 0, result_->cascadeFrame.count - 1);
+      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(cascade);
       if (state_.view == View::Channel) {
-        const Image channels = renderer_.readChannels(0);
+        const Image channels = renderer_.readChannels(0, cascade);
         const int c = std::clamp(state_.channel, 0, channels.channels() - 1);
         map.emplace(channels.width(), channels.height(), 1);
         for (int y = 0; y < channels.height(); ++y) {
@@ -335,8 +344,8 @@ class Viewer {
   void updateProbe() {
     using namespace std::chrono_literals;
     if (probeJob_.valid() && probeJob_.wait_for(0s) == std::future_status::ready) {
-      tryOrReport([&] {
-        CursorProbe landed = probeJob_.get();  // rethrows the job's Error
+      const bool landed = tryOrReport([&] {
+        CursorProbe probe = probeJob_.get();  // rethrows the job's Error
         if (options_.frames > 0 && probeOf_.x < 0) {
           // The scripted run's probe: how long it took, and that the window went on meanwhile.
           std::printf(
@@ -345,11 +354,16 @@ class Viewer {
               millisecondsSince(probeStarted_), probeFrames_, longestProbeFrameMs_);
           std::fflush(stdout);
         }
-        probe_ = std::move(landed);
-        probeOf_ = probeRequest_;
-        probeTechnique_ =
-            probeOf_.right ? state_.splitTechnique : state_.settings.techniques.front();
+        probe_ = std::move(probe);
       });
+      if (!landed) {  // it threw: the pixel says why, and is not tried again until it changes
+        probe_ = CursorProbe{};
+        probe_->x = probeRequest_.x;
+        probe_->y = probeRequest_.y;
+        probe_->status = state_.message;
+      }
+      probeOf_ = probeRequest_;
+      probeTechnique_ = probeOf_.right ? state_.splitTechnique : state_.settings.techniques.front();
     }
     if (!result_ || !probePixel_ || probeJob_.valid()) return;
     const auto [x, y] = *probePixel_;
@@ -594,7 +608,6 @@ class Viewer {
   Clock::time_point referenceShownAt_;
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
   double longestPendingFrameMs_ = 0.0;
-  bool referenceReported_ = false;  // scripted: its time said on stdout
   // The last render's light-pass depth per cascade, read when the probe or the reference needs it.
   std::shared_ptr<const std::vector<Image>> depthMaps_;
   std::optional<std::pair<int, int>> probePixel_;

@@ -18,7 +18,8 @@ struct ViewerState {
   Light light;            // the light being moved; starts as the scene's light
   CameraMode cameraMode = CameraMode::Orbit;
   View view = View::Shaded;
-  int channel = 0;  // View::Channel's technique channel
+  int channel = 0;     // View::Channel's technique channel
+  int mapCascade = 0;  // the cascade View::ShadowMap and View::Channel show
   bool showPanel = true;
   // The split view: right of the divider (a share of the frame's width), this technique with
   // these parameters; left, the settings' technique.
