@@ -77,16 +77,17 @@ Image visibilityError(const gl::RenderResult& result, const Image& reference) {
 }
 
 DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Image* reference,
-                            const Image* map) {
+                            const Image* map, int referenceRows) {
   switch (view) {
     case View::Shaded: break;
     case View::Visibility: return grey(result.visibility, 0.0f, 1.0f, false);
     case View::Error: {
-      if (reference == nullptr) break;
+      // Until the reference reaches a row: the visibility, dimmed.
+      DisplayImage out = grey(result.visibility, 0.0f, 2.0f, false);
+      if (reference == nullptr) return out;
       const Image error = visibilityError(result, *reference);
-      DisplayImage out{error.width(), error.height(), {}};
-      out.rgb.resize(size_t(out.width) * size_t(out.height) * 3);
-      for (int y = 0; y < out.height; ++y) {
+      const int rows = referenceRows < 0 ? out.height : std::min(referenceRows, out.height);
+      for (int y = 0; y < rows; ++y) {
         for (int x = 0; x < out.width; ++x) {
           const glm::vec3 c = errorHeatColour(error.at(x, y), kErrorRange);
           uint8_t* p = &out.rgb[(size_t(y) * size_t(out.width) + size_t(x)) * 3];

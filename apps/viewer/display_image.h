@@ -38,10 +38,12 @@ struct DisplayImage {
 // The report's heat-map range: errors of +-0.5 visibility saturate.
 inline constexpr float kErrorRange = 0.5f;
 
-// `reference` is the filtered reference's visibility (needed for View::Error only). `maps` is a
-// single-channel image for ShadowMap and Channel, row 0 at the bottom as the renderer reads it.
+// `reference` is the filtered reference's visibility (needed for View::Error only), its first
+// `referenceRows` rows computed (negative: all): the rows below show the visibility at half
+// brightness until the reference reaches them. `maps` is a single-channel image for ShadowMap
+// and Channel, row 0 at the bottom as the renderer reads it.
 DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Image* reference,
-                            const Image* map);
+                            const Image* map, int referenceRows = -1);
 
 // Visibility minus reference where the shadow test decides the shading (0 elsewhere), as the
 // report measures it (penumbra/metrics.h).

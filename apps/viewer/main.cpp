@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
       ->needs(frames);
   app.add_flag("--hide-panel", options.hidePanel,
                "start with the settings panel hidden (H toggles)");
+  app.add_flag("--fly", options.fly, "start with the fly camera (W A S D Q E move it)");
   app.add_option("--show", options.show,
                  "what the scene area shows: shaded, visibility, error, failures, layers, "
                  "shadowmap, channel")

@@ -290,8 +290,9 @@ void lightSection(ViewerState& state, Changes& changes) {
   changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most,
                                        spot ? "%.3f (disk diameter)" : "%.4f (tan of diameter)");
   if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip("soft shadows: PCSS for pcf, contact-hardening filters for the filterable "
-                      "techniques (trilinear, anisotropic or sat filtering); 0: hard-edged light");
+    ImGui::SetTooltip(
+        "soft shadows: PCSS for pcf, contact-hardening filters for the filterable "
+        "techniques (trilinear, anisotropic or sat filtering); 0: hard-edged light");
   }
   ImGui::TextDisabled("shift + drag in the scene moves the light");
 }
@@ -317,9 +318,17 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
     state.channel = std::min(state.channel, channels - 1);
     changes.display |= ImGui::SliderInt("channel", &state.channel, 0, channels - 1);
   }
+  if ((state.view == View::ShadowMap || state.view == View::Channel) && stats.result != nullptr) {
+    const int cascades = stats.result->cascadeFrame.count;
+    state.mapCascade = std::clamp(state.mapCascade, 0, cascades - 1);
+    if (cascades > 1) {
+      changes.display |= ImGui::SliderInt("cascade", &state.mapCascade, 0, cascades - 1);
+    }
+  }
   if (state.view == View::Error) {
     ImGui::TextDisabled("red: leaks light, blue: over-darkens (+-%.1f saturates)",
                         double(kErrorRange));
+    ImGui::TextWrapped("%s", state.referenceStatus.c_str());
   }
 }
 
@@ -373,6 +382,12 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
   if (stats.result == nullptr) return;
   const gl::RenderResult& r = *stats.result;
   ImGui::Text("%s", stats.device.c_str());
+  if (!state.frameMs.empty()) {
+    // The window's own frames (panel, display, renders when something changed).
+    const double longest = *std::max_element(state.frameMs.begin(), state.frameMs.end());
+    ImGui::Text("window frame %.1f ms (longest of the last %zu: %.1f ms)", state.frameMs.back(),
+                state.frameMs.size(), longest);
+  }
   // llvmpipe's timer queries are not the time it spends; the wall clock between glFinish is.
   // Both are kept, the graph shows the one chosen.
   ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);

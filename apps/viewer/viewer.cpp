@@ -7,8 +7,10 @@
 #include <imgui.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -18,6 +20,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/image_io.h"
+#include "reference_job.h"
 #include "scene_texture.h"
 #include "settings_panel.h"
 #include "viewer_state.h"
@@ -28,6 +31,21 @@ namespace {
 
 constexpr float kPanelWidth = 430.0f;
 constexpr size_t kTimeHistory = 120;  // frames in the rolling time graph
+// Waits for events between frames: while the reference computes, often enough to show its
+// progress; idle, long (any event wakes the window at once).
+constexpr double kProgressWaitSeconds = 1.0 / 30.0;
+constexpr double kIdleWaitSeconds = 0.25;
+// Fly mode: W A S D Q E move this many scene radii per second; one frame moves at most this
+// long's worth (a frame stalled by a shader compile must not throw the camera out of the scene).
+constexpr float kFlySpeedRadiiPerSecond = 0.5f;
+constexpr float kLongestFlyStepSeconds = 0.25f;
+// The error view shows the reference's new rows at most this often (and once complete).
+constexpr double kProgressRefreshSeconds = 0.1;
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
 
 void setMessage(ViewerState& state, std::string message, bool isError) {
   state.message = std::move(message);
@@ -50,7 +68,9 @@ class Viewer {
   Viewer(const ViewerOptions& options, gl::Settings settings, ViewerWindow& window)
       : options_(options), window_(window), renderer_(context_) {
     state_.settings = std::move(settings);
+    takeSplitSettings(state_);
     state_.showPanel = !options.hidePanel;
+    if (options.fly) state_.cameraMode = CameraMode::Fly;
     state_.view = parseView(options.show);
     if (options.probeX >= 0 && options.probeY >= 0) probePixel_ = {options.probeX, options.probeY};
     if (!options.split.empty()) {
@@ -67,14 +87,25 @@ class Viewer {
     int frame = 0;
     bool renderNeeded = true;
     bool displayNeeded = true;
+    int idleFrames = 0;
     while (!window_.shouldClose()) {
-      window_.beginFrame();
+      // Scripted runs draw without waiting, but for the reference's progress; interactive ones
+      // sleep once nothing has moved for two frames (ImGui settles in one).
+      const bool pending = referencePending();
+      const bool waitingForProbe = probeJob_.valid() || (options_.frames > 0 && probePending());
+      const double wait = pending || waitingForProbe                ? kProgressWaitSeconds
+                          : options_.frames == 0 && idleFrames >= 2 ? kIdleWaitSeconds
+                                                                    : 0.0;
+      window_.beginFrame(wait);
+      const bool probeWasRunning = probeJob_.valid();
+      const Clock::time_point frameStart = Clock::now();
       Changes changes;
       if (state_.showPanel) {
         FrameStats stats{result_ ? &*result_ : nullptr, renderer_.deviceDescription()};
         changes = drawSettingsPanel(state_, stats, kPanelWidth);
       }
-      if (options_.frames == 0) handleInput(changes);  // scripted runs take no input
+      bool moving = false;
+      if (options_.frames == 0) moving = handleInput(changes);  // scripted runs take no input
       applyFileChanges(changes);
       if (changes.scene) {
         if (tryOrReport([&] {
@@ -85,11 +116,13 @@ class Viewer {
         }
       }
       renderNeeded |= changes.render;
+      const bool rendered = renderNeeded;
       if (renderNeeded) {
         renderFrame();
         renderNeeded = false;
         displayNeeded = true;
       }
+      displayNeeded |= followReference();
       if (displayNeeded || changes.display) {
         showDisplay();
         displayNeeded = false;
@@ -97,7 +130,14 @@ class Viewer {
       updateProbe();
       drawWindow();
       ++frame;
-      const bool lastScripted = options_.frames > 0 && frame >= options_.frames;
+      // Scripted runs end once the error view shows its complete reference and the probe its
+      // pixel's curves.
+      const bool lastScripted =
+          options_.frames > 0 && frame >= options_.frames && referenceOnScreen() && !probePending();
+      if (lastScripted && referenceJob_ && referenceJob_->complete()) {
+        followReference();  // the status of the complete reference
+        std::cout << "penumbra-viewer: " << state_.referenceStatus << "\n";
+      }
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
       if (lastScripted && !options_.saveSettings.empty()) {
         gl::writeSettingsFile(options_.saveSettings, settingsToSave(state_));
@@ -112,6 +152,15 @@ class Viewer {
         });
       }
       window_.swapBuffers();
+      const double frameMs = millisecondsSince(frameStart);
+      recordFrameTime(frameMs, pending && !rendered);
+      if (probeWasRunning && probeJob_.valid() && !rendered) {
+        ++probeFrames_;
+        longestProbeFrameMs_ = std::max(longestProbeFrameMs_, frameMs);
+      }
+      const bool idle =
+          !rendered && !changes.display && !changes.scene && !moving && !ImGui::IsAnyMouseDown();
+      idleFrames = idle ? idleFrames + 1 : 0;
       if (lastScripted) break;
     }
   }
@@ -150,50 +199,132 @@ class Viewer {
         right.technique = state_.splitTechnique;
         right.params = state_.splitParams;
         renderer_.validate(right);
-        splitResult_ = renderer_.render(right, currentView());
+        splitResult_ =
+            std::make_shared<const gl::RenderResult>(renderer_.render(right, currentView()));
       } else {
         splitResult_.reset();
       }
-      result_ = renderer_.render(settings, currentView());
+      result_ = std::make_shared<const gl::RenderResult>(renderer_.render(settings, currentView()));
+      ++renderGeneration_;
       state_.gpuTimes.push_back(result_->gpuTimes);
       state_.wallTimes.push_back(result_->wallTimes);
       if (state_.wallTimes.size() > kTimeHistory) {
         state_.gpuTimes.pop_front();
         state_.wallTimes.pop_front();
       }
-      reference_.reset();  // computed again when the error view asks for it
-      depthMaps_.clear();  // read again when the cursor probes a pixel
-      probe_.reset();
+      resultSettings_ = settings;
+      // The reference is started again when the error view asks for it; a running one stops.
+      referenceJob_.reset();
+      reference_.reset();
+      referenceRowsShown_ = -1;
+      depthMaps_.reset();  // read again when the probe or the reference needs them
       if (state_.messageIsError) state_.message.clear();
     });
+  }
+
+  // The error view's reference: none yet, or not yet complete.
+  bool referencePending() const {
+    return state_.view == View::Error && result_ &&
+           (!referenceJob_ || (!referenceJob_->complete() && referenceJob_->failure().empty()));
+  }
+
+  // Whether the error view shows its complete reference (it may complete between the frame's
+  // look at it and the screenshot: the next frame shows it).
+  bool referenceOnScreen() const {
+    return state_.view != View::Error || !result_ ||
+           (referenceJob_ &&
+            (!referenceJob_->failure().empty() || referenceRowsShown_ == referenceJob_->rows()));
+  }
+
+  // Starts the reference of the last render on the background thread, from the render's lookup
+  // inputs and its depth maps read back here (GL stays on this thread).
+  void startReference() {
+    readDepthMaps();
+    referenceJob_ = std::make_unique<ReferenceJob>(result_, depthMaps_, resultSettings_,
+                                                   renderer_.halfFloatRounding());
+    referenceRowsShown_ = -1;
+    pendingFrames_ = 0;
+    longestPendingFrameMs_ = 0.0;
+  }
+
+  // Whether the reference has new rows to show (at most every kProgressRefreshSeconds, and once
+  // complete); keeps the panel's status line and reports a failure.
+  bool followReference() {
+    if (state_.view != View::Error || !referenceJob_) return false;
+    const ReferenceJob& job = *referenceJob_;
+    const int rows = job.rowsDone();
+    char status[160];
+    if (!job.failure().empty()) {
+      if (options_.frames > 0) throw Error("the filtered reference failed: " + job.failure());
+      if (!state_.messageIsError) setMessage(state_, job.failure(), true);
+      state_.referenceStatus = "filtered reference failed";
+      return false;
+    }
+    if (job.complete()) {
+      std::snprintf(status, sizeof status,
+                    "filtered reference: %.0f ms on a background thread; %d frames drawn "
+                    "meanwhile, the longest %.1f ms",
+                    job.seconds() * 1000.0, pendingFrames_, longestPendingFrameMs_);
+    } else {
+      std::snprintf(status, sizeof status, "computing the filtered reference... %d%% (%.1f s)",
+                    100 * rows / std::max(job.rows(), 1), job.seconds());
+    }
+    state_.referenceStatus = status;
+    if (rows == referenceRowsShown_) return false;
+    return job.complete() ||
+           std::chrono::duration<double>(Clock::now() - referenceShownAt_).count() >=
+               kProgressRefreshSeconds;
+  }
+
+  void recordFrameTime(double ms, bool whileReferencePending) {
+    state_.frameMs.push_back(ms);
+    if (state_.frameMs.size() > kTimeHistory) state_.frameMs.pop_front();
+    if (whileReferencePending && referenceJob_ && !referenceJob_->complete()) {
+      ++pendingFrames_;
+      longestPendingFrameMs_ = std::max(longestPendingFrameMs_, ms);
+    }
+  }
+
+  void readDepthMaps() {
+    if (depthMaps_ || !result_) return;
+    std::vector<Image> maps;
+    for (int c = 0; c < result_->cascadeFrame.count; ++c) maps.push_back(renderer_.readDepthMap(c));
+    depthMaps_ = std::make_shared<const std::vector<Image>>(std::move(maps));
   }
 
   void showDisplay() {
     if (!result_) return;
     tryOrReport([&] {
       std::optional<Image> map;
-      if (state_.view == View::Error && !reference_) {
-        // The filtered reference of the same settings and view: computed when this view asks for
-        // it, once per rendered frame.
-        reference_ = renderer_.renderReference(currentSettings(), currentView(), 1).visibility;
-        renderer_.render(currentSettings(), currentView());  // the technique's maps back in place
+      if (state_.view == View::Error) {
+        // The filtered reference of the same settings and view, computed on a background thread
+        // once per rendered frame; until it is complete the rows done so far.
+        if (!referenceJob_) startReference();
+        const int rows = referenceJob_->rowsDone();
+        if (rows != referenceRowsShown_) {
+          reference_ = referenceJob_->snapshot();
+          referenceRowsShown_ = rows;
+          referenceShownAt_ = Clock::now();
+        }
       }
-      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(0);
+      const int cascade = std::clamp(state_.mapCascade, 0, result_->cascadeFrame.count - 1);
+      if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(cascade);
       if (state_.view == View::Channel) {
-        const Image channels = renderer_.readChannels(0);
+        const Image channels = renderer_.readChannels(0, cascade);
         const int c = std::clamp(state_.channel, 0, channels.channels() - 1);
         map.emplace(channels.width(), channels.height(), 1);
         for (int y = 0; y < channels.height(); ++y) {
           for (int x = 0; x < channels.width(); ++x) map->at(x, y) = channels.at(x, y, c);
         }
       }
-      DisplayImage image = composeDisplay(
-          state_.view, *result_, reference_ ? &*reference_ : nullptr, map ? &*map : nullptr);
+      const Image* reference = reference_ ? &*reference_ : nullptr;
+      DisplayImage image = composeDisplay(state_.view, *result_, reference, map ? &*map : nullptr,
+                                          referenceRowsShown_);
       if (splitResult_ && !map) {
         // The same view of the right side's render (the reference does not depend on the
         // technique), right of the divider.
-        const DisplayImage right = composeDisplay(state_.view, *splitResult_,
-                                                  reference_ ? &*reference_ : nullptr, nullptr);
+        const DisplayImage right =
+            composeDisplay(state_.view, *splitResult_, reference, nullptr, referenceRowsShown_);
         const size_t from = size_t(dividerPixel()) * 3;
         const size_t row = size_t(image.width) * 3;
         for (int y = 0; y < image.height; ++y) {
@@ -206,23 +337,60 @@ class Viewer {
     });
   }
 
-  // The probe of the pixel under the cursor, computed when the pixel or the render changes.
+  // The probe of the pixel under the cursor, computed on a background thread when the pixel or
+  // the render changes (the curves of every technique take a good part of a second on llvmpipe's
+  // machine): the window shows the last probe until the new one lands. One runs at a time; when
+  // it lands, the next starts for wherever the cursor is then.
   void updateProbe() {
-    if (!result_ || !probePixel_) return;
+    using namespace std::chrono_literals;
+    if (probeJob_.valid() && probeJob_.wait_for(0s) == std::future_status::ready) {
+      const bool landed = tryOrReport([&] {
+        CursorProbe probe = probeJob_.get();  // rethrows the job's Error
+        if (options_.frames > 0 && probeOf_.x < 0) {
+          // The scripted run's probe: how long it took, and that the window went on meanwhile.
+          std::printf(
+              "penumbra-viewer: cursor probe: %.0f ms on a background thread; %d frames drawn "
+              "meanwhile, the longest %.1f ms\n",
+              millisecondsSince(probeStarted_), probeFrames_, longestProbeFrameMs_);
+          std::fflush(stdout);
+        }
+        probe_ = std::move(probe);
+      });
+      if (!landed) {  // it threw: the pixel says why, and is not tried again until it changes
+        probe_ = CursorProbe{};
+        probe_->x = probeRequest_.x;
+        probe_->y = probeRequest_.y;
+        probe_->status = state_.message;
+      }
+      probeOf_ = probeRequest_;
+      probeTechnique_ = probeOf_.right ? state_.splitTechnique : state_.settings.techniques.front();
+    }
+    if (!result_ || !probePixel_ || probeJob_.valid()) return;
     const auto [x, y] = *probePixel_;
     if (x >= result_->visibility.width() || y >= result_->visibility.height()) return;
-    if (probe_ && probe_->x == x && probe_->y == y) return;
     // Right of the divider the probe is the right side's; the light pass's depth is the same.
     const bool right = splitResult_ && x >= dividerPixel();
+    const ProbeRequest wanted{x, y, right, renderGeneration_};
+    if (probe_ && probeOf_ == wanted) return;
     tryOrReport([&] {
-      if (depthMaps_.empty()) {
-        for (int c = 0; c < result_->cascadeFrame.count; ++c) {
-          depthMaps_.push_back(renderer_.readDepthMap(c));
-        }
-      }
-      probe_ = probePixel(right ? *splitResult_ : *result_, depthMaps_, x, y);
-      probeTechnique_ = right ? state_.splitTechnique : state_.settings.techniques.front();
+      readDepthMaps();
+      probeRequest_ = wanted;
+      probeStarted_ = Clock::now();
+      probeFrames_ = 0;
+      longestProbeFrameMs_ = 0.0;
+      probeJob_ = std::async(std::launch::async,
+                             [result = right ? splitResult_ : result_, maps = depthMaps_, x, y] {
+                               return probePixel(*result, *maps, x, y);
+                             });
     });
+  }
+
+  // Scripted runs wait for the probe they were given.
+  bool probePending() const {
+    if (!result_ || !probePixel_) return false;
+    const auto [x, y] = *probePixel_;
+    if (x >= result_->visibility.width() || y >= result_->visibility.height()) return false;
+    return probeJob_.valid() || !probe_ || probeOf_.generation != renderGeneration_;
   }
 
   // The scene area at the top left, one texel per pixel (square maps fitted into the frame).
@@ -266,6 +434,18 @@ class Viewer {
         background->AddText(rightAt, IM_COL32(255, 255, 255, 255), right.c_str());
       }
     }
+    if (referenceJob_ && state_.view == View::Error && !referenceJob_->complete() &&
+        referenceJob_->failure().empty()) {
+      // While the reference computes: its progress at the scene area's bottom left.
+      ImDrawList* background = ImGui::GetBackgroundDrawList();
+      const char* text = state_.referenceStatus.c_str();
+      const ImVec2 size = ImGui::CalcTextSize(text);
+      const ImVec2 at(6.0f, float(texture_.height()) - size.y - 6.0f);
+      background->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 2.0f),
+                                ImVec2(at.x + size.x + 3.0f, at.y + size.y + 2.0f),
+                                IM_COL32(0, 0, 0, 190));
+      background->AddText(at, IM_COL32(255, 255, 255, 255), text);
+    }
     const float below = float(state_.settings.render.height) + 8.0f;
     const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
     if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
@@ -292,13 +472,15 @@ class Viewer {
     if (changes.loadSettings) {
       tryOrReport([&] {
         state_.settings = loadViewerSettings(state_.settingsPath);
+        takeSplitSettings(state_);
         changes.scene = true;
         setMessage(state_, "loaded " + state_.settingsPath, false);
       });
     }
   }
 
-  void handleInput(Changes& changes) {
+  // Returns whether a key holds the camera moving (the loop must not wait for events then).
+  bool handleInput(Changes& changes) {
     const ImGuiIO& io = ImGui::GetIO();
     for (int key : window_.takeKeyPresses()) {  // none while a text field has the keyboard
       if (key == GLFW_KEY_ESCAPE) glfwSetWindowShouldClose(window_.handle(), GLFW_TRUE);
@@ -306,23 +488,27 @@ class Viewer {
       // Taken from this frame's back buffer, before the swap.
       if (key == GLFW_KEY_F12) screenshotRequested_ = true;
     }
-    if (!io.WantCaptureKeyboard) {
-      if (state_.cameraMode == CameraMode::Fly) {
-        const float step = 0.02f * std::max(state_.scene.bounds().radius(), 0.1f);
-        glm::vec3 move(0.0f);
-        if (ImGui::IsKeyDown(GLFW_KEY_W)) move.x += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_S)) move.x -= step;
-        if (ImGui::IsKeyDown(GLFW_KEY_D)) move.y += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_A)) move.y -= step;
-        if (ImGui::IsKeyDown(GLFW_KEY_E)) move.z += step;
-        if (ImGui::IsKeyDown(GLFW_KEY_Q)) move.z -= step;
-        if (move != glm::vec3(0.0f)) {
-          flyCamera(state_.camera, move);
-          changes.render = true;
-        }
+    bool moving = false;
+    if (!io.WantCaptureKeyboard && state_.cameraMode == CameraMode::Fly) {
+      // GLFW's key state (held keys send no events), scaled by the frame's time so that the
+      // speed is the same at any frame rate: a slow frame (a render) moves further, not slower.
+      const auto held = [&](int key) { return glfwGetKey(window_.handle(), key) == GLFW_PRESS; };
+      // The first frame of a press: the time since the last frame was spent waiting for it.
+      const float seconds =
+          flying_ ? std::clamp(io.DeltaTime, 0.0f, kLongestFlyStepSeconds) : 1.0f / 60.0f;
+      const float step = kFlySpeedRadiiPerSecond * std::max(state_.scene.bounds().radius(), 0.1f);
+      glm::vec3 direction(0.0f);
+      direction.x = float(held(GLFW_KEY_W)) - float(held(GLFW_KEY_S));
+      direction.y = float(held(GLFW_KEY_D)) - float(held(GLFW_KEY_A));
+      direction.z = float(held(GLFW_KEY_E)) - float(held(GLFW_KEY_Q));
+      if (direction != glm::vec3(0.0f)) {
+        flyCamera(state_.camera, direction * (step * seconds));
+        changes.render = true;
+        moving = true;
       }
     }
-    if (io.WantCaptureMouse) return;
+    flying_ = moving;
+    if (io.WantCaptureMouse) return moving;
     const ImVec2 cursor = io.MousePos;
     const bool mapShown = state_.view == View::ShadowMap || state_.view == View::Channel;
     if (!mapShown && cursor.x >= 0.0f && cursor.y >= 0.0f &&
@@ -354,9 +540,8 @@ class Viewer {
     if (!ImGui::IsMouseDown(ImGuiMouseButton_Left)) draggingDivider_ = false;
     if (draggingDivider_) {
       state_.divider = std::clamp(cursor.x / float(state_.settings.render.width), 0.0f, 1.0f);
-      probe_.reset();
       changes.display = true;
-      return;
+      return true;
     }
     const float radiansPerPixel = 0.01f;
     if (dragging[ImGuiMouseButton_Left] && moved) {
@@ -383,6 +568,7 @@ class Viewer {
         changes.render = true;
       }
     }
+    return moving;
   }
 
   // The first column right of the divider.
@@ -410,14 +596,37 @@ class Viewer {
   gl::CurrentContext context_;
   gl::Renderer renderer_;
   ViewerState state_;
-  std::optional<gl::RenderResult> result_;
-  std::optional<gl::RenderResult> splitResult_;  // the split view's right side
+  // Shared with the background jobs (the reference, the probe), which read them as they were.
+  std::shared_ptr<const gl::RenderResult> result_;
+  std::shared_ptr<const gl::RenderResult> splitResult_;  // the split view's right side
+  uint64_t renderGeneration_ = 0;                        // counts renders
+  gl::RenderSettings resultSettings_;                    // what result_ was rendered with
+  // The error view's filtered reference: the job computing it, the rows shown so far.
+  std::unique_ptr<ReferenceJob> referenceJob_;
   std::optional<Image> reference_;
-  std::vector<Image> depthMaps_;  // the last render's light-pass depth per cascade, when probed
+  int referenceRowsShown_ = -1;
+  Clock::time_point referenceShownAt_;
+  int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
+  double longestPendingFrameMs_ = 0.0;
+  // The last render's light-pass depth per cascade, read when the probe or the reference needs it.
+  std::shared_ptr<const std::vector<Image>> depthMaps_;
   std::optional<std::pair<int, int>> probePixel_;
   std::optional<CursorProbe> probe_;
+  struct ProbeRequest {
+    int x = -1, y = -1;
+    bool right = false;       // the split view's right side
+    uint64_t generation = 0;  // of the render
+    bool operator==(const ProbeRequest&) const = default;
+  };
+  ProbeRequest probeOf_;       // what probe_ shows
+  ProbeRequest probeRequest_;  // what probeJob_ computes
+  std::future<CursorProbe> probeJob_;
+  Clock::time_point probeStarted_;
+  int probeFrames_ = 0;  // frames drawn while probeJob_ ran, and the longest
+  double longestProbeFrameMs_ = 0.0;
   Technique probeTechnique_ = Technique::Vsm;  // whose curve the probe draws thick
   bool draggingDivider_ = false;
+  bool flying_ = false;                          // a fly key was held last frame
   bool dragStarted_[3] = {false, false, false};  // per mouse button: pressed over the scene area
   SceneTexture texture_;
   int screenshotCount_ = 0;
@@ -456,7 +665,21 @@ gl::Settings settingsToSave(const ViewerState& state) {
     v.spotAngleDegrees = state.light.spotAngleDegrees;
   }
   if (state.light.size > 0.0f) v.lightSize = state.light.size;
+  s.split.reset();
+  if (state.split) {
+    s.split = gl::SplitSettings{state.splitTechnique, state.splitParams, state.divider};
+  }
   return s;
+}
+
+void takeSplitSettings(ViewerState& state) {
+  state.split = state.settings.split.has_value();
+  if (state.split) {
+    state.splitTechnique = state.settings.split->technique;
+    state.splitParams = state.settings.split->params;
+    state.divider = state.settings.split->divider;
+  }
+  state.settings.split.reset();  // the state's fields hold it from here
 }
 
 void runViewer(const ViewerOptions& options) {

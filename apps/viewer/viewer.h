@@ -12,6 +12,7 @@ struct ViewerOptions {
   std::string screenshot;    // scripted: the window's PNG written after the last frame
   std::string saveSettings;  // scripted: the settings file saved after the last frame
   bool hidePanel = false;
+  bool fly = false;              // start with the fly camera (W A S D Q E) rather than orbit
   std::string show = "shaded";   // what the scene area shows at start (display_image.h viewId)
   std::string split;             // a technique id: the split view's right side from the start
   int probeX = -1, probeY = -1;  // >= 0: the pixel under the cursor at start (scripted runs)

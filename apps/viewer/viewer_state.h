@@ -18,7 +18,8 @@ struct ViewerState {
   Light light;            // the light being moved; starts as the scene's light
   CameraMode cameraMode = CameraMode::Orbit;
   View view = View::Shaded;
-  int channel = 0;  // View::Channel's technique channel
+  int channel = 0;     // View::Channel's technique channel
+  int mapCascade = 0;  // the cascade View::ShadowMap and View::Channel show
   bool showPanel = true;
   // The split view: right of the divider (a share of the frame's width), this technique with
   // these parameters; left, the settings' technique.
@@ -33,6 +34,9 @@ struct ViewerState {
   std::deque<gl::PassTimes> gpuTimes;
   std::deque<gl::PassTimes> wallTimes;
   bool graphGpuTimes = false;
+  // The window's last frames: the time each took to draw (events waited for aside), ms.
+  std::deque<double> frameMs;
+  std::string referenceStatus;  // the error view's reference: progress, or its time once done
 };
 
 // What the panel changed this frame, so that only what depends on it is redone.
@@ -48,8 +52,12 @@ struct Changes {
 // loadScene can try; throws Error otherwise.
 gl::Settings loadViewerSettings(const std::string& path);
 
-// The settings with the current camera and light written into their view overrides: what a
-// saved file must hold to reproduce this frame.
+// The settings with the current camera and light written into their view overrides and the split
+// view's right side into "split": what a saved file must hold to reproduce this frame.
 gl::Settings settingsToSave(const ViewerState& state);
+
+// Moves a loaded file's split view (settings.split) into the state's split fields; a file without
+// one turns the split view off.
+void takeSplitSettings(ViewerState& state);
 
 }  // namespace penumbra::viewer

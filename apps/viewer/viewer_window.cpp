@@ -75,8 +75,12 @@ bool ViewerWindow::shouldClose() const {
   return glfwWindowShouldClose(window_) != 0;
 }
 
-void ViewerWindow::beginFrame() {
-  glfwPollEvents();
+void ViewerWindow::beginFrame(double waitSeconds) {
+  if (waitSeconds > 0.0) {
+    glfwWaitEventsTimeout(waitSeconds);
+  } else {
+    glfwPollEvents();
+  }
   ImGui_ImplOpenGL3_NewFrame();
   ImGui_ImplGlfw_NewFrame();
   ImGui::NewFrame();

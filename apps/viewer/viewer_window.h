@@ -19,8 +19,9 @@ class ViewerWindow {
   ViewerWindow& operator=(const ViewerWindow&) = delete;
 
   bool shouldClose() const;
-  // Polls events and starts an ImGui frame.
-  void beginFrame();
+  // Takes the pending events (waiting up to `waitSeconds` for one when > 0: an idle window then
+  // sleeps instead of spinning a core) and starts an ImGui frame.
+  void beginFrame(double waitSeconds = 0.0);
   // Draws ImGui's draw lists over what is in the back buffer.
   void drawUi();
   void swapBuffers();

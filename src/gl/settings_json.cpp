@@ -23,11 +23,13 @@ constexpr std::string_view kKeys[] = {
     "width",          "height",      "normal-offset", "cascades",      "cascade-lambda",
     "cascade-splits", "cascade-fit", "cascade-depth", "cascade-blend", "shadow-distance",
     "overlay",        "light",       "camera"};
+// The viewer's split view: a key of the file, no option of the command line (settingsKeys()).
+constexpr std::string_view kSplitKey = "split";
 
 std::string keyList() {
   std::string list;
   for (std::string_view k : kKeys) list += (list.empty() ? "" : ", ") + std::string(k);
-  return list;
+  return list + ", " + std::string(kSplitKey);
 }
 
 // Where a value sits, for messages: `file: "key"`.
@@ -123,13 +125,15 @@ void applyView(const std::string& key, const json& value, const std::string& sou
   }
 }
 
-void applyParams(const json& value, const std::string& source, TechniqueParams& params) {
-  const At where{source, "param"};
+// `key`: where the object sits, for messages ("param", "split.param").
+void applyParams(const json& value, const std::string& source, TechniqueParams& params,
+                 const std::string& key = "param") {
+  const At where{source, key};
   if (!value.is_object()) {
     where.fail("must be an object of techniques: {\"vsm\": {\"min_variance\": 1e-5}}");
   }
   for (const auto& [id, values] : value.items()) {
-    const At at{source, "param." + id};
+    const At at{source, key + "." + id};
     const Technique technique = withLocation(at, [&] { return parseTechnique(id); });
     if (!values.is_object()) at.fail("must be an object of parameter values");
     // Split lists first: setting LVSM's splits also fixes its placement, which a "placement" in
@@ -143,13 +147,36 @@ void applyParams(const json& value, const std::string& source, TechniqueParams& 
     for (bool splitLists : {true, false}) {
       for (const auto& [name, v] : values.items()) {
         if (isSplitList(name) != splitLists) continue;
-        const At param{source, "param." + id + "." + name};
+        const At param{source, key + "." + id + "." + name};
         if (!v.is_number() && !v.is_string()) param.fail("must be a number or a string");
         const std::string valueText = v.is_string() ? v.get<std::string>() : v.dump();
         withLocation(param, [&] { setParam(technique, params, name, valueText); });
       }
     }
   }
+}
+
+// The viewer's split view: its own technique and parameters (checked by the same registry), and
+// where the divider sits.
+SplitSettings splitSide(const json& value, const std::string& source) {
+  const At where{source, "split"};
+  if (!value.is_object())
+    where.fail("must be an object: {\"technique\": \"pcf\", \"param\": {...}}");
+  SplitSettings split;
+  for (const auto& [field, v] : value.items()) {
+    const At at{source, "split." + field};
+    if (field == "technique") {
+      split.technique = withLocation(at, [&] { return parseTechnique(text(v, at)); });
+    } else if (field == "param") {
+      applyParams(v, source, split.params, "split.param");
+    } else if (field == "divider") {
+      split.divider = float(number(v, at, 0.0, 1.0));
+    } else {
+      at.fail("is not a setting; split takes technique, param, divider");
+    }
+  }
+  withLocation(where, [&] { validateParams(split.technique, split.params); });
+  return split;
 }
 
 std::vector<Technique> techniqueList(const json& v, const At& at) {
@@ -176,6 +203,8 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
     s.techniques = techniqueList(v, at);
   } else if (key == "param") {
     applyParams(v, source, r.params);
+  } else if (key == kSplitKey) {
+    s.split = splitSide(v, source);
   } else if (key == "shadow-size") {
     r.shadowMapSize = integer(v, at, 16, kMaxSize);
   } else if (key == "msaa") {
@@ -266,6 +295,20 @@ std::string readText(const std::filesystem::path& path, const char* what) {
   return content.str();
 }
 
+// A technique's every parameter, numbers as numbers.
+json paramsJson(Technique t, const TechniqueParams& params) {
+  json values = json::object();
+  for (const ParamSpec& spec : techniqueParamSpecs(t)) {
+    const std::string value = formatParam(t, params, spec.name);
+    const bool numeric =
+        (spec.kind == ParamKind::Real || spec.kind == ParamKind::Integer) && value != "auto";
+    values[std::string(spec.name)] = !numeric                          ? json(value)
+                                     : spec.kind == ParamKind::Integer ? json(std::stoll(value))
+                                                                       : json(std::stod(value));
+  }
+  return values;
+}
+
 }  // namespace
 
 std::span<const std::string_view> settingsKeys() {
@@ -285,7 +328,8 @@ void applySettingsJson(std::string_view text, const std::string& source, Setting
     if (key == "blur") continue;
     if (std::find(skip.begin(), skip.end(), key) != skip.end()) {
       // Still checked, so a typo in a value the command line overrides does not go unnoticed.
-      if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys)) {
+      if (std::find(std::begin(kKeys), std::end(kKeys), key) == std::end(kKeys) &&
+          key != kSplitKey) {
         At{source, key}.fail("is not a setting; valid keys: " + keyList());
       }
       continue;
@@ -313,18 +357,7 @@ std::string settingsJson(const Settings& s) {
   }
   j["technique"] = techniques;
   json params = json::object();
-  for (Technique t : s.techniques) {
-    json values = json::object();
-    for (const ParamSpec& spec : techniqueParamSpecs(t)) {
-      const std::string value = formatParam(t, r.params, spec.name);
-      const bool numeric =
-          (spec.kind == ParamKind::Real || spec.kind == ParamKind::Integer) && value != "auto";
-      values[std::string(spec.name)] = !numeric                          ? json(value)
-                                       : spec.kind == ParamKind::Integer ? json(std::stoll(value))
-                                                                         : json(std::stod(value));
-    }
-    params[std::string(techniqueId(t))] = values;
-  }
+  for (Technique t : s.techniques) params[std::string(techniqueId(t))] = paramsJson(t, r.params);
   j["param"] = params;
   j["shadow-size"] = r.shadowMapSize;
   j["msaa"] = r.msaaSamples;
@@ -358,6 +391,14 @@ std::string settingsJson(const Settings& s) {
   if (v.cameraFovDegrees) camera["fov"] = shortest(*v.cameraFovDegrees);
   if (!light.empty()) j["light"] = light;
   if (!camera.empty()) j["camera"] = camera;
+  if (s.split) {
+    json split;
+    split["technique"] = std::string(techniqueId(s.split->technique));
+    split["param"] = json::object({{std::string(techniqueId(s.split->technique)),
+                                    paramsJson(s.split->technique, s.split->params)}});
+    split["divider"] = shortest(s.split->divider);
+    j[std::string(kSplitKey)] = split;
+  }
   return j.dump(2) + "\n";
 }
 

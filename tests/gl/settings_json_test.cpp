@@ -2,8 +2,8 @@
 // and the command line's explicit options are kept.
 #include <gtest/gtest.h>
 
-#include "penumbra/gl/settings_json.h"
 #include "penumbra/error.h"
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/params.h"
 
 namespace penumbra::gl {
@@ -100,6 +100,51 @@ TEST(SettingsJson, ALightPositionMakesASpotLightAndReplacesTheDirection) {
   EXPECT_FALSE(s.view.lightDirection.has_value());
   EXPECT_EQ(s.view.lightPosition, glm::vec3(0.0f, 5.0f, 0.0f));
   EXPECT_EQ(s.view.spotAngleDegrees, 40.0f);
+}
+
+TEST(SettingsJson, ReadsBackTheSplitViewsRightSide) {
+  Settings written;
+  written.split = SplitSettings{};
+  written.split->technique = Technique::Msm;
+  setParam(Technique::Msm, written.split->params, "momentBias", "0.0005");
+  written.split->divider = 0.25f;
+  Settings read;
+  applySettingsJson(settingsJson(written), "test", read);
+  ASSERT_TRUE(read.split.has_value());
+  EXPECT_EQ(read.split->technique, Technique::Msm);
+  EXPECT_EQ(read.split->divider, 0.25f);
+  for (const ParamSpec& spec : techniqueParamSpecs(Technique::Msm)) {
+    EXPECT_EQ(formatParam(Technique::Msm, read.split->params, spec.name),
+              formatParam(Technique::Msm, written.split->params, spec.name))
+        << spec.name;
+  }
+  // The left side's parameters are not the right side's.
+  EXPECT_NE(formatParam(Technique::Msm, read.render.params, "momentBias"),
+            formatParam(Technique::Msm, read.split->params, "momentBias"));
+  // Without a split, none is written or read.
+  Settings plain;
+  applySettingsJson(settingsJson(Settings{}), "test", plain);
+  EXPECT_FALSE(plain.split.has_value());
+}
+
+TEST(SettingsJson, RefusesABadSplitSideWithItsKey) {
+  const auto message = [](const char* json) {
+    Settings s;
+    try {
+      applySettingsJson(json, "f.json", s);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  EXPECT_NE(message(R"({"split": {"technique": "nope"}})").find("\"split.technique\""),
+            std::string::npos);
+  EXPECT_NE(message(R"({"split": {"divider": 2}})").find("\"split.divider\""), std::string::npos);
+  EXPECT_NE(
+      message(R"({"split": {"param": {"vsm": {"nope": 1}}}})").find("\"split.param.vsm.nope\""),
+      std::string::npos);
+  EXPECT_NE(message(R"({"split": {"side": "right"}})").find("split takes"), std::string::npos);
+  EXPECT_NE(message(R"({"split": 3})").find("must be an object"), std::string::npos);
 }
 
 }  // namespace

@@ -7,7 +7,13 @@
 #include <iostream>
 #include <sstream>
 
+#include <regex>
+
+#include "penumbra/diagnostic_images.h"
+#include "penumbra/gl/context.h"
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/image_io.h"
+#include "penumbra/metrics.h"
 #include "penumbra/scene.h"
 #include "penumbra/technique.h"
 #include "run_penumbra.h"
@@ -204,7 +210,14 @@ TEST(Viewer, EveryViewShowsSomethingOtherThanTheShadedFrame) {
 TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
-  const fs::path settings = writeSettings(scratch.path(), "planar", Technique::Vsm);
+  // A wide filter region (a 15-tap blur under trilinear filtering of a 1024² map): hundreds of
+  // taps, a probe that takes a while.
+  const fs::path settings = scratch.path() / "planar.json";
+  writeFile(settings,
+            "{\"scene\": \"planar\", \"technique\": \"vsm\", \"shadow-size\": 1024, "
+            "\"blur\": 15, \"filter\": \"trilinear\", \"width\": " +
+                std::to_string(kFrameWidth) + ", \"height\": " + std::to_string(kFrameHeight) +
+                "}\n");
   const fs::path without = scratch.path() / "without.png";
   const fs::path with = scratch.path() / "with.png";
   ASSERT_EQ(runViewer(settings, without, scratch.path()).exitCode(), 0);
@@ -218,6 +231,19 @@ TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   // The probe window (about 800 x 400 pixels) below the scene area.
   EXPECT_GT(differingPixels(a, b, 0, kFrameHeight + 10, 700, kFrameHeight + 300), 100000);
   EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
+  // The curves are computed on a background thread: the window kept drawing meanwhile (a probe
+  // computed in the frame would draw none), each frame a small part of the probe's time.
+  const std::regex line(
+      R"(cursor probe: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn meanwhile, the longest ([0-9.]+) ms)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, line)) << run.output;
+  const double probeMs = std::stod(m[1]);
+  const int frames = std::stoi(m[2]);
+  const double longestMs = std::stod(m[3]);
+  std::cout << "probe " << probeMs << " ms, " << frames << " frames meanwhile, longest "
+            << longestMs << " ms\n";
+  EXPECT_GE(frames, 3);
+  EXPECT_LT(longestMs, probeMs / 3.0);
 }
 
 TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
@@ -303,6 +329,52 @@ wait $pid
   EXPECT_GT(differingPixels(shots[2], shots[3], 1180, 0, 1181, 800), 200);
 }
 
+// Fly mode: holding W moves the camera forward (GLFW's key state: a held key sends no events),
+// holding S brings it back. F12 screenshots before, after W and after S.
+TEST(Viewer, FlyModeKeysMoveTheCamera) {
+  REQUIRE_XVFB();
+  if (!haveXdotool()) {
+    const char* ci = std::getenv("CI");
+    if (ci != nullptr && std::string(ci) == "true") FAIL() << "xdotool is not installed";
+    GTEST_SKIP() << "xdotool is not installed (scripts/install-deps installs it)";
+  }
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "backyard", Technique::Vsm);
+  const fs::path script = scratch.path() / "drive.sh";
+  writeFile(script, std::string("#!/bin/bash\n") + PENUMBRA_VIEWER_EXECUTABLE +
+                        " --fly --settings " + settings.string() + " > viewer.log 2>&1 &\n" +
+                        R"(pid=$!
+sleep 6
+xdotool mousemove 1000 700; sleep 0.5
+xdotool key F12; sleep 1
+xdotool keydown w; sleep 1; xdotool keyup w; sleep 1.5
+xdotool key F12; sleep 1
+xdotool keydown s; sleep 1; xdotool keyup s; sleep 1.5
+xdotool key F12; sleep 1
+xdotool key Escape
+for i in $(seq 1 20); do kill -0 $pid 2> /dev/null || break; sleep 0.5; done
+if kill -0 $pid 2> /dev/null; then kill $pid; echo "Esc did not quit"; exit 1; fi
+wait $pid
+)");
+  const RunResult run = runProgram(
+      {"xvfb-run", "-a", "-s", "-screen 0 1280x800x24", "bash", script.string()}, scratch.path());
+  ASSERT_EQ(run.exitCode(), 0) << run.output << readFile(scratch.path() / "viewer.log");
+  std::vector<Image> shots;
+  for (int i = 0; i < 3; ++i) {
+    const fs::path png = scratch.path() / ("penumbra-viewer-000" + std::to_string(i) + ".png");
+    ASSERT_TRUE(fs::exists(png)) << png << " missing\n" << readFile(scratch.path() / "viewer.log");
+    shots.push_back(readEncodedColorPng(png));
+  }
+  const int area = kFrameWidth * kFrameHeight;
+  const int forward = differingPixels(shots[0], shots[1], 0, 0, kFrameWidth, kFrameHeight);
+  const int back = differingPixels(shots[0], shots[2], 0, 0, kFrameWidth, kFrameHeight);
+  std::cout << "W changed " << forward << " pixels, W then S left " << back << " changed\n";
+  // A second of W moves half the scene's radius: most of the picture changes.
+  EXPECT_GT(forward, area / 4);
+  // As long a hold of S comes most of the way back (frame times differ, so not exactly).
+  EXPECT_LT(back, forward);
+}
+
 TEST(Viewer, TheSplitViewShowsEachTechniqueOnItsSideOfTheDivider) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
@@ -343,6 +415,126 @@ TEST(Viewer, TheSplitViewShowsEachTechniqueOnItsSideOfTheDivider) {
   EXPECT_EQ(rightMismatch, 0);
   // Otherwise the test could not tell the sides apart.
   EXPECT_GT(differFromEachOther, 50);
+}
+
+// The error view's settings for the reference tests: three cascades with a blend band (the
+// reference's blended path), a 15-tap Gaussian under 16x anisotropic filtering of a 1024² map (a
+// wide kernel: at 480x270 a reference of about a second on llvmpipe's two cores), ESM so that
+// the error is not zero.
+fs::path writeReferenceSettings(const fs::path& folder, int width, int height) {
+  const fs::path path = folder / "reference.json";
+  writeFile(path,
+            "{\"scene\": \"minification\", \"technique\": \"esm\", \"shadow-size\": 1024, "
+            "\"blur\": 15, \"filter\": \"anisotropic\", \"aniso\": 16, \"cascades\": 3, "
+            "\"cascade-blend\": 0.2, \"width\": " +
+                std::to_string(width) + ", \"height\": " + std::to_string(height) + "}\n");
+  return path;
+}
+
+// The viewer computes the error view's reference on a background thread: the window keeps
+// drawing frames meanwhile. A reference computed in the frame (the window blocked) would draw
+// none until it is done. The scripted run waits for it to complete and says how it went.
+TEST(Viewer, KeepsDrawingFramesWhileTheReferenceComputes) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeReferenceSettings(scratch.path(), 480, 270);
+  const fs::path shot = scratch.path() / "error.png";
+  const RunResult run = runViewer(settings, shot, scratch.path(), {"--show", "error"});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const std::regex line(
+      R"(filtered reference: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn meanwhile, the longest ([0-9.]+) ms)");
+  std::smatch m;
+  ASSERT_TRUE(std::regex_search(run.output, m, line)) << run.output;
+  const double referenceMs = std::stod(m[1]);
+  const int frames = std::stoi(m[2]);
+  const double longestMs = std::stod(m[3]);
+  std::cout << "reference " << referenceMs << " ms, " << frames << " frames meanwhile, longest "
+            << longestMs << " ms\n";
+  // At 30 frames a second while it computes, a reference of a second or more leaves many frames;
+  // the longest is a small part of the reference (a blocked window would spend all of it in one).
+  EXPECT_GE(frames, 5);
+  EXPECT_LT(longestMs, referenceMs / 4.0);
+}
+
+// Once complete, the error view equals the heat map of the renderer's own reference
+// (Renderer::renderReference, the GPU path with its CPU completion) for the same settings,
+// computed here headless.
+TEST(Viewer, TheErrorViewOnceCompleteEqualsTheRenderersReference) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  constexpr int kWidth = 240, kHeight = 135;
+  const fs::path settingsPath = writeReferenceSettings(scratch.path(), kWidth, kHeight);
+  const fs::path shot = scratch.path() / "error.png";
+  const RunResult run =
+      runViewer(settingsPath, shot, scratch.path(), {"--show", "error", "--hide-panel"});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const Image window = readEncodedColorPng(shot);
+
+  gl::Settings settings;
+  gl::applySettingsFile(settingsPath, settings);
+  gl::RenderSettings render = settings.render;
+  render.technique = settings.techniques.front();
+  gl::HeadlessContext context;
+  gl::Renderer renderer(context);
+  const Scene scene = loadScene(settings.scene);
+  renderer.setScene(scene);
+  const gl::FrameView view{scene.camera, scene.light};
+  const gl::RenderResult reference = renderer.renderReference(render, view, 1);
+  const gl::RenderResult frame = renderer.render(render, view);
+  const Image error =
+      signedVisibilityError(frame.visibility, reference.visibility, litSurfaceMask(frame.lookup));
+  Image expected(kWidth, kHeight, 3);
+  int errorPixels = 0;
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      const glm::vec3 c = errorHeatColour(error.at(x, y), 0.5f);
+      for (int i = 0; i < 3; ++i) expected.at(x, y, i) = std::round(c[i] * 255.0f) / 255.0f;
+      errorPixels += std::abs(error.at(x, y)) > 0.01f;
+    }
+  }
+  const Difference d = sceneAreaDifference(window, expected, kWidth, kHeight);
+  std::cout << "error view against the renderer's reference: mean " << d.meanSteps
+            << " steps, largest " << d.maxSteps << "; " << errorPixels
+            << " pixels with an error over 0.01\n";
+  // Otherwise the comparison would hold for any reference equal to the visibility.
+  EXPECT_GT(errorPixels, kWidth * kHeight / 100);
+  // The same shared code on the CPU and on llvmpipe: only float rounding may differ, which moves
+  // a heat colour by a step where an error sits on a rounding boundary.
+  EXPECT_LE(d.maxSteps, 2);
+  EXPECT_LE(d.meanSteps, 0.01);
+}
+
+// A split view saved by the viewer loads back with both sides: the file holds the right side
+// under "split", and `penumbra render --settings` of it renders the left side.
+TEST(Viewer, SavesAndLoadsBothSidesOfTheSplitView) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = writeSettings(scratch.path(), "backyard", Technique::Vsm);
+  const fs::path shot = scratch.path() / "split.png";
+  const fs::path saved = scratch.path() / "saved.json";
+  const RunResult run = runViewer(settings, shot, scratch.path(),
+                                  {"--split", "pcf", "--save-settings", saved.string()});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  gl::Settings read;
+  gl::applySettingsFile(saved, read);
+  ASSERT_TRUE(read.split.has_value()) << readFile(saved);
+  EXPECT_EQ(read.split->technique, Technique::Pcf);
+  EXPECT_EQ(read.techniques, std::vector<Technique>{Technique::Vsm});
+  // Loaded without --split, the saved file opens the same split view.
+  const fs::path again = scratch.path() / "again.png";
+  const RunResult reload = runViewer(saved, again, scratch.path());
+  ASSERT_EQ(reload.exitCode(), 0) << reload.output;
+  EXPECT_EQ(sceneAreaDifference(readEncodedColorPng(shot), readEncodedColorPng(again), kFrameWidth,
+                                kFrameHeight)
+                .maxSteps,
+            0);
+  // The command line takes the file and renders the left side.
+  const fs::path out = scratch.path() / "render";
+  const RunResult render =
+      runPenumbra({"render", "--settings", saved.string(), "--out", out.string()}, scratch.path());
+  ASSERT_EQ(render.exitCode(), 0) << render.output;
+  EXPECT_TRUE(fs::exists(out / "backyard_vsm.png"));
+  EXPECT_FALSE(fs::exists(out / "backyard_pcf.png"));
 }
 
 }  // namespace

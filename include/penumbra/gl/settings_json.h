@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -15,16 +16,28 @@
 
 namespace penumbra::gl {
 
+// The viewer's split view (docs/viewer.md): right of the divider, this technique with these
+// parameters, every other setting shared. render and compare check it and render the main
+// settings only (the left side).
+struct SplitSettings {
+  Technique technique = Technique::Pcf;
+  TechniqueParams params = defaultTechniqueParams();
+  float divider = 0.5f;  // a share of the frame's width, [0, 1]
+};
+
 struct Settings {
   std::string scene = "backyard";  // a built-in name or a scene file's path
   std::vector<Technique> techniques{Technique::Evsm4};
-  RenderSettings render;  // render.technique is unused: see techniques
-  SceneOverrides view;    // camera and light; unset: the scene's own
+  RenderSettings render;               // render.technique is unused: see techniques
+  SceneOverrides view;                 // camera and light; unset: the scene's own
+  std::optional<SplitSettings> split;  // "split": the viewer's right side
 };
 
 // The keys a settings file takes, each the name of a command-line option of render and compare
 // ("shadow-size", "blur", ...), plus "param" (an object of technique objects), "light" and
-// "camera" (as in a --view file).
+// "camera" (as in a --view file). A file may also hold "split" (the viewer's split view:
+// {"technique": id, "param": {...}, "divider": share}), no command-line option: it is checked
+// like the rest and read into Settings::split, which render and compare do not render.
 std::span<const std::string_view> settingsKeys();
 
 // Applies the keys present in `json` to `settings`, except those named in `skip` (the command
