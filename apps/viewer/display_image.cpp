@@ -43,7 +43,7 @@ std::string_view viewName(View view) {
     case View::Visibility: return "visibility";
     case View::Error: return "error vs filtered reference";
     case View::FailureMask: return "ESM failure mask";
-    case View::Layers: return "LVSM layers";
+    case View::Layers: return "layers (LVSM, power CDF)";
     case View::ShadowMap: return "shadow map (depth)";
     case View::Channel: return "shadow map channel";
   }

@@ -221,6 +221,32 @@ TEST_F(PaperTechniques, LvsmLayerImageIsEachReceiversLayerUnderTheFramesSplits) 
   }
 }
 
+// The layered power CDF's layer image (the viewer's and render's layer view): each receiver's
+// layer is the one whose split interval holds its depth less the power CDF's depth bias.
+TEST_F(PaperTechniques, PowerCdfLayerImageIsEachReceiversBiasedLayer) {
+  const gl::RenderResult r = render("overlap", settings(Technique::PowerCdf, {"layers=3"}));
+  std::set<int> shown;
+  int checked = 0, wrong = 0;
+  for (int y = 0; y < r.diagnostic.height(); ++y) {
+    for (int x = 0; x < r.diagnostic.width(); ++x) {
+      const float layer = r.diagnostic.at(x, y);
+      if (layer < 0.0f || r.lookup.at(x, y, 3) == 0.0f) continue;  // nothing drawn or no lookup
+      const float receiver = std::clamp(r.lookup.at(x, y, 2), 0.0f, 1.0f);
+      const int expected =
+          shaders::selectLayer(receiver - r.params.powerCdf.depthBias, r.params.powerCdf.splits);
+      shown.insert(int(std::lround(layer)));
+      ++checked;
+      if (layer != float(expected) && ++wrong <= 3) {
+        ADD_FAILURE() << "pixel " << x << "," << y << ": layer " << layer << ", receiver "
+                      << receiver << " lies in layer " << expected;
+      }
+    }
+  }
+  EXPECT_GT(checked, 50000);
+  EXPECT_EQ(wrong, 0);
+  EXPECT_GE(shown.size(), 2u);  // receivers between depths 0.46 and 0.69 span uniform thirds
+}
+
 TEST_F(PaperTechniques, CsmApproachesPcfAsTermsGrowOnContactShadows) {
   gl::RenderSettings reference = settings(Technique::Pcf);
   reference.params.pcf.radius = 2;

@@ -159,7 +159,7 @@ void runRender(const RenderCommandOptions& options) {
       files["failure_mask"] = stem + "_failures.png";
       writeFailureMaskPng(result.diagnostic, result.color, dir / files.at("failure_mask"));
     }
-    if (technique == Technique::Lvsm) {
+    if (technique == Technique::Lvsm || technique == Technique::PowerCdf) {
       files["layers"] = stem + "_layers.png";
       writeLayerIndexPng(result.diagnostic, result.color, dir / files.at("layers"));
     }

@@ -75,11 +75,16 @@ PENUMBRA_INLINE float powerCdfVisibilityFromStats(vec3 minMaxMean, float receive
   return clamp(lit / litAtMean, 0.0f, 1.0f);
 }
 
+// The layer whose statistics decide a receiver: the one holding its biased depth.
+PENUMBRA_INLINE int powerCdfReceiverLayer(float receiverDepth, PowerCdfParams p) {
+  return selectLayer(receiverDepth - p.depthBias, p.splits);
+}
+
 // Visibility from the statistics of the receiver's layer.
 PENUMBRA_INLINE float powerCdfVisibility(vec3 layerMinMaxMean, float receiverDepth,
                                          PowerCdfParams p) {
   float biased = receiverDepth - p.depthBias;
-  int layer = selectLayer(biased, p.splits);
+  int layer = powerCdfReceiverLayer(receiverDepth, p);
   float z = powerCdfLayerDepth(biased, layer, p);
   return powerCdfVisibilityFromStats(layerMinMaxMean, z);
 }

@@ -350,6 +350,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     return r;
   }
   if (technique == kTechniqueLvsm) r.diagnostic = float(selectLayer(d, p.lvsm.splits));
+  if (technique == kTechniquePowerCdf) r.diagnostic = float(powerCdfReceiverLayer(d, p.powerCdf));
   r.visibility = reconstructVisibility(technique, f.values, d, p);
   return r;
 }
