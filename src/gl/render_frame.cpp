@@ -2,20 +2,23 @@
 // -> camera pass (or the filtered reference), and the read-backs of the last frame.
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <memory>
 
+#include "box_downsample.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/point_light.h"
 #include "penumbra/shadow_lookup.h"
 #include "renderer_state.h"
 #include "shared/cascade_selection.h"
+#include "shared/point_light_faces.h"
 #include "shared/shading.h"
 #include "shared/summed_area.h"
-#include "box_downsample.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -102,6 +105,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& light) {
   checkLightSize(light);
   if (light.size == 0.0f) return;
+  if (light.kind == LightKind::Point) {
+    // PCSS's blocker search and the widened filters would cross face edges beyond the guard
+    // band, and the area-light reference needs sphere samples: neither is built yet.
+    throw Error("soft shadows (light size " + std::to_string(light.size) +
+                ") are not supported for point lights yet: point lights cast hard shadows "
+                "(light size 0) with every technique; directional and spot lights take a size");
+  }
   if (settings.cascades.count > 1) {
     throw Error("soft shadows (light size " + std::to_string(light.size) +
                 ") are not supported with cascades: use one map (--cascades 1)");
@@ -118,7 +128,8 @@ void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& lig
 }
 
 RenderResult Renderer::render(const RenderSettings& settings, const FrameView& view) {
-  validate(settings);
+  requireCascadableLight(settings.cascades, view.light);
+  validate(settings, view.light.kind);
   checkSoftShadows(settings, view.light);
   RenderResult result = renderFrame(settings, view, false);
   if (settings.technique == Technique::Esm &&
@@ -141,7 +152,8 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   big.msaaSamples = 1;
   big.width = settings.width * supersample;
   big.height = settings.height * supersample;
-  validate(big);
+  requireCascadableLight(settings.cascades, view.light);
+  validate(big, view.light.kind);
   RenderResult full = renderFrame(big, view, true);
   completeReferenceOnCpu(full);
   if (supersample == 1) return full;
@@ -195,9 +207,25 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     s.depthBounds.release();
   }
   frame.cascaded = settings.cascades.count > 1;
-  frame.cascades = frame.cascaded
-                       ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range, view.light,
-                                     s.sceneBounds, settings.shadowMapSize)
+  frame.pointLight = view.light.kind == LightKind::Point;
+  PointLightFaces faces;
+  if (frame.pointLight) {
+    // The guard band covers the prefilter's blur and the lookup's kernel at a face's edge. The
+    // lookup's reach is taken as the blur's (PCF matched to the prefilter, the reference's own
+    // kernel) for every technique, so that every render of a comparison sees the same faces;
+    // PCF with a wider kernel of its own widens it.
+    const int pcfReach =
+        !reference && settings.technique == Technique::Pcf ? settings.params.pcf.radius + 1 : 0;
+    const int lookupReach = std::max(settings.blur.radius + 1, pcfReach);
+    faces = pointLightFaces(frame.lightView, view.light.position, settings.shadowMapSize,
+                            shaders::pointFaceGuardTexels(settings.blur.radius, lookupReach));
+    frame.lightView.clipFromLight = faces.clipFromLight;
+    frame.pointFaceTangent = faces.tangent;
+  }
+  frame.cascades = frame.pointLight ? pointLightCascadeFrame(frame.lightView)
+                   : frame.cascaded
+                       ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range,
+                                     view.light, s.sceneBounds, settings.shadowMapSize)
                        : singleMap(frame.lightView);
   const int count = frame.cascades.count;
   s.cascadeBlurs.assign(1, settings.blur);
@@ -212,7 +240,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   std::vector<LightLayerView> layers;
   for (int c = 0; c < count; ++c) {
     LightLayerView layer;
-    layer.lightFromWorld = frame.lightView.lightFromWorld;
+    layer.lightFromWorld =
+        frame.pointLight ? faces.lightFromWorld[size_t(c)] : frame.lightView.lightFromWorld;
     layer.clipFromLight =
         frame.cascaded ? frame.cascades.clipFromLight(c) : frame.lightView.clipFromLight;
     layer.nearDistance = frame.lightView.nearDistance;
@@ -248,12 +277,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
 
   s.camera.prepare(settings.width, settings.height);
-  const ShadowMaps maps{s.light,
-                        s.filter,
-                        s.zmax.built() ? &s.zmax.texture() : nullptr,
-                        s.zmax.levels(),
-                        *s.blurCumulative,
-                        s.cascadeBlurs};
+  const ShadowMaps maps{
+      s.light,         s.filter,          s.zmax.built() ? &s.zmax.texture() : nullptr,
+      s.zmax.levels(), *s.blurCumulative, s.cascadeBlurs};
   s.camera.render(s.programs, s.parameters, *s.scene, settings, frame, maps, reference);
 
   RenderResult result;
@@ -302,8 +328,7 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
       found = std::make_unique<CpuShadowLookup>(
           readDepthMap(cascade),
           LookupConfig{Technique::Hard, settings.params, settings.filter,
-                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy,
-                       s.limits.halfRounding,
+                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy, s.limits.halfRounding,
                        r.cascadeFrame.kernelScale(cascade, size)});
     }
     return *found;
@@ -325,8 +350,8 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
         other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
         other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
         other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
-        other.depthPerTexel = shaders::cascadeDepthPerTexel(
-            pixel.depthPerTexel * float(size) / extent, next, size);
+        other.depthPerTexel =
+            shaders::cascadeDepthPerTexel(pixel.depthPerTexel * float(size) / extent, next, size);
         v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
       }
       const glm::vec3 albedo(r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2));
@@ -402,9 +427,9 @@ Image Renderer::readChannels(int level, int cascade) const {
   const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
   // Every cascade's layers come back, cascade by cascade; channel c of a cascade is component
   // c of its layers (4 per layer when there are several).
-  Image all = readTexture(s.filter.channels().id(), level, size, size,
-                          layout.layers * shape.cascades, layout.componentsPerTexel,
-                          formats[layout.componentsPerTexel], false);
+  Image all =
+      readTexture(s.filter.channels().id(), level, size, size, layout.layers * shape.cascades,
+                  layout.componentsPerTexel, formats[layout.componentsPerTexel], false);
   Image trimmed(size, size, layout.channels);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
@@ -431,7 +456,8 @@ Image Renderer::readZmaxLevel(int level) const {
 }
 
 std::vector<SplitSample> Renderer::readSplitSamples() const {
-  if (!state_->lloyd.placed()) throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
+  if (!state_->lloyd.placed())
+    throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
   return state_->lloyd.readSamples();
 }
 

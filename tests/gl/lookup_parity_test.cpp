@@ -1,11 +1,14 @@
 // The renderer checked pixel by pixel: for every technique x filter mode x storage format on
-// small frames of every built-in scene, the GPU's visibility equals the CPU twin's
+// small frames of every built-in scene (lantern: a point light's six faces, each pixel against
+// its face's twin), the GPU's visibility equals the CPU twin's
 // (penumbra/shadow_lookup.h), which runs the same shared lookup over the CPU reference filters;
 // and the GPU's filtered reference equals the CPU twin's reference.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <map>
+#include <memory>
 #include <random>
 #include <sstream>
 
@@ -180,9 +183,19 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         continue;
       }
       const gl::RenderResult r = renderer.render(scene, s);
-      const CpuShadowLookup twin(
-          renderer.readDepthMap(),
-          {technique, r.params, c.filter, s.blur, s.anisotropy, renderer.halfFloatRounding()});
+      // One twin per layer the pixels use: a point light's face (lantern), else the one map.
+      std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
+      auto twinAt = [&](int x, int y) -> const CpuShadowLookup& {
+        const int layer = int(r.cascades.at(x, y, 0));
+        std::unique_ptr<CpuShadowLookup>& twin = twins[layer];
+        if (!twin) {
+          twin = std::make_unique<CpuShadowLookup>(
+              renderer.readDepthMap(layer),
+              LookupConfig{technique, r.params, c.filter, s.blur, s.anisotropy,
+                           renderer.halfFloatRounding()});
+        }
+        return *twin;
+      };
       const float tolerance = pixelTolerance(technique, techniqueStorage(technique, r.params));
       const bool envelopes = technique == Technique::Msm && c.filter != FilterMode::Anisotropic;
       Differences d;
@@ -191,6 +204,7 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         for (int x = 0; x < s.width; ++x) {
           if (r.lookup.at(x, y, 3) <= 0.0f) continue;  // outside the shadow map
           const LookupPixel pixel = gl::lookupPixelAt(r, x, y);
+          const CpuShadowLookup& twin = twinAt(x, y);
           const LookupSample cpu = twin.lookup(pixel);
           const float gpu = r.visibility.at(x, y);
           float error = std::abs(cpu.visibility - gpu);
@@ -243,8 +257,17 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
       s.blur = {BlurKernel::Gaussian, 2, 1.0f};
       s.anisotropy = 8;
       const gl::RenderResult r = renderer.renderReference(scene, s, 1);
-      const CpuShadowLookup twin(renderer.readDepthMap(),
-                                 {Technique::Pcf, r.params, f, s.blur, s.anisotropy});
+      std::map<int, std::unique_ptr<CpuShadowLookup>> twins;  // per face of a point light
+      auto twinAt = [&](int x, int y) -> const CpuShadowLookup& {
+        const int layer = int(r.cascades.at(x, y, 0));
+        std::unique_ptr<CpuShadowLookup>& twin = twins[layer];
+        if (!twin) {
+          twin = std::make_unique<CpuShadowLookup>(
+              renderer.readDepthMap(layer),
+              LookupConfig{Technique::Pcf, r.params, f, s.blur, s.anisotropy});
+        }
+        return *twin;
+      };
       Differences d;
       for (int y = 0; y < s.height; ++y) {
         for (int x = 0; x < s.width; ++x) {
@@ -253,6 +276,7 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
           // rounding of the tie tolerance may flip: the GPU's value must then lie between the
           // CPU's for the receiver moved by kTieRounding either way (more lit in front).
           LookupPixel px = gl::lookupPixelAt(r, x, y);
+          const CpuShadowLookup& twin = twinAt(x, y);
           const float cpu = twin.referenceVisibility(px);
           const float gpu = r.visibility.at(x, y);
           float error = std::abs(cpu - gpu);
