@@ -266,7 +266,7 @@ Scene lantern() {
       "a point light inside a sphere, caged by 26 cubes: shadows in all six directions, across "
       "every face edge and corner of the light's cube of shadow maps";
   Mesh room = makeMesh(kGroundAlbedo);
-  addSphere(room, glm::vec3(0.0f), 4.0f, 64);
+  addSphere(room, glm::vec3(0.0f), 4.0f, 256);
   Mesh cage = makeMesh(kWoodAlbedo);
   for (int x = -1; x <= 1; ++x) {
     for (int y = -1; y <= 1; ++y) {

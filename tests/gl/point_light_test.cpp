@@ -39,6 +39,8 @@ struct SeamMeasure {
   float seam = 0.0f;      // largest jump across a face boundary
   float interior = 0.0f;  // largest jump between pixels of one face
   int seamPairs = 0;
+  double seamMean = 0.0, interiorMean = 0.0;
+  int interiorPairs = 0;
 };
 
 SeamMeasure measureSeams(const gl::RenderResult& r, float sphereDepthFloor) {
@@ -60,13 +62,18 @@ SeamMeasure measureSeams(const gl::RenderResult& r, float sphereDepthFloor) {
         // measured against steps taken within one face on each side.
         if (face(0) != face(1) && face(-1) == face(0) && face(2) == face(1)) {
           m.seam = std::max(m.seam, jump);
+          m.seamMean += jump;
           ++m.seamPairs;
         } else if (face(-1) == face(0) && face(0) == face(1) && face(1) == face(2)) {
           m.interior = std::max(m.interior, jump);
+          m.interiorMean += jump;
+          ++m.interiorPairs;
         }
       }
     }
   }
+  m.seamMean /= std::max(1, m.seamPairs);
+  m.interiorMean /= std::max(1, m.interiorPairs);
   return m;
 }
 
@@ -95,8 +102,11 @@ TEST_F(PointLight, FaceEdgesShowNoSeamOnTheSphereForEveryFilteredTechnique) {
     if (t == Technique::Hard) continue;  // no filter: hard edges are jumps everywhere
     const gl::RenderResult r = renderer.render(scene, seamSettings(t));
     const SeamMeasure m = measureSeams(r, sphereDepthFloor);
-    std::printf("lantern %s: seam jump %.4f, interior jump %.4f, %d seam pairs\n",
-                std::string(techniqueId(t)).c_str(), m.seam, m.interior, m.seamPairs);
+    std::printf(
+        "lantern %s: seam jump max %.4f mean %.5f, interior jump max %.4f mean %.5f, %d "
+        "seam pairs\n",
+        std::string(techniqueId(t)).c_str(), m.seam, m.seamMean, m.interior, m.interiorMean,
+        m.seamPairs);
     ASSERT_GT(m.seamPairs, 200) << "the view must cross face edges";
     // A seam-free image's jumps across face edges are of the same kind as those inside a face
     // (second differences of the resolved penumbrae): bounded by the largest interior one.
@@ -106,9 +116,9 @@ TEST_F(PointLight, FaceEdgesShowNoSeamOnTheSphereForEveryFilteredTechnique) {
 
 TEST_F(PointLight, EveryTechniqueIsFiniteInUnitRangeAndLitWhereNothingOccludes) {
   gl::Renderer renderer(*context);
-  Scene caged = makeBuiltinScene("lantern");
-  Scene empty = caged;
-  empty.meshes.resize(1);  // the sphere alone: nothing between it and the light
+  const Scene caged = makeBuiltinScene("lantern");
+  Scene open = caged;
+  open.meshes.resize(1);  // the sphere alone: nothing between it and the light
   for (Technique t : allTechniques()) {
     for (FilterMode f : {FilterMode::Bilinear, FilterMode::Trilinear, FilterMode::SummedArea}) {
       gl::RenderSettings s;
@@ -134,17 +144,22 @@ TEST_F(PointLight, EveryTechniqueIsFiniteInUnitRangeAndLitWhereNothingOccludes) 
       }
       EXPECT_GT(shadowed, 50) << where << ": the cubes cast shadows";
       for (float c : withCage.color.data()) ASSERT_TRUE(std::isfinite(c)) << where;
-      const gl::RenderResult open = renderer.render(empty, s);
+      const gl::RenderResult lit = renderer.render(open, s);
       float darkest = 1.0f;
+      int counted = 0;
       for (int y = 0; y < s.height; ++y) {
         for (int x = 0; x < s.width; ++x) {
-          if (open.lookup.at(x, y, 3) != 1.0f) continue;
-          darkest = std::min(darkest, open.visibility.at(x, y));
+          if (lit.lookup.at(x, y, 3) != 1.0f) continue;
+          darkest = std::min(darkest, lit.visibility.at(x, y));
+          ++counted;
         }
       }
-      // The light at the sphere's centre meets it head-on, so the receiver plane is the map's
-      // own and a lit pixel is lit within the techniques' rounding (MSM's 16-bit moments: 0.02).
-      EXPECT_GE(darkest, 0.98f) << where;
+      ASSERT_GT(counted, 1000) << where;
+      // Lit within 0.03: the light meets the sphere head-on, but its 256 segments are flat
+      // facets meeting in ridges 4 (1 - cos(pi / 256)) = 3e-4 m behind their centres, and a
+      // kernel over a ridge sees texels that much in front of the facet's plane (PCF: 0.978;
+      // the other techniques measured above 0.98, with MSM's 16-bit moments and CSM's 8-bit basis).
+      EXPECT_GE(darkest, 0.97f) << where;
     }
   }
 }
