@@ -105,6 +105,29 @@ TEST(PointLightFaces, LightPassMatricesProjectLikeTheLookup) {
   }
 }
 
+TEST(PointLightFaces, UvStepIsTheProjectionsDerivative) {
+  // Small steps: the derivative matches the difference of projections to first order. A step
+  // of relative size s (here about 2e-3 of the distance) leaves a second-order remainder of
+  // O(s) relative, up to a few times s at a guarded face's edge where the projection bends
+  // most: 1e-2 relative, plus 1e-6 for fp32 cancellation in the difference. Large steps stay
+  // finite where a difference of projections would cross behind the face.
+  const float t = pointFaceTangent(kSize, kGuard);
+  std::mt19937 rng(3);
+  std::normal_distribution<float> normal;
+  for (const glm::vec3& d : randomDirections(500)) {
+    const glm::vec3 p = 2.0f * d;
+    const int face = pointLightFace(p);
+    const glm::vec3 delta = 2e-3f * glm::vec3(normal(rng), normal(rng), normal(rng));
+    const glm::vec2 step = shaders::pointFaceUvStep(face, p, delta, t);
+    const glm::vec3 a = pointFaceUv(face, p, t), b = pointFaceUv(face, p + delta, t);
+    const glm::vec2 difference(b.x - a.x, b.y - a.y);
+    EXPECT_NEAR(step.x, difference.x, 1e-2f * glm::length(difference) + 1e-6f);
+    EXPECT_NEAR(step.y, difference.y, 1e-2f * glm::length(difference) + 1e-6f);
+    const glm::vec2 far = shaders::pointFaceUvStep(face, p, -10.0f * p, t);
+    EXPECT_TRUE(std::isfinite(far.x) && std::isfinite(far.y));
+  }
+}
+
 TEST(PointLightFaces, AGuardBandWiderThanTheMapAllowsIsRefused) {
   const LightView view = fitLightView(Light{LightKind::Point}, Bounds{glm::vec3(-1), glm::vec3(1)});
   EXPECT_THROW(pointLightFaces(view, glm::vec3(0.0f), 64, 16), Error);

@@ -300,7 +300,7 @@ TEST(SceneSource, NamesTheValidScenesAndExtensionsForAnythingElse) {
     loadScene("garden");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("foliage, penumbrae, or a .gltf, .glb or .obj file"),
+    EXPECT_NE(std::string(e.what()).find("foliage, penumbrae, lantern, or a .gltf, .glb or .obj file"),
               std::string::npos);
   }
   EXPECT_THROW(loadScene("/nonexistent/model.glb"), Error);

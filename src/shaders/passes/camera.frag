@@ -164,15 +164,16 @@ void main() {
   float receiver = planeAndDepth.z;
 
   // Derivatives in uniform control flow: the lookup's footprint on the light's plane. A point
-  // light's neighbouring pixels may lie in another face: their positions are projected into this
-  // pixel's face instead of differencing the faces' uvs.
+  // light's neighbouring pixels may lie in another face: the position's derivatives go through
+  // the derivative of this pixel's face projection instead of differencing uvs of two faces.
   vec2 planeDx = dFdx(plane);
   vec2 planeDy = dFdy(plane);
   vec3 positionDx = dFdx(offsetPosition);
   vec3 positionDy = dFdy(offsetPosition);
   if (pointLight != 0) {
-    planeDx = lightPlaneAndDepth(offsetPosition + positionDx).xy - plane;
-    planeDy = lightPlaneAndDepth(offsetPosition + positionDy).xy - plane;
+    vec3 fromLight = offsetPosition - lightPosition;
+    planeDx = pointFaceUvStep(pointFace, fromLight, positionDx, pointLightTangent);
+    planeDy = pointFaceUvStep(pointFace, fromLight, positionDy, pointLightTangent);
   }
   // The triangle's geometric normal: the plane the light pass rasterised (a tessellated curved
   // surface's shading normal is not), from derivatives that stay within the triangle.

@@ -68,6 +68,21 @@ PENUMBRA_INLINE vec3 pointFaceUv(int face, vec3 fromLight, float tangent) {
   return vec3(plane.x * 0.5f + 0.5f, plane.y * 0.5f + 0.5f, along);
 }
 
+// The change of pointFaceUv's uv for a small step `delta` away from `fromLight`, through the
+// projection's derivative at `fromLight` (d(x/a) = (dx a - x da) / a^2): the lookup's footprint
+// in the pixel's own face. Differencing the uvs of the neighbouring pixels' positions instead
+// fails at silhouettes, where a neighbour on another surface may lie behind the face's plane.
+PENUMBRA_INLINE vec2 pointFaceUvStep(int face, vec3 fromLight, vec3 delta, float tangent) {
+  PointFaceFrame f = pointLightFaceFrame(face);
+  float along = max(dot(fromLight, f.forward), 1e-30f);
+  float alongStep = dot(delta, f.forward);
+  float x = dot(fromLight, f.right);
+  float y = dot(fromLight, f.up);
+  float scale = 0.5f / (tangent * along * along);
+  return vec2((dot(delta, f.right) * along - x * alongStep) * scale,
+              (dot(delta, f.up) * along - y * alongStep) * scale);
+}
+
 // Linear depth of a point light: the distance from the light over [near, far], like a spot
 // light's (thesis §4.1.3).
 PENUMBRA_INLINE float pointLightDepth(vec3 fromLight, float nearDistance, float farDistance) {
