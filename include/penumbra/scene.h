@@ -63,16 +63,23 @@ struct Camera {
   float verticalFovDegrees = 45.0f;
 };
 
-enum class LightKind { Directional, Spot };
+// Point: omnidirectional, six perspective faces (penumbra/point_light.h, docs/renderer.md).
+enum class LightKind { Directional, Spot, Point };
+
+// "directional", "spot", "point"; parseLightKind throws Error listing the valid names.
+std::string_view lightKindName(LightKind kind);
+LightKind parseLightKind(std::string_view name);
 
 struct Light {
   LightKind kind = LightKind::Directional;
   glm::vec3 direction{0.0f, -1.0f, 0.0f};  // directional: the way the light travels
-  glm::vec3 position{0.0f, 10.0f, 0.0f};   // spot: where it is
+  glm::vec3 position{0.0f, 10.0f, 0.0f};   // spot and point: where it is
   glm::vec3 target{0.0f};                  // spot: where it points
   float spotAngleDegrees = 60.0f;          // spot: full cone angle
-  // Soft shadows (docs/reference.md, area light): 0 is a point light (hard shadows). Spot: the
-  // diameter in world units of a disk light at `position` facing along the spot axis, [0, 10].
+  // Soft shadows (docs/reference.md, area light): 0 is an ideal point light (hard shadows).
+  // Spot: the diameter in world units of a disk light at `position` facing along the spot axis,
+  // [0, 10]. Point: the diameter in world units of a sphere at `position`, [0, 10] (the renderer
+  // refuses sizes above 0 for now: hard point-light shadows only).
   // Directional: the tangent of the sun disk's angular diameter, i.e. world units of disk
   // diameter per world unit of distance, [0, 0.5] (the sun's is 0.0093): a light at infinity has
   // no size in world units, only this ratio, which is what its penumbra depends on.
@@ -82,6 +89,7 @@ struct Light {
 // The largest light size of each kind (Light::size).
 inline constexpr float kMaxSpotLightSize = 10.0f;
 inline constexpr float kMaxDirectionalLightSize = 0.5f;
+inline constexpr float kMaxPointLightSize = 10.0f;
 
 // Throws Error naming the valid range when the light's size is not finite or out of range.
 void checkLightSize(const Light& light);
@@ -117,21 +125,26 @@ struct Scene {
 
 // The light's view of a scene: matrices and the linear depth metric the shadow map stores.
 // Directional lights are orthographic, fitted to the scene's bounding sphere; spot lights are
-// perspective over their cone. Linear depth in [0,1] is the distance along the light direction
-// (directional) or from the light (spot), mapped from [near, far].
+// perspective over their cone; point lights are a translation to the light (each face's rotation
+// and projection: penumbra/point_light.h) with a range reaching the far side of the scene's
+// bounding sphere. Linear depth in [0,1] is the distance along the light direction
+// (directional) or from the light (spot, point), mapped from [near, far].
 struct LightView {
   glm::mat4 lightFromWorld{1.0f};  // view
   glm::mat4 clipFromLight{1.0f};   // projection
   float nearDistance = 0.0f;
   float farDistance = 1.0f;
   bool perspective = false;
-  // World-space size of one shadow-map texel at unit distance (spot) or everywhere (directional),
-  // for the normal-offset bias: multiply by the distance for spot lights.
+  // World-space size of one shadow-map texel at unit distance (spot, a point light's faces) or
+  // everywhere (directional), for the normal-offset bias: multiply by the distance for spot and
+  // point lights.
   float texelWorldSize(int shadowMapSize) const;
 };
 
 LightView fitLightView(const Light& light, const Bounds& sceneBounds);
-inline LightView fitLightView(const Scene& scene) { return fitLightView(scene.light, scene.bounds()); }
+inline LightView fitLightView(const Scene& scene) {
+  return fitLightView(scene.light, scene.bounds());
+}
 
 // The camera's near plane and the far plane that keeps the whole scene in view.
 inline constexpr float kCameraNear = 0.05f;
@@ -159,10 +172,14 @@ void checkSceneSource(std::string_view nameOrPath);
 // Camera and light set from outside the scene (command line, settings file), for built-in and
 // file scenes alike; unset fields keep the scene's own.
 struct SceneOverrides {
+  // The light's kind (--light): given alone, a point or spot light keeps the scene light's
+  // position when it has one, else stands inside the scene (applyOverrides says where).
+  std::optional<LightKind> lightKind;
   std::optional<glm::vec3> lightDirection;  // makes the light directional: the way it travels
-  std::optional<glm::vec3> lightPosition;   // makes the light a spot light at this position
-  std::optional<glm::vec3> lightTarget;     // spot: where it points (default: the scene centre)
-  std::optional<float> spotAngleDegrees;    // spot: full cone angle, (0, 170]
+  // Makes the light a spot light at this position (a point light with lightKind Point).
+  std::optional<glm::vec3> lightPosition;
+  std::optional<glm::vec3> lightTarget;   // spot: where it points (default: the scene centre)
+  std::optional<float> spotAngleDegrees;  // spot: full cone angle, (0, 170]
   std::optional<glm::vec3> cameraPosition;
   std::optional<glm::vec3> cameraTarget;
   std::optional<float> cameraFovDegrees;  // vertical, (0, 170]

@@ -41,8 +41,8 @@ void setLookupUniforms(const Program& program, const RenderSettings& settings,
   program.set("filterMode", int(settings.filter));
   program.set("shadowMapSize", shape.size);
   // The reference follows the technique's lookup over every level the lookup may use.
-  const int levels = reference && usesMips(settings.filter) ? mipLevelCount(shape.size, shape.size)
-                                                            : shape.levels;
+  const int levels =
+      reference && usesMips(settings.filter) ? mipLevelCount(shape.size, shape.size) : shape.levels;
   program.set("channelLevels", levels);
   program.set("anisotropy", settings.anisotropy);
   program.set("blurKernel", blurKernelId(settings.blur.kernel));
@@ -147,7 +147,10 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   program.set("lightFar", frame.lightView.farDistance);
   program.set("lightDirection", glm::normalize(frame.light.direction));
   program.set("lightPosition", frame.light.position);
-  program.set("spotAxis", glm::normalize(frame.light.target - frame.light.position));
+  const glm::vec3 axis = frame.light.target - frame.light.position;
+  program.set("spotAxis", glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
+  program.set("pointLight", frame.pointLight ? 1 : 0);
+  program.set("pointLightTangent", frame.pointFaceTangent);
   program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
   program.set("normalOffsetTexels", settings.normalOffsetTexels);
   program.set("lightSize", frame.light.size);

@@ -24,7 +24,7 @@ struct ShadowMaps {
   const ShadowMapFilter& filter;
   const Texture* zmax = nullptr;  // ESM's Z-max pyramid, when built
   int zmaxLevels = 0;
-  const Buffer& blurCumulative;   // per cascade, cumulativeBlurWeights (2 * kMaxBlurRadius + 1)
+  const Buffer& blurCumulative;  // per cascade, cumulativeBlurWeights (2 * kMaxBlurRadius + 1)
   std::span<const BlurSpec> cascadeBlurs;
 };
 
@@ -36,6 +36,10 @@ struct FrameGeometry {
   Bounds sceneBounds;
   LightView lightView;  // the light's view and depth metric (one map: also its projection)
   bool cascaded = false;
+  // A point light: the cascades are its six faces (penumbra/point_light.h), chosen per pixel by
+  // face; lightView.clipFromLight is every face's guarded projection.
+  bool pointLight = false;
+  float pointFaceTangent = 1.0f;
   CascadeFrame cascades;
   int shadowMapSize = 0;
 };
@@ -66,8 +70,7 @@ class CameraPass {
 
  private:
   int width_ = 0, height_ = 0;
-  Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_,
-      depth_;
+  Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_, depth_;
   unsigned framebuffer_ = 0;
 };
 

@@ -7,6 +7,7 @@
 
 #include "gl_formats.h"
 #include "penumbra/channel_layout.h"
+#include "penumbra/point_light.h"
 #include "shared/constants.h"
 
 namespace penumbra::gl {
@@ -106,15 +107,20 @@ size_t lloydSampleBytes(int shadowMapSize) {
   return inner * inner * sizeof(SplitSample);
 }
 
-MemoryReport estimateMemory(const RenderSettings& s) {
+int shadowMapLayers(const RenderSettings& s, LightKind light) {
+  return light == LightKind::Point ? kPointLightFaceCount : s.cascades.count;
+}
+
+MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   const int size = s.shadowMapSize;
   const ChannelLayout layout = channelLayout(s.technique, s.params);
-  const uint64_t cascades = uint64_t(s.cascades.count);
+  const int layers = shadowMapLayers(s, light);
+  const uint64_t cascades = uint64_t(layers);
   MemoryReport m;
   m.lightPass = lightPassBytes(size, s.msaaSamples) * cascades;
   m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1) * cascades;
   if (buildsSummedAreaTable(s)) {
-    const SummedAreaSizes sat = summedAreaSizes(layout.channels * s.cascades.count, size);
+    const SummedAreaSizes sat = summedAreaSizes(layout.channels * layers, size);
     m.summedArea = sat.rows + sat.stats + sat.sums;
   }
   if (blursIntoScratch(s)) m.scratch = channelTextureBytes(layout, size, size, false) * cascades;
@@ -123,19 +129,19 @@ MemoryReport estimateMemory(const RenderSettings& s) {
     m.auxiliary += channelTextureBytes(r32f, size, size, true) * cascades;
   }
   if (placesLayersByLloyd(s)) {
-    m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, s.cascades.count);
+    m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, layers);
   }
   m.frame = frameBytes(s.width, s.height);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);
   return m;
 }
 
-std::vector<PlannedTexture> plannedTextures(const RenderSettings& s) {
+std::vector<PlannedTexture> plannedTextures(const RenderSettings& s, LightKind kind) {
   const int size = s.shadowMapSize;
   const ChannelLayout layout = channelLayout(s.technique, s.params);
   const int levels = channelLevelsFor(s);
   const bool ms = s.msaaSamples > 1;
-  const int cascades = s.cascades.count;
+  const int cascades = shadowMapLayers(s, kind);
   const GLenum light = ms ? GL_PROXY_TEXTURE_2D_MULTISAMPLE_ARRAY : GL_PROXY_TEXTURE_2D_ARRAY;
   // Each of the two targets, every cascade.
   const uint64_t half = lightPassBytes(size, s.msaaSamples) / 2 * uint64_t(cascades);

@@ -27,6 +27,9 @@ bool buildsZmaxPyramid(const RenderSettings& settings);
 bool placesLayersByLloyd(const RenderSettings& settings);
 bool fitsDepthBounds(const RenderSettings& settings);  // cascades split the visible depth range
 
+// Shadow-map layers: six faces for a point light, else one per cascade.
+int shadowMapLayers(const RenderSettings& settings, LightKind light);
+
 // Bytes of the allocations that are not channel textures (channel_layout.h has those).
 uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sample
 uint64_t frameBytes(int width, int height);               // the camera pass's seven targets
@@ -49,6 +52,6 @@ struct PlannedTexture {
 };
 
 // The textures of a render with these settings, largest first.
-std::vector<PlannedTexture> plannedTextures(const RenderSettings& settings);
+std::vector<PlannedTexture> plannedTextures(const RenderSettings& settings, LightKind light);
 
 }  // namespace penumbra::gl

@@ -2,6 +2,7 @@
 // -> camera pass (or the filtered reference), and the read-backs of the last frame.
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
 #include <memory>
@@ -11,9 +12,11 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/point_light.h"
 #include "penumbra/shadow_lookup.h"
 #include "renderer_state.h"
 #include "shared/cascade_selection.h"
+#include "shared/point_light_faces.h"
 #include "shared/shading.h"
 #include "shared/summed_area.h"
 #include "texture_readback.h"
@@ -102,6 +105,13 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& light) {
   checkLightSize(light);
   if (light.size == 0.0f) return;
+  if (light.kind == LightKind::Point) {
+    // PCSS's blocker search and the widened filters would cross face edges beyond the guard
+    // band, and the area-light reference needs sphere samples: neither is built yet.
+    throw Error("soft shadows (light size " + std::to_string(light.size) +
+                ") are not supported for point lights yet: point lights cast hard shadows "
+                "(light size 0) with every technique; directional and spot lights take a size");
+  }
   if (settings.cascades.count > 1) {
     throw Error("soft shadows (light size " + std::to_string(light.size) +
                 ") are not supported with cascades: use one map (--cascades 1)");
@@ -118,7 +128,8 @@ void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& lig
 }
 
 RenderResult Renderer::render(const RenderSettings& settings, const FrameView& view) {
-  validate(settings);
+  requireCascadableLight(settings.cascades, view.light);
+  validate(settings, view.light.kind);
   checkSoftShadows(settings, view.light);
   RenderResult result = renderFrame(settings, view, false);
   if (settings.technique == Technique::Esm &&
@@ -141,7 +152,8 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   big.msaaSamples = 1;
   big.width = settings.width * supersample;
   big.height = settings.height * supersample;
-  validate(big);
+  requireCascadableLight(settings.cascades, view.light);
+  validate(big, view.light.kind);
   RenderResult full = renderFrame(big, view, true);
   completeReferenceOnCpu(full);
   if (supersample == 1) return full;
@@ -195,7 +207,23 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     s.depthBounds.release();
   }
   frame.cascaded = settings.cascades.count > 1;
-  frame.cascades = frame.cascaded
+  frame.pointLight = view.light.kind == LightKind::Point;
+  PointLightFaces faces;
+  if (frame.pointLight) {
+    // The guard band covers the prefilter's blur and the lookup's kernel at a face's edge. The
+    // lookup's reach is taken as the blur's (PCF matched to the prefilter, the reference's own
+    // kernel) for every technique, so that every render of a comparison sees the same faces;
+    // PCF with a wider kernel of its own widens it.
+    const int pcfReach =
+        !reference && settings.technique == Technique::Pcf ? settings.params.pcf.radius + 1 : 0;
+    const int lookupReach = std::max(settings.blur.radius + 1, pcfReach);
+    faces = pointLightFaces(frame.lightView, view.light.position, settings.shadowMapSize,
+                            shaders::pointFaceGuardTexels(settings.blur.radius, lookupReach));
+    frame.lightView.clipFromLight = faces.clipFromLight;
+    frame.pointFaceTangent = faces.tangent;
+  }
+  frame.cascades = frame.pointLight ? pointLightCascadeFrame(frame.lightView)
+                   : frame.cascaded
                        ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range,
                                      view.light, s.sceneBounds, settings.shadowMapSize)
                        : singleMap(frame.lightView);
@@ -212,7 +240,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   std::vector<LightLayerView> layers;
   for (int c = 0; c < count; ++c) {
     LightLayerView layer;
-    layer.lightFromWorld = frame.lightView.lightFromWorld;
+    layer.lightFromWorld =
+        frame.pointLight ? faces.lightFromWorld[size_t(c)] : frame.lightView.lightFromWorld;
     layer.clipFromLight =
         frame.cascaded ? frame.cascades.clipFromLight(c) : frame.lightView.clipFromLight;
     layer.nearDistance = frame.lightView.nearDistance;

@@ -69,8 +69,9 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
       {"technique", techniqueId(settings.technique)},
       {"technique_title", techniqueTitle(settings.technique)},
       {"params", params},
-      // Light::size: 0 is a point light; else soft shadows (spot: disk diameter in world units,
-      // directional: tangent of the angular diameter).
+      {"light_kind", lightKindName(scene.light.kind)},
+      // Light::size: 0 is an ideal point source; else soft shadows (spot: disk diameter in world
+      // units, directional: tangent of the angular diameter).
       {"light_size", scene.light.size},
       {"settings",
        {{"shadow_map_size", settings.shadowMapSize},

@@ -109,8 +109,8 @@ MemoryBudget memoryBudget(const Renderer::State& s) {
 bool proxyAccepts(const PlannedTexture& t) {
   if (t.proxyTarget == GL_PROXY_TEXTURE_2D_MULTISAMPLE_ARRAY) {
     // Mesa takes multisample proxies only through TexImage (TexStorage wants a bound object).
-    glTexImage3DMultisample(t.proxyTarget, t.samples, t.internalFormat, t.width, t.height,
-                            t.layers, GL_TRUE);
+    glTexImage3DMultisample(t.proxyTarget, t.samples, t.internalFormat, t.width, t.height, t.layers,
+                            GL_TRUE);
   } else if (t.proxyTarget == GL_PROXY_TEXTURE_2D_ARRAY) {
     glTexStorage3D(t.proxyTarget, t.levels, t.internalFormat, t.width, t.height, t.layers);
   } else {
@@ -123,8 +123,8 @@ bool proxyAccepts(const PlannedTexture& t) {
 
 // Why these settings do not fit, or nothing when they do.
 std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& budget,
-                            int maxArrayLayers) {
-  for (const PlannedTexture& t : plannedTextures(settings)) {
+                            int maxArrayLayers, LightKind light) {
+  for (const PlannedTexture& t : plannedTextures(settings, light)) {
     if (t.layers > maxArrayLayers) {
       return "its " + std::string(t.what) + " needs " + std::to_string(t.layers) +
              " array layers, more than this GL's " + std::to_string(maxArrayLayers);
@@ -135,7 +135,8 @@ std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& 
              " (GL proxy test)";
     }
   }
-  if (estimateMemory(settings).total() > budget.bytes) return "that is more than " + budget.source;
+  if (estimateMemory(settings, light).total() > budget.bytes)
+    return "that is more than " + budget.source;
   return {};
 }
 
@@ -205,7 +206,7 @@ bool Renderer::timerQueriesMeasureExecution() const {
   return true;
 }
 
-void Renderer::validate(const RenderSettings& settings) const {
+void Renderer::validate(const RenderSettings& settings, LightKind light) const {
   const DeviceLimits& s = state_->limits;
   checkRange("shadow-map size", settings.shadowMapSize, 16, s.maxTextureSize);
   checkRange("frame width", settings.width, 1, s.maxTextureSize);
@@ -248,32 +249,32 @@ void Renderer::validate(const RenderSettings& settings) const {
     }
     // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
     const uint64_t entries = uint64_t(channelCount(settings.technique, p)) *
-                             uint64_t(settings.cascades.count) *
+                             uint64_t(shadowMapLayers(settings, light)) *
                              uint64_t(settings.shadowMapSize) * uint64_t(settings.shadowMapSize);
     const int64_t maxBlock = s.maxStorageBlock;
     if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxBlock)) {
       throw Error("the summed-area table of " + std::string(techniqueId(settings.technique)) +
                   " at " + std::to_string(settings.shadowMapSize) + "^2 (" +
-                  std::to_string(settings.cascades.count) + " cascade(s)) needs " +
+                  std::to_string(shadowMapLayers(settings, light)) + " layer(s)) needs " +
                   std::to_string(entries * 8) + " bytes in one storage buffer; this GL holds " +
                   std::to_string(maxBlock) + "; use a smaller shadow map");
     }
   }
-  checkMemory(settings);
+  checkMemory(settings, light);
 }
 
-void Renderer::checkMemory(const RenderSettings& settings) const {
+void Renderer::checkMemory(const RenderSettings& settings, LightKind light) const {
   const State& s = *state_;
   const MemoryBudget budget = memoryBudget(s);
   const int maxLayers = s.limits.maxArrayLayers;
-  const std::string shortfall = memoryShortfall(settings, budget, maxLayers);
+  const std::string shortfall = memoryShortfall(settings, budget, maxLayers, light);
   if (shortfall.empty()) return;
   // The largest shadow-map size that fits with everything else unchanged (all allocations grow
   // with it, so the search is monotone).
   auto fits = [&](int size) {
     RenderSettings smaller = settings;
     smaller.shadowMapSize = size;
-    return memoryShortfall(smaller, budget, maxLayers).empty();
+    return memoryShortfall(smaller, budget, maxLayers, light).empty();
   };
   std::string advice = "no shadow-map size fits with this frame size";
   if (fits(16)) {
@@ -284,7 +285,7 @@ void Renderer::checkMemory(const RenderSettings& settings) const {
     }
     advice = "the largest shadow-map size that fits is " + std::to_string(lo);
   }
-  const uint64_t need = estimateMemory(settings).total();
+  const uint64_t need = estimateMemory(settings, light).total();
   throw Error(std::string(techniqueId(settings.technique)) + " at shadow-map size " +
               std::to_string(settings.shadowMapSize) + " (frame " + std::to_string(settings.width) +
               "x" + std::to_string(settings.height) +

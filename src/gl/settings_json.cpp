@@ -97,7 +97,13 @@ void applyView(const std::string& key, const json& value, const std::string& sou
   if (!value.is_object()) where.fail("must be an object");
   for (const auto& [field, v] : value.items()) {
     const At at{source, key + "." + field};
-    if (key == "light" && field == "direction") {
+    if (key == "light" && field == "kind") {
+      try {
+        o.lightKind = parseLightKind(text(v, at));
+      } catch (const Error& e) {
+        at.fail(std::string("is not a light kind: ") + e.what());
+      }
+    } else if (key == "light" && field == "direction") {
       o.lightDirection = vector3(v, at);
     } else if (key == "light" && field == "position") {
       o.lightPosition = vector3(v, at);
@@ -107,7 +113,8 @@ void applyView(const std::string& key, const json& value, const std::string& sou
       o.spotAngleDegrees = float(number(v, at, 1e-3, 170.0));
     } else if (key == "light" && field == "size") {
       // The widest any light takes; applyOverrides checks it against the light's kind.
-      o.lightSize = float(number(v, at, 0.0, std::max(kMaxSpotLightSize, kMaxDirectionalLightSize)));
+      o.lightSize = float(number(
+          v, at, 0.0, std::max({kMaxSpotLightSize, kMaxDirectionalLightSize, kMaxPointLightSize})));
     } else if (key == "camera" && field == "position") {
       o.cameraPosition = vector3(v, at);
     } else if (key == "camera" && field == "target") {
@@ -115,9 +122,9 @@ void applyView(const std::string& key, const json& value, const std::string& sou
     } else if (key == "camera" && field == "fov") {
       o.cameraFovDegrees = float(number(v, at, 1e-3, 170.0));
     } else {
-      at.fail(
-          std::string("is not a setting; ") + key + " takes " +
-          (key == "light" ? "direction, position, target, spot_angle, size" : "position, target, fov"));
+      at.fail(std::string("is not a setting; ") + key + " takes " +
+              (key == "light" ? "kind, direction, position, target, spot_angle, size"
+                              : "position, target, fov"));
     }
   }
   if (key == "light" && o.lightDirection && o.lightPosition) {
@@ -264,6 +271,7 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
   } else if (key == "light" || key == "camera") {
     // A light kind in the file replaces the light kind set before (as on the command line).
     if (key == "light") {
+      s.view.lightKind.reset();
       s.view.lightDirection.reset();
       s.view.lightPosition.reset();
       s.view.lightTarget.reset();
@@ -381,6 +389,7 @@ std::string settingsJson(const Settings& s) {
   j["overlay"] = r.overlay == Overlay::Cascades ? "cascades" : "none";
   const SceneOverrides& v = s.view;
   json light = json::object(), camera = json::object();
+  if (v.lightKind) light["kind"] = std::string(lightKindName(*v.lightKind));
   if (v.lightDirection) light["direction"] = vectorJson(*v.lightDirection);
   if (v.lightPosition) light["position"] = vectorJson(*v.lightPosition);
   if (v.lightTarget) light["target"] = vectorJson(*v.lightTarget);

@@ -1,6 +1,7 @@
 // The built-in scenes of DESIGN.md, each a papers' test case (figure numbers in the comments).
 #include <array>
 #include <cmath>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "foliage_scene.h"
 #include "mesh_builder.h"
@@ -238,7 +239,8 @@ Scene street() {
       addBox(blocks, glm::vec3(side * 7.0f, 1.5f, z - 2.5f), glm::vec3(1.2f, 1.5f, 1.5f),
              0.2f * side);
     }
-    if (row % 3 == 0) addSphere(blocks, glm::vec3(0.8f * float((row / 3) % 3 - 1), 0.5f, z), 0.5f, 16);
+    if (row % 3 == 0)
+      addSphere(blocks, glm::vec3(0.8f * float((row / 3) % 3 - 1), 0.5f, z), 0.5f, 16);
   }
   // A fence rail along the left: thin shadows that need resolution near the camera.
   for (int i = 0; i < 60; ++i) {
@@ -254,12 +256,49 @@ Scene street() {
   return s;
 }
 
+// Point lights' case: a light at the centre of a box room, caged by 26 small cubes on the
+// directions of a cube's face centres, edge midpoints and corners. Its shadow map's six faces meet
+// along the cube's edges, so the shadows of the 18 edge and corner cubes straddle face edges and
+// corners: a seam shows there (tests/gl/point_light_test.cpp measures it).
+Scene lantern() {
+  Scene s;
+  s.name = "lantern";
+  s.description =
+      "a point light inside a room, caged by 26 cubes: shadows in all six directions, across "
+      "every face edge and corner of the light's cube of shadow maps";
+  // A closed box room, turned so the faces' edges cross its walls instead of running along its
+  // edges. Flat walls: a tessellated sphere around the light would show its facets' ridges to
+  // the filtered reference (each facet's receiver plane runs behind its neighbours).
+  Mesh room = makeMesh(kGroundAlbedo);
+  const glm::mat3 turn = glm::mat3(glm::rotate(glm::mat4(1.0f), 0.5f, glm::vec3(0.0f, 1.0f, 0.0f)) *
+                                   glm::rotate(glm::mat4(1.0f), 0.3f, glm::vec3(1.0f, 0.0f, 0.0f)));
+  scene::addOrientedBox(room, glm::vec3(0.0f), glm::vec3(3.2f), turn);
+  Mesh cage = makeMesh(kWoodAlbedo);
+  for (int x = -1; x <= 1; ++x) {
+    for (int y = -1; y <= 1; ++y) {
+      for (int z = -1; z <= 1; ++z) {
+        if (x == 0 && y == 0 && z == 0) continue;
+        const glm::vec3 direction = glm::normalize(glm::vec3(float(x), float(y), float(z)));
+        addBox(cage, 1.4f * direction, glm::vec3(0.17f), 0.35f * float(x + 2 * y + 3 * z));
+      }
+    }
+  }
+  s.meshes.push_back(std::move(room));
+  s.meshes.push_back(std::move(cage));
+  s.camera = {glm::vec3(-1.7f, -0.8f, 1.8f), glm::vec3(1.0f, 0.8f, -1.0f), 75.0f};
+  s.light.kind = LightKind::Point;
+  s.light.position = glm::vec3(0.0f);
+  s.pathOffset = glm::vec3(0.02f, 0.0f, 0.0f);
+  s.troubleSpots = {{"edge and corner shadows", {0.3f, 0.1f, 0.8f, 0.6f}}};
+  return s;
+}
+
 struct SceneEntry {
   std::string_view name;
   Scene (*make)();
 };
 
-constexpr std::array<SceneEntry, 10> kScenes{{{"backyard", backyard},
+constexpr std::array<SceneEntry, 11> kScenes{{{"backyard", backyard},
                                               {"bench", bench},
                                               {"contact", contact},
                                               {"spheres", spheres},
@@ -268,11 +307,12 @@ constexpr std::array<SceneEntry, 10> kScenes{{{"backyard", backyard},
                                               {"planar", planar},
                                               {"street", street},
                                               {"foliage", scene::makeFoliageScene},
-                                              {"penumbrae", penumbrae}}};
+                                              {"penumbrae", penumbrae},
+                                              {"lantern", lantern}}};
 
-constexpr std::array<std::string_view, 10> kSceneNames{
-    "backyard",     "bench",  "contact", "spheres", "overlap",
-    "minification", "planar", "street",  "foliage", "penumbrae"};
+constexpr std::array<std::string_view, 11> kSceneNames{
+    "backyard", "bench",  "contact", "spheres",   "overlap", "minification",
+    "planar",   "street", "foliage", "penumbrae", "lantern"};
 
 }  // namespace
 

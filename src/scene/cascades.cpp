@@ -128,7 +128,8 @@ float defaultShadowDistance(const Camera& camera, const Bounds& sceneBounds) {
 void requireCascadableLight(const CascadeSettings& settings, const Light& light) {
   if (settings.count > 1 && light.kind != LightKind::Directional) {
     throw Error("--cascades " + std::to_string(settings.count) +
-                " needs a directional light; this scene's light is a spot light (use 1 cascade, "
+                " needs a directional light; this scene's light is a " +
+                std::string(lightKindName(light.kind)) + " light (use 1 cascade, "
                 "or --light-dir for a directional light)");
   }
 }

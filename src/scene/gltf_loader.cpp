@@ -680,10 +680,15 @@ Scene Importer::run(std::vector<std::string> warnings) {
       light.target = target;
       light.spotAngleDegrees = std::isfinite(angle) ? std::clamp(angle, 1.0f, 170.0f) : 60.0f;
       fileView.light = light;
+    } else if (l.type == "point" && std::isfinite(position.x + position.y + position.z)) {
+      Light light;
+      light.kind = LightKind::Point;
+      light.position = position;
+      fileView.light = light;
     } else {
       warn("light " + std::to_string(lightIndex_) + " is a " + l.type +
-           " light; only directional and spot lights cast shadows here, a directional light "
-           "from above is used instead");
+           " light; only directional, spot and point lights cast shadows here, a directional "
+           "light from above is used instead");
     }
   }
   finishFileScene(scene_, name_, fileView);

@@ -60,6 +60,18 @@ LightView fitLightView(const Light& light, const Bounds& bounds) {
     view.clipFromLight =
         glm::ortho(-radius, radius, -radius, radius, view.nearDistance, view.farDistance);
     view.perspective = false;
+  } else if (light.kind == LightKind::Point) {
+    // The faces' rotations and their projection come with the shadow map's size and guard band
+    // (penumbra/point_light.h); here the translation and the range: the distance from the light
+    // to the far side of the scene's bounding sphere. Near only maps depth and clips the faces:
+    // casters closer to the light than a thousandth of the scene's radius cast nothing.
+    const float distance = glm::length(centre - light.position);
+    view.lightFromWorld = glm::translate(glm::mat4(1.0f), -light.position);
+    view.nearDistance = std::max(1e-3f * radius, distance - radius);
+    view.farDistance = distance + radius;
+    view.clipFromLight =
+        glm::perspective(glm::radians(90.0f), 1.0f, view.nearDistance, view.farDistance);
+    view.perspective = true;
   } else {
     const glm::vec3 eye = light.position;
     const glm::vec3 forward = glm::normalize(light.target - eye);

@@ -26,45 +26,101 @@ float checkedAngle(float degrees, const char* what) {
   return degrees;
 }
 
+constexpr LightKind kLightKinds[] = {LightKind::Directional, LightKind::Spot, LightKind::Point};
+
 }  // namespace
 
+std::string_view lightKindName(LightKind kind) {
+  switch (kind) {
+    case LightKind::Directional: return "directional";
+    case LightKind::Spot: return "spot";
+    case LightKind::Point: return "point";
+  }
+  return "directional";
+}
+
+LightKind parseLightKind(std::string_view name) {
+  std::string valid;
+  for (LightKind k : kLightKinds) {
+    if (lightKindName(k) == name) return k;
+    valid += (valid.empty() ? "" : ", ") + std::string(lightKindName(k));
+  }
+  throw Error("unknown light kind '" + std::string(name) + "'; valid kinds: " + valid);
+}
+
 void checkLightSize(const Light& light) {
-  const bool spot = light.kind == LightKind::Spot;
-  const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
+  float most = kMaxDirectionalLightSize;
+  const char* what = "directional light (tangent of its angular diameter)";
+  if (light.kind == LightKind::Spot) {
+    most = kMaxSpotLightSize;
+    what = "spot light (world units of disk diameter)";
+  } else if (light.kind == LightKind::Point) {
+    most = kMaxPointLightSize;
+    what = "point light (world units of sphere diameter)";
+  }
   if (!(light.size >= 0.0f && light.size <= most)) {
     throw Error("light size " + std::to_string(light.size) + " is out of range [0, " +
-                std::to_string(most) + "] for a " +
-                (spot ? "spot light (world units of disk diameter)"
-                      : "directional light (tangent of its angular diameter)"));
+                std::to_string(most) + "] for a " + what);
   }
 }
 
 bool SceneOverrides::empty() const {
-  return !lightDirection && !lightPosition && !lightTarget && !spotAngleDegrees &&
+  return !lightKind && !lightDirection && !lightPosition && !lightTarget && !spotAngleDegrees &&
          !cameraPosition && !cameraTarget && !cameraFovDegrees && !lightSize;
 }
 
 void applyOverrides(Scene& scene, const SceneOverrides& o) {
   if (o.lightDirection && o.lightPosition) {
     throw Error(
-        "give a light direction (directional light) or a light position (spot light), "
+        "give a light direction (directional light) or a light position (spot or point light), "
         "not both");
   }
-  if (o.lightDirection) {
-    const glm::vec3 d = checked(o.lightDirection, "light direction");
-    if (!(glm::length(d) > 1e-6f)) throw Error("light direction " + text(d) + " has no direction");
-    scene.light.kind = LightKind::Directional;
-    scene.light.direction = glm::normalize(d);
+  if (o.lightKind) {
+    const LightKind kind = *o.lightKind;
+    if (kind == LightKind::Directional && o.lightPosition) {
+      throw Error("a directional light has no position: give --light-dir, or --light spot/point");
+    }
+    if (kind != LightKind::Directional && o.lightDirection) {
+      throw Error("a " + std::string(lightKindName(kind)) +
+                  " light has no direction: give --light-pos, or --light directional");
+    }
+    if (kind == LightKind::Point && (o.lightTarget || o.spotAngleDegrees)) {
+      throw Error(
+          "a point light shines every way: a light target or spot angle needs a spot light");
+    }
   }
-  if ((o.lightTarget || o.spotAngleDegrees) && !o.lightPosition &&
-      scene.light.kind != LightKind::Spot) {
+  const LightKind previous = scene.light.kind;
+  if (o.lightDirection || (o.lightKind && *o.lightKind == LightKind::Directional)) {
+    scene.light.kind = LightKind::Directional;
+    if (o.lightDirection) {
+      const glm::vec3 d = checked(o.lightDirection, "light direction");
+      if (!(glm::length(d) > 1e-6f))
+        throw Error("light direction " + text(d) + " has no direction");
+      scene.light.direction = glm::normalize(d);
+    }
+  }
+  const bool wantsPoint = o.lightKind && *o.lightKind == LightKind::Point;
+  const bool wantsSpot =
+      (o.lightKind && *o.lightKind == LightKind::Spot) || (o.lightPosition && !o.lightKind);
+  if ((o.lightTarget || o.spotAngleDegrees) && !wantsSpot && scene.light.kind != LightKind::Spot) {
     throw Error("a light target or spot angle needs a spot light: give a light position too");
   }
-  if (o.lightPosition) {
-    scene.light.kind = LightKind::Spot;
-    scene.light.position = checked(o.lightPosition, "light position");
-    scene.light.target =
-        o.lightTarget ? checked(o.lightTarget, "light target") : scene.bounds().centre();
+  if (wantsSpot || wantsPoint) {
+    scene.light.kind = wantsPoint ? LightKind::Point : LightKind::Spot;
+    if (o.lightPosition) {
+      scene.light.position = checked(o.lightPosition, "light position");
+    } else if (previous == LightKind::Directional) {
+      // No position given and none to keep: inside the scene's bounding sphere, halfway from
+      // its centre towards the sun the scene had, so the light keeps lighting what it lit.
+      const Bounds b = scene.bounds();
+      scene.light.position = b.centre() - scene.light.direction * (0.5f * b.radius());
+    }
+    if (wantsSpot && (o.lightPosition || previous != LightKind::Spot)) {
+      scene.light.target =
+          o.lightTarget ? checked(o.lightTarget, "light target") : scene.bounds().centre();
+    } else if (o.lightTarget) {
+      scene.light.target = checked(o.lightTarget, "light target");
+    }
   } else if (o.lightTarget) {
     scene.light.target = checked(o.lightTarget, "light target");
   }

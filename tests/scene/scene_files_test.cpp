@@ -259,8 +259,8 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
       fs::path(::testing::TempDir()) / "skin_weights.obj",
       "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvw 1\t0 0.5 2147483647 0.5\r\nf 1 2 3\r\n");
   EXPECT_EQ(loadScene(valid.string()).triangleCount(), 1u);
-  const fs::path negative = testing::writeFile(fs::path(::testing::TempDir()) / "negative.obj",
-                                               "v 0 0 0\nvw 0 -3e9 1\n");
+  const fs::path negative =
+      testing::writeFile(fs::path(::testing::TempDir()) / "negative.obj", "v 0 0 0\nvw 0 -3e9 1\n");
   EXPECT_THROW(loadScene(negative.string()), Error) << "below int's range is undefined too";
   const fs::path later = testing::writeFile(fs::path(::testing::TempDir()) / "late_joint.obj",
                                             "v 0 0 0\rv 1 0 0\nvw 1 0 0.5 1e10 0.5\n");
@@ -300,8 +300,9 @@ TEST(SceneSource, NamesTheValidScenesAndExtensionsForAnythingElse) {
     loadScene("garden");
     FAIL();
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("foliage, penumbrae, or a .gltf, .glb or .obj file"),
-              std::string::npos);
+    EXPECT_NE(
+        std::string(e.what()).find("foliage, penumbrae, lantern, or a .gltf, .glb or .obj file"),
+        std::string::npos);
   }
   EXPECT_THROW(loadScene("/nonexistent/model.glb"), Error);
 }

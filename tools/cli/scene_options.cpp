@@ -1,6 +1,7 @@
 // Scene and view options. The view file is JSON (docs/scenes.md, read by
 // penumbra/gl/settings_json.h): {"light": {"direction": [x, y, z]} or {"position": [...],
-// "target": [...], "spot_angle": deg, optional "size": Light::size}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
+// "target": [...], "spot_angle": deg, optional "kind": directional|spot|point, optional "size":
+// Light::size}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
 #include "scene_options.h"
 
 #include <iostream>
@@ -32,15 +33,20 @@ void addSceneOptions(CLI::App& app, SceneOptions& o) {
   app.add_option("--view", o.viewFile,
                  "JSON file with the light and camera: {\"light\": {\"direction\": [x,y,z]}, "
                  "\"camera\": {\"position\": [x,y,z], \"target\": [x,y,z]}} (docs/scenes.md)");
+  app.add_option("--light", o.lightKind,
+                 "light kind: directional, spot or point (point: omnidirectional, at --light-pos "
+                 "or the scene light's position; docs/renderer.md)");
   app.add_option("--light-dir", o.lightDirection,
                  "X,Y,Z: a directional light travelling this way (replaces the scene's light)");
   app.add_option("--light-pos", o.lightPosition,
-                 "X,Y,Z: a spot light here, aimed at --light-target or the scene's centre");
+                 "X,Y,Z: a spot light here, aimed at --light-target or the scene's centre (a "
+                 "point light with --light point)");
   app.add_option("--light-target", o.lightTarget, "X,Y,Z: where the spot light points");
   app.add_option("--spot-angle", o.spotAngle, "spot light's full cone angle in degrees, (0, 170]");
   app.add_option("--light-size", o.lightSize,
                  "soft shadows: spot light's disk diameter in world units, [0, 10]; directional "
-                 "light's angular diameter as a tangent, [0, 0.5] (docs/reference.md)");
+                 "light's angular diameter as a tangent, [0, 0.5]; point light's sphere diameter, "
+                 "[0, 10] (docs/reference.md)");
   app.add_option("--camera-pos", o.cameraPosition, "X,Y,Z: the camera's position");
   app.add_option("--camera-target", o.cameraTarget, "X,Y,Z: the point the camera looks at");
   app.add_option("--camera-fov", o.cameraFov, "vertical field of view in degrees, (0, 170]");
@@ -50,6 +56,19 @@ SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
   SceneOverrides overrides = std::move(base);
   if (!o.viewFile.empty()) gl::applyViewFile(o.viewFile, overrides);
   // A light kind given on the command line replaces the file's light entirely.
+  // A direction or position without --light sets the kind it implies (directional, spot).
+  if (o.lightKind.empty() && (!o.lightDirection.empty() || !o.lightPosition.empty())) {
+    overrides.lightKind.reset();
+  }
+  if (!o.lightKind.empty()) {
+    overrides.lightKind = parseLightKind(o.lightKind);
+    if (*overrides.lightKind == LightKind::Directional) overrides.lightPosition.reset();
+    if (*overrides.lightKind != LightKind::Directional) overrides.lightDirection.reset();
+    if (*overrides.lightKind == LightKind::Point) {
+      overrides.lightTarget.reset();
+      overrides.spotAngleDegrees.reset();
+    }
+  }
   if (!o.lightDirection.empty()) {
     overrides.lightPosition.reset();
     overrides.lightTarget.reset();

@@ -1,5 +1,6 @@
 // Command-line options that choose the scene and set its camera and light (render, compare):
-// --scene NAME|PATH, --light-dir, --light-pos, --light-target, --spot-angle, --camera-pos,
+// --scene NAME|PATH, --light KIND, --light-dir, --light-pos, --light-target, --spot-angle,
+// --camera-pos,
 // --camera-target, --camera-fov, --light-size and --view FILE.json holding the same settings.
 #pragma once
 
@@ -13,7 +14,8 @@ namespace penumbra::cli {
 
 struct SceneOptions {
   std::string scene = "backyard";
-  std::string viewFile;  // JSON; the command-line options take precedence over it
+  std::string viewFile;   // JSON; the command-line options take precedence over it
+  std::string lightKind;  // directional, spot, point; empty: implied by --light-dir/--light-pos
   std::string lightDirection, lightPosition, lightTarget, cameraPosition, cameraTarget;  // "x,y,z"
   float spotAngle = 0.0f;  // 0: not given
   float cameraFov = 0.0f;

@@ -100,7 +100,9 @@ struct MemoryReport {       // exact bytes allocated
 // The bytes render() allocates for these settings (its RenderResult::memory, geometry aside),
 // computed up front from the same formulas; Renderer::validate refuses settings whose
 // allocations do not fit.
-MemoryReport estimateMemory(const RenderSettings& settings);
+// A point light's maps are six layers (one per face), a directional light's one per cascade.
+MemoryReport estimateMemory(const RenderSettings& settings,
+                            LightKind light = LightKind::Directional);
 
 struct RenderResult {
   // RGBA in [0,1], row 0 at the top: linear light, as the camera pass shades it (sRGB textures
@@ -150,7 +152,8 @@ class Renderer {
   // must pass the GL's proxy test and the total (estimateMemory) must fit the free GPU memory
   // (GL_NVX_gpu_memory_info, GL_ATI_meminfo) or, where the GL does not say, half the machine's
   // RAM. Throws Error saying which and why, and for memory the largest shadow-map size that fits.
-  void validate(const RenderSettings& settings) const;
+  // `light`: the kind of light the frame has (a point light's six faces take six layers).
+  void validate(const RenderSettings& settings, LightKind light = LightKind::Directional) const;
   // Refuses a light size out of range, and soft shadows (Light::size > 0) with cascades or, for
   // the filterable techniques, with a filter that cannot widen (point, bilinear). render() calls
   // it with the frame's light.
@@ -218,7 +221,7 @@ class Renderer {
   struct State;  // GL objects; defined in src/gl/renderer_state.h for the pass files
 
  private:
-  void checkMemory(const RenderSettings& settings) const;
+  void checkMemory(const RenderSettings& settings, LightKind light) const;
 
   RenderResult renderFrame(const RenderSettings& settings, const FrameView& view, bool reference);
   void completeReferenceOnCpu(RenderResult& full) const;

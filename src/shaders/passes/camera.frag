@@ -1,4 +1,5 @@
-// Camera pass: the pixel's cascade (shared/cascade_selection.h), receiver depth in light space
+// Camera pass: the pixel's cascade (shared/cascade_selection.h) or a point light's face
+// (shared/point_light_faces.h: the cascades' layers are then the six faces), receiver depth in light space
 // (with normal offset), the technique's visibility (blended with the next cascade in the blend
 // band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour,
 // the float visibility and the lookup's inputs for the CPU twin. Alpha-masked surfaces are cut
@@ -17,6 +18,7 @@
 #endif
 #include "../lib/lookup_access.glsl"
 #include "../lib/material.glsl"
+#include "../shared/point_light_faces.h"
 #include "../shared/shading.h"
 
 in vec3 worldPosition;
@@ -33,6 +35,8 @@ uniform vec3 lightDirection;  // directional: the way light travels
 uniform vec3 lightPosition;   // spot
 uniform vec3 spotAxis;        // spot: unit direction from the light to its target
 uniform float spotCosine;     // spot: cos(half cone angle)
+uniform int pointLight;           // 1: six faces, chosen per pixel by the major axis
+uniform float pointLightTangent;  // tan of a face's half field of view (guard band included)
 uniform float normalOffsetTexels;
 uniform float lightSize;  // Light::size: 0 hard, else soft (shared/soft_shadow.h)
 // 0: one map, uv through lightClipFromView. 1: cascades, boxes on the light's view plane.
@@ -59,6 +63,10 @@ const float kGrazingCosine = 0.05f;
 // Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
 const float kMaxReferenceTestsPerPixel = 48000.0f;
 
+// A point light's face for this pixel: every position of the pixel's lookup (its receiver-plane
+// steps, its neighbours' for the footprint) is projected into it, so nothing straddles faces.
+int pointFace = 0;
+
 float linearDepth(vec3 lightView) {
   float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
   return (distance - lightNear) / (lightFar - lightNear);
@@ -67,6 +75,11 @@ float linearDepth(vec3 lightView) {
 // A world position on the light's plane (one map: its uv; cascades: light-view x, y), its
 // linear depth, and its clip w (in front of a spot light when > 0).
 vec4 lightPlaneAndDepth(vec3 world) {
+  if (pointLight != 0) {
+    vec3 fromLight = world - lightPosition;
+    vec3 face = pointFaceUv(pointFace, fromLight, pointLightTangent);
+    return vec4(face.x, face.y, pointLightDepth(fromLight, lightNear, lightFar), face.z);
+  }
   vec4 view = lightViewFromWorld * vec4(world, 1.0f);
   if (cascaded != 0) return vec4(view.x, view.y, linearDepth(view.xyz), 1.0f);
   vec4 clip = lightClipFromView * view;
@@ -141,13 +154,27 @@ void main() {
   float offsetScale = lightPerspective != 0 ? length(lightPosition - worldPosition) : 1.0f;
   float texelWorld = cascadeTexelWorldSize[cascade] * offsetScale;
   vec3 offsetPosition = worldPosition + n * normalOffsetTexels * texelWorld * (1.0f - cosine);
+  if (pointLight != 0) {
+    pointFace = pointLightFace(offsetPosition - lightPosition);
+    cascade = pointFace;
+    box = cascadeBoxes[cascade];
+  }
   vec4 planeAndDepth = lightPlaneAndDepth(offsetPosition);
   vec2 plane = planeAndDepth.xy;
   float receiver = planeAndDepth.z;
 
-  // Derivatives in uniform control flow: the lookup's footprint on the light's plane.
+  // Derivatives in uniform control flow: the lookup's footprint on the light's plane. A point
+  // light's neighbouring pixels may lie in another face: the position's derivatives go through
+  // the derivative of this pixel's face projection instead of differencing uvs of two faces.
   vec2 planeDx = dFdx(plane);
   vec2 planeDy = dFdy(plane);
+  vec3 positionDx = dFdx(offsetPosition);
+  vec3 positionDy = dFdy(offsetPosition);
+  if (pointLight != 0) {
+    vec3 fromLight = offsetPosition - lightPosition;
+    planeDx = pointFaceUvStep(pointFace, fromLight, positionDx, pointLightTangent);
+    planeDy = pointFaceUvStep(pointFace, fromLight, positionDy, pointLightTangent);
+  }
   // The triangle's geometric normal: the plane the light pass rasterised (a tessellated curved
   // surface's shading normal is not), from derivatives that stay within the triangle.
   vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
@@ -161,6 +188,10 @@ void main() {
 
   float visibility = 1.0f;
   float diagnostic = 0.0f;
+  if (pointLight != 0) {
+    choice.index = pointFace;
+    choice.blend = 0.0f;
+  }
   bool inside = choice.index < cascadeCount && all(greaterThanEqual(uv, vec2(0.0f))) &&
                 all(lessThanEqual(uv, vec2(1.0f))) && receiver <= 1.0f && planeAndDepth.w > 0.0f;
   if (inside) {
@@ -185,7 +216,7 @@ void main() {
   // derivatives), the test comes last.
   vec4 baseColor = materialBaseColor(baseColorTexcoord);
   float lightAmount = cosine;
-  if (lightPerspective != 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
+  if (lightPerspective != 0 && pointLight == 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
   vec3 surface = baseColor.rgb;
   if (cascadeOverlay != 0 && choice.index < cascadeCount) {
     vec3 tint = cascadeTint(cascade);
