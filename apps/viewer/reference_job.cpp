@@ -20,7 +20,14 @@ ReferenceJob::ReferenceJob(std::shared_ptr<const gl::RenderResult> result,
       halfRounding_(halfRounding),
       reference_(result_->visibility.width(), result_->visibility.height(), 1),
       start_(std::chrono::steady_clock::now()),
-      thread_([this](std::stop_token stop) { compute(stop); }) {}
+      thread_([this](std::stop_token stop) {
+        compute(stop);
+        finished_.store(true, std::memory_order_release);
+      }) {}
+
+void ReferenceJob::stop() {
+  thread_.request_stop();
+}
 
 ReferenceJob::~ReferenceJob() {
   thread_.request_stop();

@@ -28,6 +28,9 @@ class ReferenceJob {
                const gl::RenderSettings& settings, HalfRounding halfRounding);
   // Stops the thread (it checks between pixels) and waits for it.
   ~ReferenceJob();
+  // Asks the thread to stop without waiting; finished() tells when it has.
+  void stop();
+  bool finished() const { return finished_.load(std::memory_order_acquire); }
   ReferenceJob(const ReferenceJob&) = delete;
   ReferenceJob& operator=(const ReferenceJob&) = delete;
 
@@ -56,6 +59,7 @@ class ReferenceJob {
   std::atomic<double> seconds_{-1.0};
   mutable std::mutex failureMutex_;
   std::string failure_;
+  std::atomic<bool> finished_{false};
   std::jthread thread_;  // last: started once everything above is in place
 };
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <string>
 #include <utility>
 
 #include "penumbra/error.h"
@@ -252,19 +253,29 @@ void renderSection(ViewerState& state, Changes& changes) {
 
 void lightSection(ViewerState& state, Changes& changes) {
   Light& light = state.light;
-  int kind = light.kind == LightKind::Spot ? 1 : 0;
-  bool kindChanged = ImGui::RadioButton("directional", &kind, 0);
-  ImGui::SameLine();
-  kindChanged |= ImGui::RadioButton("spot", &kind, 1);
+  int kind = int(light.kind);
+  bool kindChanged = false;
+  for (const LightKind k : {LightKind::Directional, LightKind::Spot, LightKind::Point}) {
+    if (k != LightKind::Directional) ImGui::SameLine();
+    kindChanged |= ImGui::RadioButton(std::string(lightKindName(k)).c_str(), &kind, int(k));
+  }
   if (kindChanged) {
-    light.kind = kind == 1 ? LightKind::Spot : LightKind::Directional;
-    if (light.kind == LightKind::Spot) {
-      const Bounds b = state.scene.bounds();
-      light.target = b.centre();
-      light.position = b.centre() - light.direction * (2.0f * std::max(b.radius(), 0.1f));
-      state.settings.render.cascades.count = 1;  // cascades split directional lights only
+    // The command line's --light: where a light of the new kind stands comes from the library
+    // (applyOverrides), so the viewer and `render --light` place it alike.
+    Scene placed = state.scene;
+    placed.light = light;
+    placed.light.size = 0.0f;  // each kind has its own range; point lights cast hard shadows
+    SceneOverrides kindOnly;
+    kindOnly.lightKind = LightKind(kind);
+    try {
+      applyOverrides(placed, kindOnly);
+      light = placed.light;
+      if (light.kind != LightKind::Directional) state.settings.render.cascades.count = 1;
+      changes.render = true;
+    } catch (const Error& e) {  // e.g. a spot light aimed from the scene's centre at it
+      state.message = e.what();
+      state.messageIsError = true;
     }
-    changes.render = true;
   }
   if (light.kind == LightKind::Directional) {
     float azimuth = 0.0f, elevation = 0.0f;
@@ -275,24 +286,29 @@ void lightSection(ViewerState& state, Changes& changes) {
     changes.render |= moved;
   } else {
     changes.render |= ImGui::DragFloat3("light position", &light.position.x, 0.05f);
+  }
+  if (light.kind == LightKind::Spot) {
     changes.render |= ImGui::DragFloat3("light target", &light.target.x, 0.05f);
     changes.render |=
         ImGui::SliderFloat("spot angle", &light.spotAngleDegrees, 1.0f, 170.0f, "%.1f deg");
   }
   // Light::size: a spot light's disk diameter in world units, a directional light's tangent of
-  // its angular diameter (docs/techniques.md); 0 is a point light's hard shadow.
-  const bool spot = light.kind == LightKind::Spot;
-  const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
-  if (light.size > most) {  // the other kind's range: a directional light takes at most 0.5
-    light.size = most;
-    changes.render = true;
-  }
-  changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most,
-                                       spot ? "%.3f (disk diameter)" : "%.4f (tan of diameter)");
-  if (ImGui::IsItemHovered()) {
-    ImGui::SetTooltip(
-        "soft shadows: PCSS for pcf, contact-hardening filters for the filterable "
-        "techniques (trilinear, anisotropic or sat filtering); 0: hard-edged light");
+  // its angular diameter (docs/techniques.md); 0 is a point light's hard shadow. The renderer's
+  // point lights cast hard shadows only: no size for them.
+  if (light.kind != LightKind::Point) {
+    const bool spot = light.kind == LightKind::Spot;
+    const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
+    if (light.size > most) {  // the other kind's range: a directional light takes at most 0.5
+      light.size = most;
+      changes.render = true;
+    }
+    changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most,
+                                         spot ? "%.3f (disk diameter)" : "%.4f (tan of diameter)");
+    if (ImGui::IsItemHovered()) {
+      ImGui::SetTooltip(
+          "soft shadows: PCSS for pcf, contact-hardening filters for the filterable "
+          "techniques (trilinear, anisotropic or sat filtering); 0: hard-edged light");
+    }
   }
   ImGui::TextDisabled("shift + drag in the scene moves the light");
 }

@@ -213,8 +213,9 @@ class Viewer {
         state_.wallTimes.pop_front();
       }
       resultSettings_ = settings;
-      // The reference is started again when the error view asks for it; a running one stops.
-      referenceJob_.reset();
+      // The reference is started again when the error view asks for it; a running one stops,
+      // retired so the window never waits for it (a twin being built checks no stop token).
+      retireReferenceJob();
       reference_.reset();
       referenceRowsShown_ = -1;
       depthMaps_.reset();  // read again when the probe or the reference needs them
@@ -585,7 +586,10 @@ class Viewer {
       light.direction =
           lightDirectionFrom(azimuth + 0.5f * dx, std::clamp(elevation - 0.5f * dy, 1.0f, 90.0f));
     } else {
-      Camera around{light.position, light.target, light.spotAngleDegrees};
+      // Spot: orbit its position about its target; point: about the scene's centre.
+      const glm::vec3 centre =
+          light.kind == LightKind::Spot ? light.target : state_.scene.bounds().centre();
+      Camera around{light.position, centre, light.spotAngleDegrees};
       orbitCamera(around, 0.01f * dx, -0.01f * dy);
       light.position = around.position;
     }
@@ -603,6 +607,14 @@ class Viewer {
   gl::RenderSettings resultSettings_;                    // what result_ was rendered with
   // The error view's filtered reference: the job computing it, the rows shown so far.
   std::unique_ptr<ReferenceJob> referenceJob_;
+  std::vector<std::unique_ptr<ReferenceJob>> retiredJobs_;  // stopping; destroyed once finished
+
+  void retireReferenceJob() {
+    std::erase_if(retiredJobs_, [](const auto& job) { return job->finished(); });
+    if (!referenceJob_) return;
+    referenceJob_->stop();
+    retiredJobs_.push_back(std::move(referenceJob_));
+  }
   std::optional<Image> reference_;
   int referenceRowsShown_ = -1;
   Clock::time_point referenceShownAt_;
@@ -657,10 +669,13 @@ gl::Settings settingsToSave(const ViewerState& state) {
   v.cameraPosition = state.camera.position;
   v.cameraTarget = state.camera.target;
   v.cameraFovDegrees = state.camera.verticalFovDegrees;
+  v.lightKind = state.light.kind;
   if (state.light.kind == LightKind::Directional) {
     v.lightDirection = state.light.direction;
   } else {
     v.lightPosition = state.light.position;
+  }
+  if (state.light.kind == LightKind::Spot) {
     v.lightTarget = state.light.target;
     v.spotAngleDegrees = state.light.spotAngleDegrees;
   }

@@ -89,6 +89,11 @@ std::vector<std::string> exponentFindings(const std::vector<CaseMeasurement>& ca
       const PowerLawFit fit = fitPowerLaw(k, ms);
       line += "; over k >= 3 the time fits " + format2(fit.offset) + " + " + format2(fit.scale) +
               " k^" + format2(fit.exponent) + " ms";
+      if (!(fit.scale > 0.0)) {
+        line += " (a time that falls as the kernel grows: noise, not a cost of the kernel)";
+      } else if (fit.exponent <= 0.0 || fit.exponent >= 4.0) {
+        line += " (the exponent is at the edge of the searched [0, 4]: no power law fits)";
+      }
     } else {
       line += "; too few filtering kernels to fit a power law";
     }

@@ -217,7 +217,9 @@ Experiment kernelScaling(const BenchSizes& z) {
     // kernels it takes.
     add("VSM, separable blur", Technique::Vsm, FilterMode::Bilinear);
     e.cases.back().settings.fusePrefilter = false;
-    if (k == 1 || (k - 1) / 2 <= gl::kMaxFusedBlurRadius) {
+    gl::RenderSettings fused = e.cases.back().settings;
+    fused.fusePrefilter = true;
+    if (k == 1 || gl::fusesPrefilter(fused, fused.blur.radius)) {
       add("VSM, fused blur", Technique::Vsm, FilterMode::Bilinear);
     }
     add("VSM, summed-area table", Technique::Vsm, FilterMode::SummedArea);

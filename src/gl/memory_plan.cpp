@@ -57,8 +57,13 @@ bool fusesPrefilter(const RenderSettings& s, int radius) {
 }
 
 bool fusesPrefilter(const RenderSettings& s, std::span<const BlurSpec> cascadeBlurs) {
-  return std::all_of(cascadeBlurs.begin(), cascadeBlurs.end(),
-                     [&](const BlurSpec& b) { return fusesPrefilter(s, b.radius); });
+  // A cascade whose kernel scaled below a texel (radius 0) rides along: its dispatch encodes
+  // and passes each texel through, as the separate passes' one-tap blur does.
+  const bool blurs = std::any_of(cascadeBlurs.begin(), cascadeBlurs.end(),
+                                 [](const BlurSpec& b) { return b.radius > 0; });
+  return blurs && std::all_of(cascadeBlurs.begin(), cascadeBlurs.end(), [&](const BlurSpec& b) {
+           return fusesPrefilter(s, std::max(b.radius, 1));
+         });
 }
 
 bool buildsSummedAreaTable(const RenderSettings& s) {

@@ -17,9 +17,6 @@ namespace penumbra::gl {
 bool prefiltersChannels(Technique technique);  // not PCF or the hard test (raw depth)
 int channelLevelsFor(const RenderSettings& settings);
 bool blursIntoScratch(const RenderSettings& settings);
-// Whether a kernel of this radius runs as the fused prefilter under these settings
-// (RenderSettings::fusePrefilter): a blur, 32-bit float channels, one light-pass sample.
-bool fusesPrefilter(const RenderSettings& settings, int radius);
 // Whether this frame's prefilter runs fused: every cascade's kernel does.
 bool fusesPrefilter(const RenderSettings& settings, std::span<const BlurSpec> cascadeBlurs);
 bool buildsSummedAreaTable(const RenderSettings& settings);

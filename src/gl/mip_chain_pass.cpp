@@ -34,12 +34,17 @@ void MipChainPass::reduce(const MipReducePrograms& programs, const ParameterBloc
                           const Texture& texture, std::span<const Texture> views, int layers,
                           int size) {
   parameters.bind();
+  GLint viewport[4];
+  glGetIntegerv(GL_VIEWPORT, viewport);
   glBindVertexArray(vertexArray_);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
+  // Each texel written as computed: no depth test, blending, scissor, culling, or dithering (GL
+  // may dither unorm colour writes; image stores never are).
   glDisable(GL_DEPTH_TEST);
   glDisable(GL_BLEND);
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_CULL_FACE);
+  glDisable(GL_DITHER);
   glBindSampler(0, bilinear_.id());
   for (size_t level = 0; level + 1 < views.size(); ++level) {
     const int source = std::max(1, size >> level);
@@ -64,6 +69,7 @@ void MipChainPass::reduce(const MipReducePrograms& programs, const ParameterBloc
   glBindSampler(0, 0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glBindVertexArray(0);
+  glViewport(viewport[0], viewport[1], viewport[2], viewport[3]);
 }
 
 }  // namespace penumbra::gl

@@ -80,6 +80,11 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
 
 }  // namespace
 
+std::string passTimingDescription(const Renderer& renderer) {
+  return renderer.timerQueriesMeasureExecution() ? "GPU timer queries"
+                                                 : "wall clock (glFinish around each pass)";
+}
+
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats) {
   if (repeats < 1 || repeats > 100) {
@@ -89,8 +94,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     throw Error(std::string(techniqueId(settings.technique)) +
                 " has no prefilter passes to measure (it filters after the test)");
   }
-  if (settings.cascades.count != 1) {
-    throw Error("bench --passes measures one map (--cascades 1): the minimal kernels run on one");
+  if (settings.cascades.count != 1 || scene.light.kind == LightKind::Point) {
+    throw Error(
+        "bench --passes measures one map (--cascades 1, a directional or spot light): the "
+        "minimal kernels run on one, where cascades and a point light's six faces are several");
   }
   const bool summedArea = settings.filter == FilterMode::SummedArea;
   const bool blurs = settings.blur.radius > 0 && !summedArea;
@@ -167,7 +174,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
 
   PassBenchResult result;
   result.technique = settings.technique;
-  result.timing = gpuTime ? "GPU timer queries" : "wall clock (glFinish around each pass)";
+  result.timing = passTimingDescription(renderer);
   result.format = imageFormatQualifier(layout) + " x " + std::to_string(layout.layers) +
                   (layout.layers == 1 ? " layer" : " layers");
   result.passes.push_back(

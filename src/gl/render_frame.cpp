@@ -168,6 +168,7 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   result.wallTimes = full.wallTimes;
   result.gpuTimes = full.gpuTimes;
   result.memory = full.memory;
+  result.fusedPrefilter = full.fusedPrefilter;
   return result;
 }
 
@@ -251,6 +252,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   s.light.render(s.programs, *s.scene, layers);
 
+  bool fused = false;
   if (!reference) {
     s.auxiliaryTimer.begin();
     if (buildsZmaxPyramid(settings)) {
@@ -266,9 +268,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     }
     s.auxiliaryTimer.end();
     s.filter.prepare(channelShapeFor(settings, count));
+    fused = fusesPrefilter(settings, s.cascadeBlurs);
     s.filter.prefilter(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples,
-                       settings.technique, s.params, s.cascadeBlurs,
-                       fusesPrefilter(settings, s.cascadeBlurs));
+                       settings.technique, s.params, s.cascadeBlurs, fused);
   } else {
     s.zmax.release();
     s.lloyd.release();
@@ -295,6 +297,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   result.cascadeBlurs = s.cascadeBlurs;
   result.depthBounds = range;
   result.params = s.params;
+  result.fusedPrefilter = fused;
   auto times = [&](auto read) {
     PassTimes t;
     t.light = read(s.light.timer);

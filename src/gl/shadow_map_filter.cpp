@@ -4,6 +4,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cassert>
 #include <string>
 
 #include "channel_dispatch.h"
@@ -15,8 +16,16 @@ namespace penumbra::gl {
 
 namespace {
 constexpr unsigned kGroup = kChannelGroup;
-// The fused prefilter's work group: TILE x TILE texels (kMaxFusedBlurRadius assumes 16).
+// The fused prefilter's work group: TILE x TILE texels (passes/prefilter_fused.comp's TILE). Its
+// shared memory, the tile with its border and the rows' results in RGBA32F, must fit the 32 KiB
+// every GL 4.5 device has for the largest radius it takes.
 constexpr int kFusedTile = 16;
+constexpr int fusedSharedBytes(int radius) {
+  const int span = kFusedTile + 2 * radius;
+  return 16 * (span * span + span * kFusedTile);
+}
+static_assert(fusedSharedBytes(kMaxFusedBlurRadius) <= 32768);
+static_assert(fusedSharedBytes(kMaxFusedBlurRadius + 1) > 32768, "kMaxFusedBlurRadius is the largest");
 }  // namespace
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
@@ -125,9 +134,15 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   if (!fused) encode(programs, parameters, depthTexture, samples);
   encodeTimer.end();
   prefilterTimer.begin();
+  const bool blurs = !filtersAfterTest && !shape_.summedArea &&
+                     std::any_of(cascadeBlurs.begin(), cascadeBlurs.end(),
+                                 [](const BlurSpec& b) { return b.radius > 0; });
+  // The scratch texture is planned from the settings (blursIntoScratch), the fused path chosen
+  // from this frame's kernels (fusesPrefilter): a blur that is not fused needs the scratch.
+  assert(fused || !blurs || shape_.scratch);
   if (fused) {
     encodeAndBlurFused(programs, parameters, depthTexture, defines, cascadeBlurs);
-  } else if (!filtersAfterTest && shape_.scratch) {
+  } else if (blurs) {
     blurSeparately(programs, parameters, defines, cascadeBlurs);
   }
   prefilterTimer.end();

@@ -46,11 +46,12 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
                                  (k.param ? k.param : "") + " " + std::to_string(size) +
                                  "^2 radius " + std::to_string(radius);
         const gl::RenderResult fused = renderer.render(scene, s);
-        // The fused path ran: one map with a fused prefilter needs no scratch texture.
-        ASSERT_EQ(fused.memory.scratch, 0u) << what;
+        ASSERT_TRUE(fused.fusedPrefilter) << what;
+        ASSERT_EQ(fused.memory.scratch, 0u) << what;  // one map fused needs no scratch texture
         const Image fusedChannels = renderer.readChannels(0);
         s.fusePrefilter = false;
         const gl::RenderResult separate = renderer.render(scene, s);
+        ASSERT_FALSE(separate.fusedPrefilter) << what;
         ASSERT_GT(separate.memory.scratch, 0u) << what;
         const Image separateChannels = renderer.readChannels(0);
         ASSERT_EQ(fusedChannels.data().size(), separateChannels.data().size());
@@ -69,6 +70,45 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
         EXPECT_EQ(bad, 0) << what;
       }
     }
+  }
+}
+
+// Cascades fuse when every cascade's kernel does (each its own kernel, scaled to the same world
+// width; here radii 3, 1 and 0, the last encode only): three cascades of VSM give the separate
+// passes' channels in every cascade.
+TEST_F(FusedPrefilter, GivesTheSeparatePassesChannelsInEveryCascade) {
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("street");
+  gl::RenderSettings s;
+  s.technique = Technique::Vsm;
+  s.shadowMapSize = 96;
+  s.width = 64;
+  s.height = 36;
+  s.filter = gl::FilterMode::Bilinear;
+  s.blur = {BlurKernel::Box, 3, 1.0f};
+  s.cascades.count = 3;
+  const gl::RenderResult fused = renderer.render(scene, s);
+  ASSERT_EQ(fused.cascadeBlurs.size(), 3u);
+  ASSERT_TRUE(fused.fusedPrefilter) << fused.cascadeBlurs[0].radius << " "
+                                    << fused.cascadeBlurs[1].radius << " "
+                                    << fused.cascadeBlurs[2].radius;
+  std::vector<Image> fusedChannels;
+  for (int c = 0; c < 3; ++c) fusedChannels.push_back(renderer.readChannels(0, c));
+  s.fusePrefilter = false;
+  const gl::RenderResult separate = renderer.render(scene, s);
+  ASSERT_FALSE(separate.fusedPrefilter);
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(fused.cascadeBlurs[size_t(c)].radius, separate.cascadeBlurs[size_t(c)].radius);
+    const Image channels = renderer.readChannels(0, c);
+    int bad = 0;
+    for (size_t i = 0; i < channels.data().size(); ++i) {
+      const float a = fusedChannels[size_t(c)].data()[i], b = channels.data()[i];
+      // As above: equal up to fma contraction.
+      if (!(std::abs(a - b) <= 1e-6f * std::max(1.0f, std::abs(b))) && ++bad <= 3) {
+        ADD_FAILURE() << "cascade " << c << " value " << i << ": fused " << a << " separate " << b;
+      }
+    }
+    EXPECT_EQ(bad, 0) << "cascade " << c;
   }
 }
 

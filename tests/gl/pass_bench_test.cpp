@@ -40,9 +40,7 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   const gl::PassBenchResult evsm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Evsm4), 2);
   EXPECT_EQ(evsm.format, "rgba32f x 1 layer");
-  EXPECT_EQ(evsm.timing, renderer.timerQueriesMeasureExecution()
-                             ? "GPU timer queries"
-                             : "wall clock (glFinish around each pass)");
+  EXPECT_EQ(evsm.timing, gl::passTimingDescription(renderer));
   expectTimed(evsm, {"encode", "prefilter", "mips", "encode + prefilter, fused"});
   // 16-bit storage rounds the blur's intermediate: no fused pass.
   expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Msm), 1),

@@ -125,9 +125,7 @@ void runBench(const BenchOptions& o) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   std::ostringstream csv;
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio\n";
-  const std::string timing = renderer.timerQueriesMeasureExecution()
-                                 ? "GPU timer queries"
-                                 : "wall clock (glFinish around each pass)";
+  const std::string timing = gl::passTimingDescription(renderer);
   std::cout << "Medians of " << o.repeat << " warm frames, " << timing << ", on "
             << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
             << "², " << (2 * settings.blur.radius + 1) << "-tap "

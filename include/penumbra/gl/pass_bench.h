@@ -24,6 +24,10 @@ struct PassBenchResult {
   std::vector<PassTiming> passes;
 };
 
+// How bench --passes times on this renderer's device: "GPU timer queries" where they measure
+// execution, else "wall clock (glFinish around each pass)" (PassBenchResult::timing).
+std::string passTimingDescription(const Renderer& renderer);
+
 // Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) with the separate
 // passes and, where the settings allow it, with the fused prefilter, and runs the minimal kernels
 // as many times on textures of the channel texture's format, size and layers; medians of GPU

@@ -133,7 +133,14 @@ struct RenderResult {
   PassTimes gpuTimes;                  // GL_TIME_ELAPSED queries: exact on vendor drivers
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
+  // Whether encode and blur ran as one dispatch per map (RenderSettings::fusePrefilter).
+  bool fusedPrefilter = false;
 };
+
+// Whether a kernel of this radius runs as the fused prefilter under these settings
+// (RenderSettings::fusePrefilter): a blur, 32-bit float channels, one light-pass sample, no
+// summed-area table, radius in [1, kMaxFusedBlurRadius]. A frame fuses when every map's does.
+bool fusesPrefilter(const RenderSettings& settings, int radius);
 
 // Pixel (x, y)'s lookup inputs (its cascade's uv, receiver depth, footprint and receiver
 // plane) as the CPU twin (penumbra/shadow_lookup.h) takes them.
