@@ -7,7 +7,6 @@
 #include "penumbra/error.h"
 #include "penumbra/metrics.h"
 #include "penumbra/shadow_lookup.h"
-#include "shared/cascade_selection.h"
 
 namespace penumbra::viewer {
 
@@ -92,16 +91,7 @@ void ReferenceJob::compute(const std::stop_token& stop) {
         const LookupPixel pixel = gl::lookupPixelAt(r, x, y);
         float v = twin(cascade).referenceVisibility(pixel);
         if (blend > 0.0f && cascade + 1 < cascades.count) {
-          // The same point on the light's plane in the next cascade (shared/cascade_selection.h).
-          const glm::vec4 box = cascades.boxes[size_t(cascade)];
-          const glm::vec4 next = cascades.boxes[size_t(cascade + 1)];
-          const glm::vec2 extent(box.z, box.w);
-          LookupPixel other = pixel;
-          other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
-          other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
-          other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
-          other.depthPerTexel =
-              shaders::cascadeDepthPerTexel(pixel.depthPerTexel * float(size) / extent, next, size);
+          const LookupPixel other = gl::lookupPixelInNextCascade(pixel, cascades, cascade, size);
           v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
         }
         reference_.at(x, y) = v;

@@ -66,6 +66,20 @@ Image boxDownsample(const Image& image, int factor) {
   return out;
 }
 
+LookupPixel lookupPixelInNextCascade(const LookupPixel& pixel, const CascadeFrame& cascades,
+                                     int cascade, int size) {
+  const glm::vec4 box = cascades.boxes[size_t(cascade)];
+  const glm::vec4 next = cascades.boxes[size_t(cascade + 1)];
+  const glm::vec2 extent(box.z, box.w);
+  LookupPixel other = pixel;
+  other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
+  other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
+  other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
+  other.depthPerTexel =
+      shaders::cascadeDepthPerTexel(pixel.depthPerTexel * float(size) / extent, next, size);
+  return other;
+}
+
 LookupPixel lookupPixelAt(const RenderResult& r, int x, int y) {
   LookupPixel p;
   p.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
@@ -346,16 +360,7 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
       const LookupPixel pixel = lookupPixelAt(r, x, y);
       float v = twin(cascade).referenceVisibility(pixel);
       if (blend > 0.0f) {
-        // The same point on the light's plane in the next cascade (shared/cascade_selection.h).
-        const glm::vec4 box = cascades.boxes[size_t(cascade)];
-        const glm::vec4 next = cascades.boxes[size_t(cascade + 1)];
-        const glm::vec2 extent(box.z, box.w);
-        LookupPixel other = pixel;
-        other.uv = shaders::cascadeUv(pixel.uv * extent + glm::vec2(box.x, box.y), next, 0);
-        other.uvDx = shaders::cascadeUv(pixel.uvDx * extent, next, 1);
-        other.uvDy = shaders::cascadeUv(pixel.uvDy * extent, next, 1);
-        other.depthPerTexel =
-            shaders::cascadeDepthPerTexel(pixel.depthPerTexel * float(size) / extent, next, size);
+        const LookupPixel other = lookupPixelInNextCascade(pixel, cascades, cascade, size);
         v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
       }
       const glm::vec3 albedo(r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2));

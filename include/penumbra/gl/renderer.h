@@ -145,6 +145,10 @@ bool fusesPrefilter(const RenderSettings& settings, int radius);
 // Pixel (x, y)'s lookup inputs (its cascade's uv, receiver depth, footprint and receiver
 // plane) as the CPU twin (penumbra/shadow_lookup.h) takes them.
 LookupPixel lookupPixelAt(const RenderResult& result, int x, int y);
+// The same lookup in the next cascade (cascade + 1), for the blend band: the point on the light's
+// plane, its footprint and its receiver plane in that cascade's map (shared/cascade_selection.h).
+LookupPixel lookupPixelInNextCascade(const LookupPixel& pixel, const CascadeFrame& cascades,
+                                     int cascade, int shadowMapSize);
 
 class Renderer {
  public:
