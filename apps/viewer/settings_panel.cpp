@@ -404,7 +404,8 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
     ImGui::Text("window frame %.1f ms (longest of the last %zu: %.1f ms)", state.frameMs.back(),
                 state.frameMs.size(), longest);
   }
-  // llvmpipe's timer queries are not the time it spends; the wall clock between glFinish is.
+  // llvmpipe's timer queries do not time execution (the renderer reports 0 GPU ms there);
+  // the wall clock between glFinish calls is what it spends.
   // Both are kept, the graph shows the one chosen.
   ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);
   drawPassGraph(state.graphGpuTimes ? state.gpuTimes : state.wallTimes);

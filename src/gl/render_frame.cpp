@@ -325,7 +325,11 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     }
     return t;
   };
-  result.gpuTimes = times([](const GpuTimer& t) { return t.gpuMilliseconds(); });
+  // A software rasteriser's queries see only submission, and llvmpipe's lose their start
+  // around draws that change framebuffers (the mip pass read its uptime): no GPU times there.
+  if (timerQueriesMeasureExecution()) {
+    result.gpuTimes = times([](const GpuTimer& t) { return t.gpuMilliseconds(); });
+  }
   result.wallTimes = times([](const GpuTimer& t) { return t.wallMilliseconds(); });
   result.memory = s.memory();
   return result;

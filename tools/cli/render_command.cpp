@@ -62,8 +62,9 @@ int runProgram(const std::vector<std::string>& args) {
 // --frames encodes with Debian's ffmpeg: found missing before anything is rendered.
 void requireFfmpeg() {
   if (runProgram({"ffmpeg", "-loglevel", "quiet", "-version"}) != 0) {
-    throw Error("--frames encodes an MP4 with ffmpeg, which was not found on PATH "
-                "(scripts/install-deps installs Debian's ffmpeg)");
+    throw Error(
+        "--frames encodes an MP4 with ffmpeg, which was not found on PATH "
+        "(scripts/install-deps installs Debian's ffmpeg)");
   }
 }
 
@@ -96,7 +97,8 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
   if (runProgram(command) != 0) {
     throw Error("ffmpeg could not encode " + (dir / files.at("video")).string() +
                 " (is Debian's ffmpeg installed? scripts/install-deps installs it); the frames "
-                "are in " + (dir / "frames").string());
+                "are in " +
+                (dir / "frames").string());
   }
   return result;
 }
@@ -169,9 +171,11 @@ void runRender(const RenderCommandOptions& options) {
     std::ofstream json(dir / files.at("record"));
     json << gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files);
     if (!json) throw Error("cannot write " + (dir / files.at("record")).string());
-    std::cout << "wrote " << (dir / files.at("color")).string() << "  (GPU "
-              << result.gpuTimes.total() << " ms, wall " << result.wallTimes.total()
-              << " ms, technique memory "
+    std::cout << "wrote " << (dir / files.at("color")).string() << "  (";
+    if (renderer.timerQueriesMeasureExecution()) {
+      std::cout << "GPU " << result.gpuTimes.total() << " ms, ";
+    }
+    std::cout << "wall " << result.wallTimes.total() << " ms, technique memory "
               << double(result.memory.technique + result.memory.summedArea) / (1024.0 * 1024.0)
               << " MiB)\n";
   }
@@ -192,10 +196,11 @@ void registerRenderCommand(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "render N times and report the last (warm) timings")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  CLI::Option* frames = cmd->add_option("--frames", o->frames,
-                  "render an animated sequence of N frames into frames/ and an MP4 (ffmpeg)")
-      ->check(CLI::Range(1, 10000))
-      ->capture_default_str();
+  CLI::Option* frames =
+      cmd->add_option("--frames", o->frames,
+                      "render an animated sequence of N frames into frames/ and an MP4 (ffmpeg)")
+          ->check(CLI::Range(1, 10000))
+          ->capture_default_str();
   cmd->add_option("--animate", o->animate,
                   "animations for --frames: " + animationNameList() + " (comma-separated)")
       ->needs(frames)
