@@ -11,6 +11,7 @@
 #include <memory>
 #include <random>
 #include <sstream>
+#include <utility>
 
 #include "gl_test_context.h"
 #include "penumbra/error.h"
@@ -21,6 +22,26 @@
 
 namespace penumbra {
 namespace {
+
+// The CPU twin of the layer pixel (x, y) of a render reads — a point light's face (lantern),
+// else the one map — built on first use from that layer's depth map.
+class LayerTwins {
+ public:
+  LayerTwins(const gl::Renderer& renderer, const gl::RenderResult& result, LookupConfig config)
+      : renderer_(renderer), result_(result), config_(std::move(config)) {}
+  const CpuShadowLookup& at(int x, int y) {
+    const int layer = int(result_.cascades.at(x, y, 0));
+    std::unique_ptr<CpuShadowLookup>& twin = twins_[layer];
+    if (!twin) twin = std::make_unique<CpuShadowLookup>(renderer_.readDepthMap(layer), config_);
+    return *twin;
+  }
+
+ private:
+  const gl::Renderer& renderer_;
+  const gl::RenderResult& result_;
+  LookupConfig config_;
+  std::map<int, std::unique_ptr<CpuShadowLookup>> twins_;
+};
 
 struct ParityCase {
   std::string label;
@@ -191,19 +212,9 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         continue;
       }
       const gl::RenderResult r = renderer.render(scene, s);
-      // One twin per layer the pixels use: a point light's face (lantern), else the one map.
-      std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
-      auto twinAt = [&](int x, int y) -> const CpuShadowLookup& {
-        const int layer = int(r.cascades.at(x, y, 0));
-        std::unique_ptr<CpuShadowLookup>& twin = twins[layer];
-        if (!twin) {
-          twin = std::make_unique<CpuShadowLookup>(
-              renderer.readDepthMap(layer),
-              LookupConfig{technique, r.params, c.filter, s.blur, s.anisotropy,
-                           renderer.halfFloatRounding()});
-        }
-        return *twin;
-      };
+      LayerTwins twins(renderer, r,
+                       LookupConfig{technique, r.params, c.filter, s.blur, s.anisotropy,
+                                    renderer.halfFloatRounding()});
       const float tolerance = pixelTolerance(technique, techniqueStorage(technique, r.params));
       const bool envelopes = technique == Technique::Msm && c.filter != FilterMode::Anisotropic;
       Differences d;
@@ -212,7 +223,7 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
         for (int x = 0; x < s.width; ++x) {
           if (r.lookup.at(x, y, 3) <= 0.0f) continue;  // outside the shadow map
           const LookupPixel pixel = gl::lookupPixelAt(r, x, y);
-          const CpuShadowLookup& twin = twinAt(x, y);
+          const CpuShadowLookup& twin = twins.at(x, y);
           const LookupSample cpu = twin.lookup(pixel);
           const float gpu = r.visibility.at(x, y);
           float error = std::abs(cpu.visibility - gpu);
@@ -268,17 +279,8 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
       s.blur = {BlurKernel::Gaussian, 2, 1.0f};
       s.anisotropy = 8;
       const gl::RenderResult r = renderer.renderReference(scene, s, 1);
-      std::map<int, std::unique_ptr<CpuShadowLookup>> twins;  // per face of a point light
-      auto twinAt = [&](int x, int y) -> const CpuShadowLookup& {
-        const int layer = int(r.cascades.at(x, y, 0));
-        std::unique_ptr<CpuShadowLookup>& twin = twins[layer];
-        if (!twin) {
-          twin = std::make_unique<CpuShadowLookup>(
-              renderer.readDepthMap(layer),
-              LookupConfig{Technique::Pcf, r.params, f, s.blur, s.anisotropy});
-        }
-        return *twin;
-      };
+      LayerTwins twins(renderer, r,
+                       LookupConfig{Technique::Pcf, r.params, f, s.blur, s.anisotropy});
       Differences d;
       for (int y = 0; y < s.height; ++y) {
         for (int x = 0; x < s.width; ++x) {
@@ -287,7 +289,7 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
           // rounding of the tie tolerance may flip: the GPU's value must then lie between the
           // CPU's for the receiver moved by kTieRounding either way (more lit in front).
           LookupPixel px = gl::lookupPixelAt(r, x, y);
-          const CpuShadowLookup& twin = twinAt(x, y);
+          const CpuShadowLookup& twin = twins.at(x, y);
           const float cpu = twin.referenceVisibility(px);
           const float gpu = r.visibility.at(x, y);
           float error = std::abs(cpu - gpu);

@@ -170,6 +170,28 @@ TEST(Viewer, ThePanelDrawsBesideTheSceneArea) {
 }
 
 // Pixels of the window's rectangle [x0, x1) x [y0, y1) that differ between two screenshots.
+// A scripted run's report of a background job ("cursor probe", "filtered reference"): its time,
+// the frames the window drew meanwhile and the longest of them.
+struct BackgroundTiming {
+  double jobMs = 0.0;
+  int frames = 0;
+  double longestMs = 0.0;
+};
+
+BackgroundTiming backgroundTiming(const std::string& output, const std::string& job) {
+  const std::regex line(job + R"(: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn )"
+                              R"(meanwhile, the longest ([0-9.]+) ms)");
+  std::smatch m;
+  if (!std::regex_search(output, m, line)) {
+    ADD_FAILURE() << "no '" << job << "' report in:\n" << output;
+    return {};
+  }
+  const BackgroundTiming t{std::stod(m[1]), std::stoi(m[2]), std::stod(m[3])};
+  std::cout << job << " " << t.jobMs << " ms, " << t.frames << " frames meanwhile, longest "
+            << t.longestMs << " ms\n";
+  return t;
+}
+
 int differingPixels(const Image& a, const Image& b, int x0, int y0, int x1, int y1) {
   int count = 0;
   for (int y = y0; y < y1; ++y) {
@@ -233,17 +255,9 @@ TEST(Viewer, TheCursorProbeDrawsTheShadowTestCurvesBelowTheSceneArea) {
   EXPECT_EQ(differingPixels(a, b, 0, 0, kFrameWidth, kFrameHeight), 0);
   // The curves are computed on a background thread: the window kept drawing meanwhile (a probe
   // computed in the frame would draw none), each frame a small part of the probe's time.
-  const std::regex line(
-      R"(cursor probe: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn meanwhile, the longest ([0-9.]+) ms)");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(run.output, m, line)) << run.output;
-  const double probeMs = std::stod(m[1]);
-  const int frames = std::stoi(m[2]);
-  const double longestMs = std::stod(m[3]);
-  std::cout << "probe " << probeMs << " ms, " << frames << " frames meanwhile, longest "
-            << longestMs << " ms\n";
-  EXPECT_GE(frames, 3);
-  EXPECT_LT(longestMs, probeMs / 3.0);
+  const BackgroundTiming probe = backgroundTiming(run.output, "cursor probe");
+  EXPECT_GE(probe.frames, 3);
+  EXPECT_LT(probe.longestMs, probe.jobMs / 3.0);
 }
 
 TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
@@ -441,19 +455,11 @@ TEST(Viewer, KeepsDrawingFramesWhileTheReferenceComputes) {
   const fs::path shot = scratch.path() / "error.png";
   const RunResult run = runViewer(settings, shot, scratch.path(), {"--show", "error"});
   ASSERT_EQ(run.exitCode(), 0) << run.output;
-  const std::regex line(
-      R"(filtered reference: ([0-9.]+) ms on a background thread; ([0-9]+) frames drawn meanwhile, the longest ([0-9.]+) ms)");
-  std::smatch m;
-  ASSERT_TRUE(std::regex_search(run.output, m, line)) << run.output;
-  const double referenceMs = std::stod(m[1]);
-  const int frames = std::stoi(m[2]);
-  const double longestMs = std::stod(m[3]);
-  std::cout << "reference " << referenceMs << " ms, " << frames << " frames meanwhile, longest "
-            << longestMs << " ms\n";
+  const BackgroundTiming reference = backgroundTiming(run.output, "filtered reference");
   // At 30 frames a second while it computes, a reference of a second or more leaves many frames;
   // the longest is a small part of the reference (a blocked window would spend all of it in one).
-  EXPECT_GE(frames, 5);
-  EXPECT_LT(longestMs, referenceMs / 4.0);
+  EXPECT_GE(reference.frames, 5);
+  EXPECT_LT(reference.longestMs, reference.jobMs / 4.0);
 }
 
 // Once complete, the error view equals the heat map of the renderer's own reference
