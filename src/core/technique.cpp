@@ -113,11 +113,15 @@ void encodeDepth(Technique technique, const TechniqueParams& params, float depth
                  std::span<float> channels) {
   const int count = channelCount(technique, params);
   assert(int(channels.size()) >= count);
+  const int id = sharedId(technique);
+  shaders::TexelEncoding e = shaders::startTexelEncoding(id, depth, params);
   for (int texelLayer = 0; 4 * texelLayer < count; ++texelLayer) {
-    const glm::vec4 v = shaders::encodeTexelLayer(sharedId(technique), depth, texelLayer, params);
+    const glm::vec4 v = shaders::encodeCurrentTexelLayer(
+        id, e, shaders::texelLayerRanges(id, texelLayer, params), params);
     for (int c = 0; c < 4 && 4 * texelLayer + c < count; ++c) {
       channels[size_t(4 * texelLayer + c)] = v[c];
     }
+    e = shaders::nextTexelLayer(id, e);
   }
 }
 

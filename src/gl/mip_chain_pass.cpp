@@ -15,6 +15,10 @@ MipChainPass::MipChainPass() {
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_MAG_FILTER, GL_LINEAR);
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
   glSamplerParameteri(bilinear_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(nearest_.id(), GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 MipChainPass::~MipChainPass() {
@@ -45,7 +49,7 @@ void MipChainPass::reduce(const MipReducePrograms& programs, const ParameterBloc
   glDisable(GL_SCISSOR_TEST);
   glDisable(GL_CULL_FACE);
   glDisable(GL_DITHER);
-  glBindSampler(0, bilinear_.id());
+  glBindSampler(0, programs.integerSource ? nearest_.id() : bilinear_.id());
   for (size_t level = 0; level + 1 < views.size(); ++level) {
     const int source = std::max(1, size >> level);
     const int target = std::max(1, size >> (level + 1));

@@ -21,6 +21,7 @@ std::vector<Texture> levelViews(const Texture& texture, unsigned format, int lev
 struct MipReducePrograms {
   const Program& halving;
   const Program& general;
+  bool integerSource = false;  // the views are R32UI (packed RGBA8): read unfiltered
 };
 
 class MipChainPass {
@@ -39,6 +40,8 @@ class MipChainPass {
   unsigned vertexArray_ = 0;
   // Bilinear within the one level a view holds, clamped to the edge (BILINEAR_MEAN's reads).
   Sampler bilinear_;
+  // Integer views are incomplete under a linear filter: nearest for them (gathers ignore it).
+  Sampler nearest_;
 };
 
 }  // namespace penumbra::gl

@@ -5,6 +5,8 @@
 
 #include <cstring>
 
+#include "shared/technique_dispatch.h"
+
 namespace penumbra::gl {
 namespace {
 
@@ -42,18 +44,25 @@ const Program& ProgramCache::compute(const std::string& path,
   return found->second;
 }
 
-ParameterBlock::ParameterBlock() : buffer_(sizeof(TechniqueParams)) {}
+ParameterBlock::ParameterBlock()
+    : buffer_(sizeof(TechniqueParams)), ranges_(sizeof(shaders::TexelLayerRangeTable)) {}
 
-void ParameterBlock::upload(const TechniqueParams& params) {
+void ParameterBlock::upload(Technique technique, const TechniqueParams& params) {
   // TechniqueParams mirrors a std140 block with explicit padding: bytewise equality is equality.
-  if (valid_ && std::memcmp(&uploaded_, &params, sizeof params) == 0) return;
+  if (valid_ && technique == technique_ && std::memcmp(&uploaded_, &params, sizeof params) == 0) {
+    return;
+  }
   glNamedBufferSubData(buffer_.id(), 0, sizeof params, &params);
+  const shaders::TexelLayerRangeTable table = shaders::texelLayerRangeTable(int(technique), params);
+  glNamedBufferSubData(ranges_.id(), 0, sizeof table, &table);
+  technique_ = technique;
   uploaded_ = params;
   valid_ = true;
 }
 
 void ParameterBlock::bind() const {
   buffer_.bindUniform(0);
+  ranges_.bindUniform(1);
 }
 
 }  // namespace penumbra::gl

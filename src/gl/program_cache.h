@@ -29,15 +29,18 @@ class ProgramCache {
 };
 
 // The technique's parameters as the std140 block every pass that runs shared math reads
-// (binding 0); uploaded only when they change, so a warm frame uploads nothing.
+// (binding 0), and the encode's per-texel-layer ranges derived from them (binding 1,
+// shaders::texelLayerRangeTable); uploaded only when they change, so a warm frame uploads nothing.
 class ParameterBlock {
  public:
   ParameterBlock();
-  void upload(const TechniqueParams& params);
+  void upload(Technique technique, const TechniqueParams& params);
   void bind() const;
 
  private:
   Buffer buffer_;
+  Buffer ranges_;
+  Technique technique_ = Technique::Vsm;
   TechniqueParams uploaded_{};
   bool valid_ = false;
 };

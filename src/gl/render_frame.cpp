@@ -198,7 +198,8 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   s.programs.setTechnique(settings.technique);
   // Lloyd placement uploads the parameters once it has moved the splits.
-  if (reference || !placesLayersByLloyd(settings)) s.parameters.upload(s.params);
+  if (reference || !placesLayersByLloyd(settings))
+    s.parameters.upload(settings.technique, s.params);
 
   // Where the frame is seen from, and the cascades that cover it.
   FrameGeometry& frame = s.frame;
@@ -276,7 +277,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     }
     if (placesLayersByLloyd(settings)) {
       s.params.lvsm.splits = s.lloyd.place(s.programs, s.light, s.params.lvsm);
-      s.parameters.upload(s.params);
+      s.parameters.upload(settings.technique, s.params);
     } else {
       s.lloyd.release();
     }
@@ -390,7 +391,7 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   s.settings = single;
   s.params = single.params;
   s.programs.setTechnique(single.technique);
-  s.parameters.upload(s.params);
+  s.parameters.upload(single.technique, s.params);
   s.uploadedDepth.emplace(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height(), 1);
   glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,

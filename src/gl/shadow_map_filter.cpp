@@ -25,7 +25,8 @@ constexpr int fusedSharedBytes(int radius) {
   return 16 * (span * span + span * kFusedTile);
 }
 static_assert(fusedSharedBytes(kMaxFusedBlurRadius) <= 32768);
-static_assert(fusedSharedBytes(kMaxFusedBlurRadius + 1) > 32768, "kMaxFusedBlurRadius is the largest");
+static_assert(fusedSharedBytes(kMaxFusedBlurRadius + 1) > 32768,
+              "kMaxFusedBlurRadius is the largest");
 }  // namespace
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout) {
@@ -75,11 +76,24 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
   return shape;
 }
 
+// RGBA8 texels read by the mip pass as one 32-bit word each (R32UI views of the levels): one
+// gather returns a 2x2 block's four texels, unpacked exactly. Bilinear sampling would filter them
+// in 8-bit fixed point and lose the half bit of each average.
+bool mipReadsPackedUnorm8(const ChannelLayout& layout) {
+  return layout.format == StorageFormat::Unorm8 && layout.componentsPerTexel == 4;
+}
+
+unsigned mipSourceViewFormat(const ChannelLayout& layout) {
+  return mipReadsPackedUnorm8(layout) ? GL_R32UI : internalFormat(layout);
+}
+
 MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDefine> reductions,
                                     const ChannelLayout& layout) {
   const bool allMean = std::any_of(reductions.begin(), reductions.end(),
                                    [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
-  if (allMean && layout.format != StorageFormat::Unorm8) {
+  if (mipReadsPackedUnorm8(layout)) {
+    reductions.push_back({"PACKED_UNORM8", "1"});
+  } else if (allMean && layout.format != StorageFormat::Unorm8) {
     reductions.push_back({"BILINEAR_MEAN", "1"});
   } else if (!allMean && layout.channels == 1) {
     reductions.push_back({"GATHER_ONE_CHANNEL", "1"});
@@ -88,7 +102,7 @@ MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDe
       programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);
   reductions.push_back({"HALVING", "1"});
   return {programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions),
-          general};
+          general, mipReadsPackedUnorm8(layout)};
 }
 
 void ShadowMapFilter::prepare(const ChannelShape& shape) {
@@ -99,9 +113,9 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
   channels_ = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
                      shape.size, layers);
-  channelLevels_ = shape.levels > 1
-                       ? levelViews(channels_, internalFormat(shape.layout), shape.levels, layers)
-                       : std::vector<Texture>{};
+  channelLevels_ = shape.levels > 1 ? levelViews(channels_, mipSourceViewFormat(shape.layout),
+                                                 shape.levels, layers)
+                                    : std::vector<Texture>{};
   scratch_ = Texture();
   if (shape.scratch) {
     scratch_ = Texture(GL_TEXTURE_2D_ARRAY);
@@ -160,10 +174,10 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
                              unsigned depthTexture, int samples) {
   std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
   defines.push_back({"MSAA", samples > 1 ? "1" : "0"});
+  defines.push_back({"LAYER_COUNT", std::to_string(shape_.layout.layers)});
   const Program& encode = programs.compute("passes/encode.comp", defines);
   parameters.bind();
   setSize(encode, "size", shape_.size);
-  encode.set("layerCount", shape_.layout.layers);
   encode.set("sampleCount", samples);
   glBindTextureUnit(0, depthTexture);
   bindChannelImage(channels_, shape_.layout, 0);

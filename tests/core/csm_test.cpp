@@ -199,6 +199,30 @@ TEST(Csm, ScalingByTwoHalvesTheTransitionAndLightsTheOccludersOwnDepth) {
   EXPECT_EQ(shaders::csmVisibility(basis, 0.4f, p), 1.0f);
 }
 
+// The encode walks the terms by rotation (csmWaveStart). Against sin and cos of c_k z in double,
+// every term of every texture stays within 1e-5 (the [0,1]-mapped basis; 2e-5 before the map):
+// the direct float evaluation is off by up to 1.4e-5 itself at k = 16, where the argument
+// 31 pi z rounds by half an ulp of 97 (3.8e-6) per unit of slope, and the 31 rotations add a
+// few roundings each (1.5e-5 measured before the map). A wrong rotation is off by O(1).
+TEST(Csm, WaveRecurrenceStaysWithinItsRoundingOfTheDirectBasis) {
+  const shaders::CsmParams p = shaders::csmDefaultParams();
+  float worst = 0.0f;
+  for (int i = 0; i <= 4000; ++i) {
+    const float depth = float(i) / 4000.0f;
+    const double z = double(shaders::csmDepthScale(p)) * double(depth);
+    for (int t = 0; t < shaders::csmTextureCount(p); ++t) {
+      const glm::vec4 b = shaders::csmEncodeTexture(depth, t, p);
+      for (int term = 0; term < 2; ++term) {
+        const double c = M_PI * double(2 * (2 * t + term + 1) - 1);
+        worst = std::max(worst, float(std::abs(b[2 * term] - (0.5 + 0.5 * std::sin(c * z)))));
+        worst = std::max(worst, float(std::abs(b[2 * term + 1] - (0.5 + 0.5 * std::cos(c * z)))));
+      }
+    }
+  }
+  EXPECT_LT(worst, 1.0e-5f);
+  EXPECT_GT(worst, 0.0f);  // float arithmetic: exactness would mean the test reads nothing
+}
+
 TEST(Csm, BasisFitsUnorm8AndPacksTwoTermsPerTexture) {
   for (int i = 0; i <= 100; ++i) {
     const glm::vec4 b =

@@ -54,7 +54,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, AXIS and
-// the reduction switches (0 and 1), and APRON (the fused prefilter's smallest and largest radius).
+// the reduction switches (0 and 1), APRON (the fused prefilter's smallest and largest radius)
+// and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -83,9 +84,11 @@ std::vector<Defines> variants(const std::string& source) {
   expand("REFERENCE", {"0", "1"});
   expand("APRON", {"1", "10"});  // the fused prefilter's kernel radius: 1..kMaxFusedBlurRadius
   expand("AXIS", {"0", "1"});
+  expand("LAYER_COUNT", {"1", "12"});  // the encode's texel layers: 1..kMaxTexelLayers
   expand("ALL_MEAN", {"0", "1"});
   expand("BILINEAR_MEAN", {"0", "1"});
   expand("GATHER_ONE_CHANNEL", {"0", "1"});
+  expand("PACKED_UNORM8", {"0", "1"});
   return result;
 }
 

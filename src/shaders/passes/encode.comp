@@ -1,7 +1,8 @@
-// Encode pass: light-space depth -> the technique's channels (shared encodeTexelLayer), written to
+// Encode pass: light-space depth -> the technique's channels (shared TexelEncoding), written to
 // its storage format, for every cascade (the dispatch's z) at once. Each depth is fetched once and
-// encoded once per texel layer. With MSAA every sample is encoded, then the samples are reduced
-// like filter taps (moments are averaged after encoding); hard and PCF keep the nearest sample.
+// its texel layers encoded in order (CSM's basis waves rotate from one layer to the next). With
+// MSAA every sample is encoded, then the samples are reduced like filter taps (moments are
+// averaged after encoding); hard and PCF keep the nearest sample.
 #include "../lib/technique_block.glsl"
 #include "../shared/channel_reduction.h"
 
@@ -14,7 +15,10 @@ uniform int sampleCount;
 layout(binding = 0) uniform sampler2DArray depthMap;
 #endif
 uniform ivec2 size;
-uniform int layerCount;  // channel layers per cascade
+// Channel layers per cascade, fixed per variant: the layer loop unrolls, so the range table is
+// read at constant offsets (an index llvmpipe cannot see is uniform gathers per lane: LVSM's
+// encode took 2.9x a copy that way, 1.2x unrolled).
+const int layerCount = LAYER_COUNT;
 
 #if MSAA
 vec4 encodeSamples(ivec3 p, int texelLayer) {
@@ -29,7 +33,8 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
     acc[c] = startReduction(reduction, params.esm.exponent);
   }
   for (int s = 0; s < sampleCount; ++s) {
-    vec4 v = encodeTexelLayer(technique, texelFetch(depthMap, p, s).x, texelLayer, params);
+    TexelEncoding e = texelEncodingAt(technique, texelFetch(depthMap, p, s).x, texelLayer, params);
+    vec4 v = encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[texelLayer], params);
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], v[c], 1.0f / float(sampleCount));
   }
   return vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
@@ -40,15 +45,16 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
 void main() {
   ivec3 p = ivec3(gl_GlobalInvocationID);  // z: the cascade, its depth layer
   if (p.x >= size.x || p.y >= size.y) return;
-#if !MSAA
-  float depth = texelFetch(depthMap, p, 0).x;
-#endif
-  for (int layer = 0; layer < layerCount; ++layer) {
 #if MSAA
-    vec4 v = encodeSamples(p, layer);
-#else
-    vec4 v = encodeTexelLayer(technique, depth, layer, params);
-#endif
-    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), v);
+  for (int layer = 0; layer < layerCount; ++layer) {
+    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), encodeSamples(p, layer));
   }
+#else
+  TexelEncoding e = startTexelEncoding(technique, texelFetch(depthMap, p, 0).x, params);
+  for (int layer = 0; layer < layerCount; ++layer) {
+    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer),
+               encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[layer], params));
+    e = nextTexelLayer(technique, e);
+  }
+#endif
 }

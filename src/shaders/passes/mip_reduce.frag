@@ -7,8 +7,23 @@
 #include "../lib/layer_reduction.glsl"
 #include "../shared/mip_span.h"
 
+#ifndef PACKED_UNORM8
+#define PACKED_UNORM8 0
+#endif
 // The source level alone (a view of one level): level 0 here, and never the level being drawn.
+// PACKED_UNORM8: RGBA8 channels viewed as R32UI, one word per texel, unpacked here (one gather
+// per 2x2 block; bilinear filtering of unorm8 is fixed point and inexact).
+#if PACKED_UNORM8
+layout(binding = 0) uniform usampler2DArray source;
+vec4 sourceTexel(ivec3 at) {
+  return unpackUnorm4x8(texelFetch(source, at, 0).x);
+}
+#else
 layout(binding = 0) uniform sampler2DArray source;
+vec4 sourceTexel(ivec3 at) {
+  return texelFetch(source, at, 0);
+}
+#endif
 
 uniform ivec2 sourceSize;
 uniform ivec2 targetSize;
@@ -41,7 +56,7 @@ void main() {
   bool plainBlock = xs.y - xs.x == 1 && ys.y - ys.x == 1;
   vec2 corner = vec2(xs.y, ys.y) / vec2(sourceSize);
 #endif
-#if BILINEAR_MEAN
+#if BILINEAR_MEAN && !PACKED_UNORM8
   // Every channel a mean and a plain 2x2 block: one bilinear sample at the block's shared corner
   // weighs its four texels 1/4 each, one fetch instead of four.
   if (plainBlock) {
@@ -49,7 +64,19 @@ void main() {
     return;
   }
 #endif
-#if GATHER_ONE_CHANNEL
+#if PACKED_UNORM8 && ALL_MEAN
+  // The block's four words in one gather, summed in the loop's order below: (x0, y0), (x1, y0),
+  // (x0, y1), (x1, y1) are the gather's w, z, x, y.
+  if (plainBlock) {
+    uvec4 block = textureGather(source, vec3(corner, float(layer)), 0);
+    vec4 sum = accumulateMeanTexel(vec4(0.0f), unpackUnorm4x8(block.w), 0.25f);
+    sum = accumulateMeanTexel(sum, unpackUnorm4x8(block.z), 0.25f);
+    sum = accumulateMeanTexel(sum, unpackUnorm4x8(block.x), 0.25f);
+    reduced = accumulateMeanTexel(sum, unpackUnorm4x8(block.y), 0.25f);
+    return;
+  }
+#endif
+#if GATHER_ONE_CHANNEL && !PACKED_UNORM8
   // One channel, reduced by other than a mean (ESM's log-space mean, the Z-max pyramid's max):
   // one gather at the block's shared corner returns its four texels, reduced in the same order
   // as the loop below — (x0, y0), (x1, y0), (x0, y1), (x1, y1) are the gather's w, z, x, y.
@@ -70,7 +97,7 @@ void main() {
   vec4 sum = vec4(0.0f);
   for (int y = ys.x; y <= ys.y; ++y) {
     for (int x = xs.x; x <= xs.y; ++x) {
-      sum = accumulateMeanTexel(sum, texelFetch(source, ivec3(x, y, layer), 0), weight);
+      sum = accumulateMeanTexel(sum, sourceTexel(ivec3(x, y, layer)), weight);
     }
   }
   reduced = sum;
@@ -81,7 +108,7 @@ void main() {
   }
   for (int y = ys.x; y <= ys.y; ++y) {
     for (int x = xs.x; x <= xs.y; ++x) {
-      vec4 texel = texelFetch(source, ivec3(x, y, layer), 0);
+      vec4 texel = sourceTexel(ivec3(x, y, layer));
       for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
     }
   }

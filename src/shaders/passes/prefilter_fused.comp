@@ -57,8 +57,9 @@ void main() {
   int local = int(gl_LocalInvocationIndex);
   for (int i = local; i < kSpan * kSpan; i += TILE * TILE) {
     ivec2 q = clamp(origin + ivec2(i % kSpan, i / kSpan), ivec2(0), size - 1);
-    encoded[i] = encodeTexelLayer(technique, texelFetch(depthMap, ivec3(q, cascade), 0).x, layer,
-                                  params);
+    TexelEncoding e =
+        texelEncodingAt(technique, texelFetch(depthMap, ivec3(q, cascade), 0).x, layer, params);
+    encoded[i] = encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[layer], params);
   }
   barrier();
   for (int i = local; i < kSpan * TILE; i += TILE * TILE) {

@@ -35,6 +35,7 @@ const int kReduceLogMeanExp = 3;  // log-space mean of exp(c*v): ESM log-space f
 const int kMaxLayers = 16;
 // Most channels any technique needs: layered power-CDF, 16 layers x (min, max, mean).
 const int kMaxChannels = 48;
+const int kMaxTexelLayers = kMaxChannels / 4;  // four channels per texel
 
 PENUMBRA_END_SHARED
 #endif

@@ -48,15 +48,53 @@ PENUMBRA_INLINE float csmDepthScale(CsmParams p) {
   return max(0.5f, 1.0f - (1.0f + p.offsetScale) / (2.0f * float(p.termCount)));
 }
 
-// Basis texture `index` holds terms k = 2 index + 1 and 2 index + 2 as
-// (sin c_k z, cos c_k z, sin c_k+1 z, cos c_k+1 z) of the scaled depth (eq. 14), mapped from
-// [-1,1] to [0,1] so that unorm8 storage holds them; the map is affine, so filtering commutes.
+// The basis images by angle addition: the frequencies step by c_{k+1} - c_k = 2 pi, so one sine
+// and cosine of c_1 z and the double angle 2 pi z give every term by rotation, where evaluating
+// each term directly takes 2M sines and cosines per texel (32 at M = 16: CSM's encode took 3.3x a
+// copy, docs/results/passes-llvmpipe-2026-12-01.md). A wave holds (sin c_k z, cos c_k z) of the
+// next texture's first term and (sin 2 pi z, cos 2 pi z) of the step. Each rotation adds a few
+// float roundings; after the 2M - 1 rotations of M = 16 the terms stay within 1.5e-5 of exact,
+// as close as evaluating each term in float (1.4e-5: the argument rounds; docs/techniques.md,
+// Csm.WaveRecurrenceStaysWithinItsRoundingOfTheDirectBasis).
+// The wave of the first term at a scaled depth z (csmDepthScale times the linear depth).
+PENUMBRA_INLINE vec4 csmWave(float z) {
+  float theta = csmFrequency(1) * z;
+  float s = sin(theta);
+  float c = cos(theta);
+  return vec4(s, c, 2.0f * s * c, c * c - s * s);
+}
+
+PENUMBRA_INLINE vec4 csmWaveStart(float depth, CsmParams p) {
+  return csmWave(csmDepthScale(p) * depth);
+}
+
+// The wave one term on: c_k z + 2 pi z.
+PENUMBRA_INLINE vec4 csmWaveRotate(vec4 wave) {
+  return vec4(wave[0] * wave[3] + wave[1] * wave[2], wave[1] * wave[3] - wave[0] * wave[2], wave[2],
+              wave[3]);
+}
+
+// The wave's basis texture: terms k and k + 1 as (sin c_k z, cos c_k z, sin c_k+1 z,
+// cos c_k+1 z) of the scaled depth (eq. 14), mapped from [-1,1] to [0,1] so that unorm8 storage
+// holds them; the map is affine, so filtering commutes.
+// The rotations' roundings may carry a term a few ulps past +-1: clamped, as unorm storage does.
+PENUMBRA_INLINE vec4 csmWaveTexture(vec4 wave) {
+  vec4 next = csmWaveRotate(wave);
+  vec4 basis = vec4(wave[0], wave[1], next[0], next[1]) * 0.5f + vec4(0.5f);
+  return clamp(basis, vec4(0.0f), vec4(1.0f));
+}
+
+// The wave of the texture after this one (two terms on).
+PENUMBRA_INLINE vec4 csmWaveNextTexture(vec4 wave) {
+  return csmWaveRotate(csmWaveRotate(wave));
+}
+
+// Basis texture `index` alone (terms 2 index + 1 and 2 index + 2), by the same rotations as the
+// encode's walk over every texture, so both give the same values.
 PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index, CsmParams p) {
-  float z = csmDepthScale(p) * depth;
-  float c0 = csmFrequency(2 * index + 1);
-  float c1 = csmFrequency(2 * index + 2);
-  vec4 basis = vec4(sin(c0 * z), cos(c0 * z), sin(c1 * z), cos(c1 * z));
-  return basis * 0.5f + vec4(0.5f);
+  vec4 wave = csmWaveStart(depth, p);
+  for (int i = 0; i < index; ++i) wave = csmWaveNextTexture(wave);
+  return csmWaveTexture(wave);
 }
 
 PENUMBRA_INLINE int csmTextureCount(CsmParams p) {
@@ -77,6 +115,9 @@ PENUMBRA_INLINE float csmReceiverOffset(CsmParams p) {
 // (eq. 11-13, the step oriented as visibility H(z - d)), attenuated and offset (§3.2), unclamped.
 PENUMBRA_INLINE float csmSeries(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
   float d = csmDepthScale(p) * receiverDepth - csmReceiverOffset(p);
+  // The receiver's terms by the encode's rotations: at d = z each product cancels as exactly as
+  // the stored basis allows.
+  vec4 wave = csmWave(d);
   float f = 0.5f;
   for (int k = 1; k <= p.termCount; ++k) {
     int texel = (k - 1) / 2;
@@ -84,7 +125,8 @@ PENUMBRA_INLINE float csmSeries(vec4 filteredBasis[8], float receiverDepth, CsmP
     float sinZ = 2.0f * filteredBasis[texel][component] - 1.0f;
     float cosZ = 2.0f * filteredBasis[texel][component + 1] - 1.0f;
     float c = csmFrequency(k);
-    f += csmAttenuationFactor(k, p) * (2.0f / c) * (sinZ * cos(c * d) - cosZ * sin(c * d));
+    f += csmAttenuationFactor(k, p) * (2.0f / c) * (sinZ * wave[1] - cosZ * wave[0]);
+    wave = csmWaveRotate(wave);
   }
   return f;
 }

@@ -20,12 +20,23 @@ struct LayerSplits {
   int pad2;
 };
 
-// s_i for i in [0, L]: 0 below, 1 at the top, the interior split otherwise.
+// s_i for i in [0, L]: 0 below, 1 at the top, the interior split otherwise. The split is picked
+// by selects over constant indices, not by a dynamic index: GLSL passes `splits` by value, and a
+// dynamic index into that copy makes llvmpipe spill it to per-lane memory and gather from it —
+// LVSM's encode took 7x a copy that way (docs/results/passes-llvmpipe-2026-12-01.md, issue 12).
 PENUMBRA_INLINE float layerSplit(LayerSplits splits, int i) {
-  if (i <= 0) return 0.0f;
-  if (i >= splits.layerCount) return 1.0f;
-  int k = i - 1;
-  return splits.interior[k / 4][k % 4];
+  int k = clamp(i - 1, 0, kMaxLayers - 2);
+  int row = k / 4;
+  int column = k - 4 * row;
+  vec4 q = splits.interior[0];
+  q = row == 1 ? splits.interior[1] : q;
+  q = row == 2 ? splits.interior[2] : q;
+  q = row == 3 ? splits.interior[3] : q;
+  float interior = q[0];
+  interior = column == 1 ? q[1] : interior;
+  interior = column == 2 ? q[2] : interior;
+  interior = column == 3 ? q[3] : interior;
+  return i <= 0 ? 0.0f : (i >= splits.layerCount ? 1.0f : interior);
 }
 
 PENUMBRA_INLINE LayerSplits uniformLayerSplits(int layerCount) {
@@ -54,9 +65,10 @@ PENUMBRA_INLINE int selectLayer(float depth, LayerSplits splits) {
 
 // [p_i, q_i] of layer i: its split interval widened by `overlap` on the inner sides (thesis
 // §4.1.1), so that a receiver near a split still sees its own surface's depths inside the layer.
+// The outer ends need no test: s_0 - overlap clamps to 0 and s_L + overlap to 1.
 PENUMBRA_INLINE vec2 overlappedLayerRange(LayerSplits splits, int layer, float overlap) {
-  float lower = layer == 0 ? 0.0f : layerSplit(splits, layer) - overlap;
-  float upper = layer == splits.layerCount - 1 ? 1.0f : layerSplit(splits, layer + 1) + overlap;
+  float lower = layerSplit(splits, layer) - overlap;
+  float upper = layerSplit(splits, layer + 1) + overlap;
   return vec2(max(lower, 0.0f), min(upper, 1.0f));
 }
 

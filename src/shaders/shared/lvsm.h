@@ -43,9 +43,10 @@ PENUMBRA_INLINE float lvsmWarp(float depth, vec2 range) {
   return clamp((depth - range.x) / (range.y - range.x), 0.0f, 1.0f);
 }
 
-// Warped moments of a depth for one layer; two unorm16 channels per layer hold them.
-PENUMBRA_INLINE vec2 lvsmEncodeLayer(float depth, int layer, LvsmParams p) {
-  float w = lvsmWarp(depth, lvsmLayerRange(layer, p));
+// Warped moments of a depth for the layer over `range` (lvsmLayerRange); two unorm16 channels
+// per layer hold them.
+PENUMBRA_INLINE vec2 lvsmEncodeInRange(float depth, vec2 range) {
+  float w = lvsmWarp(depth, range);
   return vec2(w, w * w);
 }
 

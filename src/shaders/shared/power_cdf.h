@@ -33,17 +33,19 @@ PENUMBRA_INLINE PowerCdfParams powerCdfDefaultParams() {
   return p;
 }
 
-// Depth clamped into layer `layer`'s overlapped interval: occluders in front pile up at its
-// lower end.
-PENUMBRA_INLINE float powerCdfLayerDepth(float depth, int layer, PowerCdfParams p) {
-  vec2 range = overlappedLayerRange(p.splits, layer, p.overlap);
+PENUMBRA_INLINE vec2 powerCdfLayerRange(int layer, PowerCdfParams p) {
+  return overlappedLayerRange(p.splits, layer, p.overlap);
+}
+
+// Depth clamped into a layer's overlapped interval `range`: occluders in front pile up at its
+// lower end. A layer's (min, max, mean) channels all encode this depth; they are filtered with
+// min, max and mean reductions.
+PENUMBRA_INLINE float powerCdfDepthInRange(float depth, vec2 range) {
   return clamp(depth, range.x, range.y);
 }
 
-// (min, max, mean) channels of one depth, filtered with min, max and mean reductions.
-PENUMBRA_INLINE vec3 powerCdfEncodeLayer(float depth, int layer, PowerCdfParams p) {
-  float z = powerCdfLayerDepth(depth, layer, p);
-  return vec3(z, z, z);
+PENUMBRA_INLINE float powerCdfLayerDepth(float depth, int layer, PowerCdfParams p) {
+  return powerCdfDepthInRange(depth, powerCdfLayerRange(layer, p));
 }
 
 // Gumbau eq. 3: the exponent that makes the mean of t^beta match the filtered mean.

@@ -22,37 +22,91 @@ PENUMBRA_INLINE bool techniqueFiltersAfterTest(int technique) {
   return technique == kTechniquePcf;
 }
 
+// A depth's walk over its channel texture's layers, in order: CSM's basis waves rotate from one
+// texture to the next (csmWaveStart) instead of evaluating every term's sine and cosine.
+struct TexelEncoding {
+  float depth;
+  int texelLayer;
+  vec4 csmWave;  // CSM: the wave of texture texelLayer
+};
+
+PENUMBRA_INLINE TexelEncoding startTexelEncoding(int technique, float depth, TechniqueParams p) {
+  TexelEncoding e;
+  e.depth = depth;
+  e.texelLayer = 0;
+  e.csmWave = technique == kTechniqueCsm ? csmWaveStart(depth, p.csm) : vec4(0.0f);
+  return e;
+}
+
+PENUMBRA_INLINE TexelEncoding nextTexelLayer(int technique, TexelEncoding e) {
+  TexelEncoding next = e;
+  next.texelLayer = e.texelLayer + 1;
+  if (technique == kTechniqueCsm) next.csmWave = csmWaveNextTexture(e.csmWave);
+  return next;
+}
+
+// The layer intervals texel layer `texelLayer` encodes into: LVSM's two layers' warp ranges,
+// or the power CDF's first and second layer's clamp ranges (a texel spans at most two of its
+// three-channel layers), as (lower, upper, lower, upper); (0, 1, 0, 1) for other techniques.
+// They depend on the parameters only, so the renderer computes them once per frame into a
+// uniform block (lib/technique_block.glsl): a dynamically indexed split array in a by-value
+// struct costs llvmpipe per-lane gathers, and made LVSM's encode 7x a copy (issue 12).
+PENUMBRA_INLINE vec4 texelLayerRanges(int technique, int texelLayer, TechniqueParams p) {
+  vec4 ranges = vec4(0.0f, 1.0f, 0.0f, 1.0f);
+  if (technique == kTechniqueLvsm) {
+    int last = p.lvsm.splits.layerCount - 1;
+    vec2 a = lvsmLayerRange(min(2 * texelLayer, last), p.lvsm);
+    vec2 b = lvsmLayerRange(min(2 * texelLayer + 1, last), p.lvsm);
+    ranges = vec4(a.x, a.y, b.x, b.y);
+  } else if (technique == kTechniquePowerCdf) {
+    int last = p.powerCdf.splits.layerCount - 1;
+    int firstLayer = (4 * texelLayer) / 3;
+    vec2 a = powerCdfLayerRange(min(firstLayer, last), p.powerCdf);
+    vec2 b = powerCdfLayerRange(min(firstLayer + 1, last), p.powerCdf);
+    ranges = vec4(a.x, a.y, b.x, b.y);
+  }
+  return ranges;
+}
+
+// Every texel layer's ranges, as the uniform block holds them.
+struct TexelLayerRangeTable {
+  vec4 texelLayer[kMaxTexelLayers];
+};
+
+PENUMBRA_INLINE TexelLayerRangeTable texelLayerRangeTable(int technique, TechniqueParams p) {
+  TexelLayerRangeTable table;
+  for (int t = 0; t < kMaxTexelLayers; ++t) table.texelLayer[t] = texelLayerRanges(technique, t, p);
+  return table;
+}
+
 // Channels 4*texelLayer .. 4*texelLayer+3 of one depth: one texel of the channel texture's layer
-// `texelLayer`, encoded at once so that a warp's exponentials or the moments' powers are
-// computed once per texel, not once per channel. Components beyond the technique's channels are 0.
-PENUMBRA_INLINE vec4 encodeTexelLayer(int technique, float depth, int texelLayer,
-                                      TechniqueParams p) {
+// `texelLayer` (`ranges`: its texelLayerRanges), encoded at once so that a warp's exponentials
+// or the moments' powers are computed once per texel, not once per channel. Components beyond
+// the technique's channels are 0.
+PENUMBRA_INLINE vec4 encodeCurrentTexelLayer(int technique, TexelEncoding e, vec4 ranges,
+                                             TechniqueParams p) {
+  float depth = e.depth;
+  int texelLayer = e.texelLayer;
   vec4 v = vec4(0.0f);
   if (technique == kTechniqueVsm) {
     vec2 m = vsmEncode(depth);
     v = vec4(m.x, m.y, 0.0f, 0.0f);
   } else if (technique == kTechniqueLvsm) {  // two layers' moments per texel
-    int layers = p.lvsm.splits.layerCount;
-    vec2 a = lvsmEncodeLayer(depth, min(2 * texelLayer, layers - 1), p.lvsm);
-    vec2 b = lvsmEncodeLayer(depth, min(2 * texelLayer + 1, layers - 1), p.lvsm);
+    vec2 a = lvsmEncodeInRange(depth, vec2(ranges[0], ranges[1]));
+    vec2 b = lvsmEncodeInRange(depth, vec2(ranges[2], ranges[3]));
     v = vec4(a.x, a.y, b.x, b.y);
   } else if (technique == kTechniqueEvsm2 || technique == kTechniqueEvsm4) {
     v = evsmEncode(depth, p.evsm);
   } else if (technique == kTechniqueEsm) {
     v = vec4(esmEncode(depth, p.esm), 0.0f, 0.0f, 0.0f);
   } else if (technique == kTechniqueCsm) {
-    v = csmEncodeTexture(depth, texelLayer, p.csm);
+    v = csmWaveTexture(e.csmWave);
   } else if (technique == kTechniquePowerCdf) {
     // Three channels per layer, four per texel: a texel spans at most two layers.
-    int layers = p.powerCdf.splits.layerCount;
     int firstLayer = (4 * texelLayer) / 3;
-    vec3 first = powerCdfEncodeLayer(depth, min(firstLayer, layers - 1), p.powerCdf);
-    vec3 second = powerCdfEncodeLayer(depth, min(firstLayer + 1, layers - 1), p.powerCdf);
-    for (int c = 0; c < 4; ++c) {
-      int channel = 4 * texelLayer + c;
-      vec3 layer = channel / 3 == firstLayer ? first : second;
-      v[c] = layer[channel % 3];
-    }
+    float first = powerCdfDepthInRange(depth, vec2(ranges[0], ranges[1]));
+    float second = powerCdfDepthInRange(depth, vec2(ranges[2], ranges[3]));
+    for (int c = 0; c < 4; ++c) v[c] = (4 * texelLayer + c) / 3 == firstLayer ? first : second;
   } else if (technique == kTechniqueMsm) {
     v = msmEncode(depth, p.msm);
   } else {
@@ -63,6 +117,21 @@ PENUMBRA_INLINE vec4 encodeTexelLayer(int technique, float depth, int texelLayer
     if (4 * texelLayer + c >= count) v[c] = 0.0f;
   }
   return v;
+}
+
+// The walk at texel layer `texelLayer`, for passes that encode one layer at a time.
+PENUMBRA_INLINE TexelEncoding texelEncodingAt(int technique, float depth, int texelLayer,
+                                              TechniqueParams p) {
+  TexelEncoding e = startTexelEncoding(technique, depth, p);
+  for (int i = 0; i < texelLayer; ++i) e = nextTexelLayer(technique, e);
+  return e;
+}
+
+// Texel layer `texelLayer` of a depth alone, by the same walk and ranges.
+PENUMBRA_INLINE vec4 encodeTexelLayer(int technique, float depth, int texelLayer,
+                                      TechniqueParams p) {
+  return encodeCurrentTexelLayer(technique, texelEncodingAt(technique, depth, texelLayer, p),
+                                 texelLayerRanges(technique, texelLayer, p), p);
 }
 
 PENUMBRA_INLINE int channelReduction(int technique, int channel, TechniqueParams p) {
