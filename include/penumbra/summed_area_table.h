@@ -1,9 +1,11 @@
 // Summed-area tables (Crow 1984; thesis §3.5 summed-area VSM) whose box means stay accurate at
-// any size. Precision strategy: each channel is centred on its mean and quantised to a 64-bit
-// fixed-point integer with 2^31 steps per unit of its largest deviation R; prefix sums wrap
-// modulo 2^64, which leaves every box sum exact. The only error is that quantisation:
+// any size. Precision strategy: each channel is centred on the midpoint of its range and quantised
+// to a 64-bit fixed-point integer with a power-of-two step in (R * 2^-32, R * 2^-31], R half the
+// range (its largest deviation from the centre); prefix sums wrap modulo 2^64, which leaves every
+// box sum exact. The only error is that quantisation:
 //   |boxMean - exact mean| <= R * 2^-32   (about 2.3e-10 R) for every box at every image size.
-// The GPU's summed-area pass uses the same integer scheme.
+// The GPU's summed-area passes use the same integer scheme and reach the same bits
+// (shared/summed_area.h).
 #pragma once
 
 #include <cstdint>
@@ -25,7 +27,7 @@ class SummedAreaTable {
   // to the image. Requires x0 <= x1 and y0 <= y1.
   double boxMean(int x0, int y0, int x1, int y1, int channel) const;
 
-  // The guaranteed bound on |boxMean - exact mean| for a channel: R * 2^-32.
+  // The guaranteed bound on |boxMean - exact mean| for a channel: half a step, <= R * 2^-32.
   double errorBound(int channel) const;
 
   // The raw table, as the GPU's lookup reads it: the wrapping fixed-point sum over [0,x] x [0,y]
@@ -39,7 +41,7 @@ class SummedAreaTable {
   int height_ = 0;
   int channels_ = 0;
   std::vector<double> centre_;
-  std::vector<double> step_;  // value of one fixed-point unit, R * 2^-31
+  std::vector<double> step_;  // value of one fixed-point unit, a power of two <= R * 2^-31
   std::vector<uint64_t> sums_;
 };
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include "parallel.h"
 #include "shared/summed_area.h"
@@ -13,29 +14,33 @@ namespace penumbra {
 SummedAreaTable::SummedAreaTable(const Image& image)
     : width_(image.width()), height_(image.height()), channels_(image.channels()) {
   const size_t texels = size_t(width_) * size_t(height_);
-  centre_.assign(size_t(channels_), 0.0);
-  step_.assign(size_t(channels_), 1.0);
+  // Each channel's extremes fix its quantisation (shared/summed_area.h), as on the GPU.
+  std::vector<shaders::SummedAreaQuantisation> quantisation(static_cast<size_t>(channels_));
   for (int c = 0; c < channels_; ++c) {
-    double sum = 0.0;
-    for (size_t i = 0; i < texels; ++i) sum += image.data()[i * size_t(channels_) + size_t(c)];
-    const double centre = sum / double(texels);
-    double deviation = 0.0;
+    float lo = std::numeric_limits<float>::infinity();
+    float hi = -lo;
     for (size_t i = 0; i < texels; ++i) {
-      deviation = std::max(
-          deviation, std::abs(double(image.data()[i * size_t(channels_) + size_t(c)]) - centre));
+      const float v = image.data()[i * size_t(channels_) + size_t(c)];
+      lo = std::min(lo, v);
+      hi = std::max(hi, v);
     }
-    centre_[size_t(c)] = centre;
-    step_[size_t(c)] = shaders::summedAreaStepFor(deviation);
+    quantisation[size_t(c)] = shaders::summedAreaQuantisationFor(lo, hi);
+  }
+  centre_.resize(size_t(channels_));
+  step_.resize(size_t(channels_));
+  for (size_t c = 0; c < size_t(channels_); ++c) {
+    centre_[c] = quantisation[c].centre;
+    step_[c] = quantisation[c].step;
   }
   sums_.assign(texels * size_t(channels_), 0);
   // Row prefix sums in parallel, then column prefix sums; unsigned arithmetic wraps by design.
+  // std::nearbyint in the default rounding mode rounds ties to even, as GLSL's roundEven does.
   detail::parallelForRows(height_, [&](int y) {
     for (int c = 0; c < channels_; ++c) {
       uint64_t running = 0;
       for (int x = 0; x < width_; ++x) {
-        const double centred = double(image.at(x, y, c)) - centre_[size_t(c)];
-        const int64_t fixed = std::llround(centred / step_[size_t(c)]);
-        running += uint64_t(fixed);
+        const double scaled = shaders::summedAreaScaled(image.at(x, y, c), quantisation[size_t(c)]);
+        running += uint64_t(int64_t(std::nearbyint(scaled)));
         sums_[(size_t(y) * size_t(width_) + size_t(x)) * size_t(channels_) + size_t(c)] = running;
       }
     }

@@ -99,7 +99,7 @@ uint64_t frameBytes(int width, int height) {
 
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
   const size_t c = size_t(channels), n = size_t(shadowMapSize);
-  return {c * n * 16, c * 16, c * n * n * 8};
+  return {c * 2 * sizeof(uint32_t), c * 16, c * n * n * 8};
 }
 
 size_t lloydRowSumBytes(int shadowMapSize, int cascades) {
@@ -126,7 +126,7 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1) * cascades;
   if (buildsSummedAreaTable(s)) {
     const SummedAreaSizes sat = summedAreaSizes(layout.channels * layers, size);
-    m.summedArea = sat.rows + sat.stats + sat.sums;
+    m.summedArea = sat.extremes + sat.stats + sat.sums;
   }
   if (blursIntoScratch(s)) m.scratch = channelTextureBytes(layout, size, size, false) * cascades;
   if (buildsZmaxPyramid(s)) {

@@ -32,7 +32,7 @@ uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sam
 uint64_t frameBytes(int width, int height);               // the camera pass's seven targets
 uint64_t depthBoundsBytes(int width, int height);         // the depth-bounds pass
 struct SummedAreaSizes {
-  size_t rows, stats, sums;
+  size_t extremes, stats, sums;  // two keys, {centre, step} and the 64-bit sums per channel
 };
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize);
 size_t lloydSampleBytes(int shadowMapSize);

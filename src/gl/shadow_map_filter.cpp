@@ -122,13 +122,13 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
     glTextureStorage3D(scratch_.id(), 1, internalFormat(shape.layout), shape.size, shape.size,
                        layers);
   }
-  satRows_.reset();
+  satExtremes_.reset();
   satStats_.reset();
   satSums_.reset();
   if (shape.summedArea) {
     const SummedAreaSizes bytes =
         summedAreaSizes(shape.layout.channels * shape.cascades, shape.size);
-    satRows_.emplace(bytes.rows);
+    satExtremes_.emplace(bytes.extremes);
     satStats_.emplace(bytes.stats);
     satSums_.emplace(bytes.sums);
   }
@@ -240,24 +240,23 @@ void ShadowMapFilter::buildSummedAreaTable(ProgramCache& programs) {
   const int size = shape_.size;
   // Each cascade's channels are consecutive table channels (lib/summed_area.glsl).
   const int channels = shape_.layout.channels * shape_.cascades;
-  satRows_->bindStorage(1);
+  // Both extremes of every channel are reduced with atomicMin: all ones is the empty reduction.
+  const uint32_t allOnes = ~0u;
+  glClearNamedBufferData(satExtremes_->id(), GL_R32UI, GL_RED_INTEGER, GL_UNSIGNED_INT, &allOnes);
+  satExtremes_->bindStorage(1);
   satStats_->bindStorage(2);
   satSums_->bindStorage(3);
   glBindTextureUnit(0, channels_.id());
-  auto setCommon = [&](const Program& p) {
-    setSize(p, "size", size);
-    p.set("channelCount", channels);
-    p.set("channelsPerCascade", shape_.layout.channels);
-    p.set("layersPerCascade", shape_.layout.layers);
-  };
   const Program& stats = programs.compute("passes/sat_stats.comp", {});
-  setCommon(stats);
-  stats.dispatch(groups(size, 64), unsigned(channels));
-  const Program& centre = programs.compute("passes/sat_centre.comp", {});
-  setSize(centre, "size", size);
-  centre.dispatch(unsigned(channels));
+  setSize(stats, "size", size);
+  stats.set("channelsPerCascade", shape_.layout.channels);
+  stats.set("layersPerCascade", shape_.layout.layers);
+  stats.dispatch(groups(size, 64), 1, unsigned(shape_.layout.layers * shape_.cascades));
   const Program& rows = programs.compute("passes/sat_rows.comp", {});
-  setCommon(rows);
+  setSize(rows, "size", size);
+  rows.set("channelCount", channels);
+  rows.set("channelsPerCascade", shape_.layout.channels);
+  rows.set("layersPerCascade", shape_.layout.layers);
   rows.dispatch(groups(size, 64), unsigned(channels));
   const Program& columns = programs.compute("passes/sat_columns.comp", {});
   setSize(columns, "size", size);
@@ -278,7 +277,7 @@ uint64_t ShadowMapFilter::scratchBytes() const {
 
 uint64_t ShadowMapFilter::summedAreaBytes() const {
   if (!satSums_) return 0;
-  return satSums_->size() + satStats_->size() + satRows_->size();
+  return satSums_->size() + satStats_->size() + satExtremes_->size();
 }
 
 }  // namespace penumbra::gl

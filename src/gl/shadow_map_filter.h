@@ -69,7 +69,7 @@ class ShadowMapFilter {
   Texture scratch_;   // 2D array, one level: the blur's intermediate
   std::vector<Texture> channelLevels_;  // one-level views of channels_, for the mip pass
   MipChainPass mipChain_;
-  std::optional<Buffer> satRows_, satStats_, satSums_;
+  std::optional<Buffer> satExtremes_, satStats_, satSums_;
 };
 
 // The mip pass's programs for a layout's reductions (passes/mip_reduce.frag): mean channels in

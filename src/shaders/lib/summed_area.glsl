@@ -1,6 +1,7 @@
 // Summed-area tables in wrapping 64-bit fixed point (include/penumbra/summed_area_table.h): each
-// channel is centred on its mean and quantised with 2^31 steps per unit of its largest deviation;
-// prefix sums wrap modulo 2^64, leaving box sums exact. Sums are indexed (channel, y, x).
+// channel is centred on the midpoint of its range and quantised with a power-of-two step of at
+// most R * 2^-31 (shared/summed_area.h); prefix sums wrap modulo 2^64, leaving box sums exact.
+// Sums are indexed (channel, y, x).
 #ifndef PENUMBRA_LIB_SUMMED_AREA_GLSL
 #define PENUMBRA_LIB_SUMMED_AREA_GLSL
 
@@ -19,6 +20,18 @@ float satChannelValue(sampler2DArray channelMap, int channel, int x, int y, int 
 
 uint satIndex(int channel, int x, int y, ivec2 size) {
   return (uint(channel) * uint(size.y) + uint(y)) * uint(size.x) + uint(x);
+}
+
+// The channels' extremes as order-preserving keys (unsigned order = float order, -0 below +0),
+// so atomicMin finds them. Each channel holds two keys, both reduced with atomicMin: the lowest
+// value's key, then the complement of the highest's; a buffer cleared to all ones starts empty.
+uint satOrderedKey(float v) {
+  uint bits = floatBitsToUint(v);
+  return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
+
+float satKeyValue(uint key) {
+  return uintBitsToFloat((key & 0x80000000u) != 0u ? key & 0x7fffffffu : ~key);
 }
 
 #endif

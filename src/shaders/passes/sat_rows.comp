@@ -1,11 +1,17 @@
-// Summed-area table, step 3: quantise each texel and take prefix sums along its row.
+// Summed-area table, step 2: each channel's quantisation from its extremes (shared/summed_area.h,
+// as the CPU table derives it), then each texel quantised with the power-of-two scale (an exact
+// product, no division) and prefix-summed along its row, wrapping by design.
 #extension GL_ARB_gpu_shader_int64 : require
 #include "../lib/summed_area.glsl"
+#include "../shared/summed_area.h"
 
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2DArray channelMap;
-layout(std430, binding = 2) readonly buffer Stats {
-  SatChannelStats stats[];
+layout(std430, binding = 1) readonly buffer Extremes {
+  uint extremes[];  // per channel: key of the lowest value, complement of the highest's
+};
+layout(std430, binding = 2) writeonly buffer Stats {
+  SatChannelStats stats[];  // what the lookups read
 };
 layout(std430, binding = 3) writeonly buffer Sums {
   uint64_t sums[];
@@ -20,11 +26,18 @@ void main() {
   int y = int(gl_GlobalInvocationID.x);
   int channel = int(gl_GlobalInvocationID.y);
   if (y >= size.y || channel >= channelCount) return;
-  SatChannelStats s = stats[channel];
+  SummedAreaQuantisation q = summedAreaQuantisationFor(satKeyValue(extremes[2 * channel]),
+                                                       satKeyValue(~extremes[2 * channel + 1]));
+  if (y == 0) {
+    SatChannelStats s;
+    s.centre = q.centre;
+    s.step = q.step;
+    stats[channel] = s;
+  }
   uint64_t running = 0UL;
   for (int x = 0; x < size.x; ++x) {
     float v = satChannelValue(channelMap, channel, x, y, channelsPerCascade, layersPerCascade);
-    running += uint64_t(int64_t(round((double(v) - s.centre) / s.step)));
+    running += uint64_t(int64_t(roundEven(summedAreaScaled(v, q))));
     sums[satIndex(channel, x, y, size)] = running;
   }
 }

@@ -1,40 +1,37 @@
-// Summed-area table, step 1: per (row, channel) the sum, min and max of the level-0 channels.
-#extension GL_ARB_gpu_shader_int64 : require
+// Summed-area table, step 1: each channel's lowest and highest value, all its quantisation needs
+// (shared/summed_area.h). One invocation per column and channel layer walks the column with
+// whole-texel fetches (the 64 invocations of a group read one row segment at each step) and
+// leaves its extremes with one atomicMin per channel and end: the result does not depend on the
+// order, so it is the CPU's exactly.
 #include "../lib/summed_area.glsl"
 
 layout(local_size_x = 64) in;
 layout(binding = 0) uniform sampler2DArray channelMap;
-
-struct RowStats {
-  double sum;
-  float lo;
-  float hi;
-};
-layout(std430, binding = 1) writeonly buffer Rows {
-  RowStats rows[];
+layout(std430, binding = 1) buffer Extremes {
+  uint extremes[];  // per channel: key of the lowest value, complement of the highest's
 };
 
 uniform ivec2 size;
-uniform int channelCount;  // every cascade's channels
 uniform int channelsPerCascade;
 uniform int layersPerCascade;
 
 void main() {
-  int y = int(gl_GlobalInvocationID.x);
-  int channel = int(gl_GlobalInvocationID.y);
-  if (y >= size.y || channel >= channelCount) return;
-  double sum = 0.0LF;
-  float lo = 3.4e38f;
-  float hi = -3.4e38f;
-  for (int x = 0; x < size.x; ++x) {
-    float v = satChannelValue(channelMap, channel, x, y, channelsPerCascade, layersPerCascade);
-    sum += double(v);
+  int x = int(gl_GlobalInvocationID.x);
+  int layer = int(gl_GlobalInvocationID.z);  // cascade * layersPerCascade + layer in cascade
+  if (x >= size.x) return;
+  vec4 lo = vec4(uintBitsToFloat(0x7f800000u));  // +infinity
+  vec4 hi = -lo;
+  for (int y = 0; y < size.y; ++y) {
+    vec4 v = texelFetch(channelMap, ivec3(x, y, layer), 0);
     lo = min(lo, v);
     hi = max(hi, v);
   }
-  RowStats r;
-  r.sum = sum;
-  r.lo = lo;
-  r.hi = hi;
-  rows[channel * size.y + y] = r;
+  int cascade = layer / layersPerCascade;
+  int first = (layer % layersPerCascade) * 4;
+  int count = min(4, channelsPerCascade - first);
+  for (int k = 0; k < count; ++k) {
+    int channel = cascade * channelsPerCascade + first + k;
+    atomicMin(extremes[2 * channel], satOrderedKey(lo[k]));
+    atomicMin(extremes[2 * channel + 1], ~satOrderedKey(hi[k]));
+  }
 }
