@@ -31,7 +31,7 @@ Image halfPlaneBlocker(float blocker, float receiver) {
 
 // Linear depth over [near, far] world units; texel world size `texel` (at unit distance: spot).
 shaders::SoftLight softLight(float size, bool perspective, float near, float far, float texel) {
-  return {size, perspective ? 1 : 0, near, far, texel};
+  return {size, perspective ? 1 : 0, near, far, texel, shaders::kMaxSoftWidthTexels};
 }
 
 LookupConfig softConfig(Technique technique, FilterMode filter, shaders::SoftLight light) {

@@ -148,8 +148,12 @@ TEST_F(SoftShadowGpu, SoftLookupsEqualTheCpuTwinOnThePenumbraeScene) {
     const gl::RenderResult r = renderer.render(scene, s);
     LookupConfig config{c.technique, r.params,     c.filter,
                         s.blur,      s.anisotropy, renderer.halfFloatRounding()};
-    config.softLight = {scene.light.size, 0, view.nearDistance, view.farDistance,
-                        view.texelWorldSize(s.shadowMapSize)};
+    config.softLight = {scene.light.size,
+                        0,
+                        view.nearDistance,
+                        view.farDistance,
+                        view.texelWorldSize(s.shadowMapSize),
+                        shaders::kMaxSoftWidthTexels};
     const CpuShadowLookup twin(renderer.readDepthMap(), config);
     std::vector<float> errors;
     for (int y = 0; y < s.height; ++y) {
