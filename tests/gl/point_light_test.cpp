@@ -233,9 +233,13 @@ TEST_F(PointLight, FaceEdgesShowNoSeamOnTheSphereForEverySoftTechnique) {
         std::string(techniqueId(t)).c_str(), m.seam, m.seamMean, m.interior, m.interiorMean,
         m.seamPairs);
     ASSERT_GT(m.seamPairs, 200) << "the view must cross face edges";
-    // As for the hard lights: jumps across face edges no larger than the largest inside a face
-    // (there, the search's and the filter's taps snapping to the next texel as the lookup moves).
+    // As for the hard lights: jumps across face edges no larger than the largest inside a face.
+    // That alone cannot see a missing band here: the soft lookups' taps snap to the next texel
+    // as the lookup moves, jumps of up to 0.5 inside a face. On average, though, a seam-free
+    // edge is a pair of pixels like any other: measured seam / interior mean 0.79-0.97 with the
+    // band, 1.15-1.41 without it (the hard light's guard band: reads of the clamped border).
     EXPECT_LE(m.seam, m.interior) << techniqueId(t);
+    EXPECT_LE(m.seamMean, m.interiorMean) << techniqueId(t);
   }
 }
 
