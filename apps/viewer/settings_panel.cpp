@@ -264,7 +264,7 @@ void lightSection(ViewerState& state, Changes& changes) {
     // (applyOverrides), so the viewer and `render --light` place it alike.
     Scene placed = state.scene;
     placed.light = light;
-    placed.light.size = 0.0f;  // each kind has its own range; point lights cast hard shadows
+    placed.light.size = 0.0f;  // each kind has its own range and meaning of the size
     SceneOverrides kindOnly;
     kindOnly.lightKind = LightKind(kind);
     try {
@@ -292,18 +292,22 @@ void lightSection(ViewerState& state, Changes& changes) {
     changes.render |=
         ImGui::SliderFloat("spot angle", &light.spotAngleDegrees, 1.0f, 170.0f, "%.1f deg");
   }
-  // Light::size: a spot light's disk diameter in world units, a directional light's tangent of
-  // its angular diameter (docs/techniques.md); 0 is a point light's hard shadow. The renderer's
-  // point lights cast hard shadows only: no size for them.
-  if (light.kind != LightKind::Point) {
+  // Light::size: a spot light's disk diameter and a point light's sphere diameter in world units,
+  // a directional light's tangent of its angular diameter (docs/techniques.md); 0: hard shadows.
+  {
     const bool spot = light.kind == LightKind::Spot;
-    const float most = spot ? kMaxSpotLightSize : kMaxDirectionalLightSize;
+    const bool point = light.kind == LightKind::Point;
+    const float most = spot    ? kMaxSpotLightSize
+                       : point ? kMaxPointLightSize
+                               : kMaxDirectionalLightSize;
     if (light.size > most) {  // the other kind's range: a directional light takes at most 0.5
       light.size = most;
       changes.render = true;
     }
-    changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most,
-                                         spot ? "%.3f (disk diameter)" : "%.4f (tan of diameter)");
+    const char* format = spot    ? "%.3f (disk diameter)"
+                         : point ? "%.3f (sphere diameter)"
+                                 : "%.4f (tan of diameter)";
+    changes.render |= ImGui::SliderFloat("light size", &light.size, 0.0f, most, format);
     if (ImGui::IsItemHovered()) {
       ImGui::SetTooltip(
           "soft shadows: PCSS for pcf, contact-hardening filters for the filterable "

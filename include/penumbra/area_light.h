@@ -1,6 +1,7 @@
-// The area light behind soft shadows (Light::size): a disk, stood in for by N point lights spread
-// evenly over it. The area-light reference (docs/reference.md) averages the hard shadow tests of
-// one shadow map per sample point (gl::Renderer::renderAreaLightReference).
+// The area light behind soft shadows (Light::size): a disk (directional, spot) or a sphere
+// (point), stood in for by N point lights spread evenly over it. The area-light reference
+// (docs/reference.md) averages the hard shadow tests of one shadow map per sample point
+// (gl::Renderer::renderAreaLightReference).
 #pragma once
 
 #include <glm/glm.hpp>
@@ -28,5 +29,21 @@ std::vector<glm::vec2> stratifiedDiskSamples(int count);
 // of a disk of diameter size at unit distance, so the directions fill a cone whose angular
 // diameter has tangent size.
 Light areaLightSample(const Light& light, glm::vec2 diskPoint);
+
+// `count` (= side^2) points on the unit sphere, stratified: the centres of a side x side grid
+// over the unit square (u, v) mapped by Archimedes' map z = 1 - 2u, phi = 2 pi v, which
+// preserves area, so each point stands for 1/count of the sphere's surface.
+std::vector<glm::vec3> stratifiedSphereSamples(int count);
+
+// The point light at `spherePoint` (unit sphere coordinates) of a point light's sphere of
+// diameter size, with size 0.
+Light sphereLightSample(const Light& light, glm::vec3 spherePoint);
+
+// The share of the sphere light's radiance that its sample at `spherePoint` sends to `receiver`,
+// up to a factor common to all samples: a uniformly radiant (Lambertian) sphere's surface element
+// at y, normal n, is seen from x under the solid angle max(0, n . (x - y) / |x - y|) / |x - y|^2
+// per unit area, so uniform samples of the surface weighted so sample the silhouette disk by
+// solid angle (docs/reference.md). 0 for the samples x cannot see.
+float sphereLightSampleWeight(const Light& light, glm::vec3 spherePoint, glm::vec3 receiver);
 
 }  // namespace penumbra

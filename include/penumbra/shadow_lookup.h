@@ -32,9 +32,9 @@ struct LookupConfig {
   // Cascades: cascade 0's texel over this cascade's, so PCF keeps its kernel's world width
   // (shared/cascade_selection.h); 1 for one map or cascade 0.
   float kernelScale = 1.0f;
-  // The light's size and depth metric (shared/soft_shadow.h): size 0 (the default) is a point
-  // light; otherwise PCF is PCSS and the filterable techniques filter over the penumbra.
-  shaders::SoftLight softLight{0.0f, 0, 0.0f, 1.0f, 1.0f};
+  // The light's size and depth metric (shared/soft_shadow.h): size 0 (the default) casts hard
+  // shadows; otherwise PCF is PCSS and the filterable techniques filter over the penumbra.
+  shaders::SoftLight softLight{0.0f, 0, 0.0f, 1.0f, 1.0f, shaders::kMaxSoftWidthTexels};
 };
 
 // One pixel's lookup inputs, as the camera pass computes them (RenderResult::lookup,

@@ -186,13 +186,16 @@ std::string referenceName(const ComparisonResult& r) {
 std::string areaLightNote(const ComparisonResult& r) {
   if (!r.areaLight) return {};
   std::ostringstream h;
+  const bool sphere = r.scene.light.kind == LightKind::Point;
   h << "<p><b>Soft shadows, light size " << r.scene.light.size
     << "</b>: the reference is the <b>area-light reference</b>, the mean of the hard shadow tests "
        "of "
     << r.request.areaLightSamples
-    << " shadow maps rendered from stratified points of the light's disk; the ground truth is "
-       "it supersampled. Read \"filtered reference\" below as the area-light reference "
-       "(docs/reference.md).</p>\n";
+    << (sphere ? " six-face shadow maps rendered from stratified points of the light's sphere, "
+                 "each weighted by the solid angle it covers from the receiver"
+               : " shadow maps rendered from stratified points of the light's disk")
+    << "; the ground truth is it supersampled. Read \"filtered reference\" below as the "
+       "area-light reference (docs/reference.md).</p>\n";
   return h.str();
 }
 

@@ -1,11 +1,17 @@
 // The area-light reference (docs/reference.md): the mean of hard shadow tests from shadow maps
-// rendered at stratified points of the light's disk, the visibility an area light really gives
-// (up to the stratification and the maps' resolution), against which soft shadows are measured.
+// rendered at stratified points of the light's disk (directional, spot) or sphere (point: each
+// sample weighted by the solid angle it stands for from the pixel's receiver), the visibility an
+// area light really gives (up to the stratification and the maps' resolution), against which soft
+// shadows are measured.
+#include <optional>
+#include <vector>
+
 #include "box_downsample.h"
 #include "penumbra/area_light.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/renderer.h"
 #include "renderer_state.h"
+#include "shared/point_light_faces.h"
 #include "shared/shadow_lookup.h"
 
 namespace penumbra::gl {
@@ -37,6 +43,32 @@ void scale(Image& image, float factor) {
   for (float& v : image.data()) v *= factor;
 }
 
+// Where each pixel's receiver lies, from a point light's frame (its face, uv and linear depth:
+// pointFaceUv and pointLightDepth inverted); nullopt where the pixel is outside the map. The
+// position is the lookup's, normal offset included (a fraction of a texel).
+std::vector<std::optional<glm::vec3>> pointLightReceivers(const RenderResult& r,
+                                                          glm::vec3 lightPosition) {
+  const LightView& view = r.cascadeFrame.light;
+  const float tangent = 1.0f / view.clipFromLight[0][0];  // the faces' (guard band included)
+  std::vector<std::optional<glm::vec3>> receivers;
+  receivers.reserve(size_t(r.lookup.width()) * size_t(r.lookup.height()));
+  for (int y = 0; y < r.lookup.height(); ++y) {
+    for (int x = 0; x < r.lookup.width(); ++x) {
+      if (r.lookup.at(x, y, 3) <= 0.0f) {
+        receivers.emplace_back();
+        continue;
+      }
+      const int face = int(r.cascades.at(x, y, 0));
+      const glm::vec2 uv(r.lookup.at(x, y, 0), r.lookup.at(x, y, 1));
+      const float distance =
+          view.nearDistance + r.lookup.at(x, y, 2) * (view.farDistance - view.nearDistance);
+      receivers.emplace_back(lightPosition +
+                             distance * shaders::pointFaceDirection(face, uv, tangent));
+    }
+  }
+  return receivers;
+}
+
 }  // namespace
 
 RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
@@ -53,15 +85,50 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
   }
   const RenderSettings hard = hardTestSettings(settings, supersample);
   validate(hard);
+  FrameView centre = view;
+  centre.light.size = 0.0f;
+  const bool sphere = view.light.kind == LightKind::Point;
+  std::vector<Light> lights;
+  std::vector<glm::vec3> spherePoints;
+  if (sphere) {
+    spherePoints = stratifiedSphereSamples(samples);
+    for (const glm::vec3 point : spherePoints)
+      lights.push_back(sphereLightSample(view.light, point));
+  } else {
+    for (const glm::vec2 point : stratifiedDiskSamples(samples)) {
+      lights.push_back(areaLightSample(view.light, point));
+    }
+  }
+  // A sphere's samples count by the solid angle each covers from the pixel's receiver, found
+  // from the centre's frame; pixels outside the map, or that see no sample (on the light), take
+  // the plain mean.
+  const std::vector<std::optional<glm::vec3>> receivers =
+      sphere ? pointLightReceivers(renderFrame(hard, centre, false), view.light.position)
+             : std::vector<std::optional<glm::vec3>>{};
   Image visibility(hard.width, hard.height, 1);
   Image color(hard.width, hard.height, 4);
+  Image weighted(hard.width, hard.height, 1);
+  Image weightedColor(hard.width, hard.height, 4);
+  Image weights(hard.width, hard.height, 1);
   PassTimes wall, gpu;
-  for (const glm::vec2 point : stratifiedDiskSamples(samples)) {
+  for (size_t i = 0; i < lights.size(); ++i) {
     FrameView sample = view;
-    sample.light = areaLightSample(view.light, point);
+    sample.light = lights[i];
     const RenderResult r = renderFrame(hard, sample, false);
     accumulate(visibility, r.visibility);
     accumulate(color, r.color);
+    if (sphere) {
+      for (int y = 0; y < hard.height; ++y) {
+        for (int x = 0; x < hard.width; ++x) {
+          const std::optional<glm::vec3>& at =
+              receivers[size_t(y) * size_t(hard.width) + size_t(x)];
+          const float w = at ? sphereLightSampleWeight(view.light, spherePoints[i], *at) : 0.0f;
+          weights.at(x, y) += w;
+          weighted.at(x, y) += w * r.visibility.at(x, y);
+          for (int c = 0; c < 4; ++c) weightedColor.at(x, y, c) += w * r.color.at(x, y, c);
+        }
+      }
+    }
     wall.light += r.wallTimes.light;
     wall.camera += r.wallTimes.camera;
     gpu.light += r.gpuTimes.light;
@@ -69,9 +136,15 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
   }
   scale(visibility, 1.0f / float(samples));
   scale(color, 1.0f / float(samples));
+  for (int y = 0; y < hard.height; ++y) {
+    for (int x = 0; x < hard.width; ++x) {
+      const float total = weights.at(x, y);
+      if (!(total > 0.0f)) continue;
+      visibility.at(x, y) = weighted.at(x, y) / total;
+      for (int c = 0; c < 4; ++c) color.at(x, y, c) = weightedColor.at(x, y, c) / total;
+    }
+  }
   // The centre's lookup: coverage, receiver planes and the depth map the report reads.
-  FrameView centre = view;
-  centre.light.size = 0.0f;
   RenderResult result = renderFrame(hard, centre, false);
   result.visibility = boxDownsample(visibility, supersample);
   result.color = boxDownsample(color, supersample);

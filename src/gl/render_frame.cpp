@@ -18,6 +18,7 @@
 #include "shared/cascade_selection.h"
 #include "shared/point_light_faces.h"
 #include "shared/shading.h"
+#include "shared/soft_shadow.h"
 #include "shared/summed_area.h"
 #include "texture_readback.h"
 
@@ -119,13 +120,6 @@ RenderResult Renderer::render(const Scene& scene, const RenderSettings& settings
 void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& light) {
   checkLightSize(light);
   if (light.size == 0.0f) return;
-  if (light.kind == LightKind::Point) {
-    // PCSS's blocker search and the widened filters would cross face edges beyond the guard
-    // band, and the area-light reference needs sphere samples: neither is built yet.
-    throw Error("soft shadows (light size " + std::to_string(light.size) +
-                ") are not supported for point lights yet: point lights cast hard shadows "
-                "(light size 0) with every technique; directional and spot lights take a size");
-  }
   if (settings.cascades.count > 1) {
     throw Error("soft shadows (light size " + std::to_string(light.size) +
                 ") are not supported with cascades: use one map (--cascades 1)");
@@ -233,8 +227,14 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     const int pcfReach =
         !reference && settings.technique == Technique::Pcf ? settings.params.pcf.radius + 1 : 0;
     const int lookupReach = std::max(settings.blur.radius + 1, pcfReach);
-    faces = pointLightFaces(frame.lightView, view.light.position, settings.shadowMapSize,
-                            shaders::pointFaceGuardTexels(settings.blur.radius, lookupReach));
+    // A light with a size: the soft lookups' blocker search and widened filters reach up to
+    // their widest width beyond the edge (shared/point_light_faces.h).
+    const int softWidth = !reference && view.light.size > 0.0f
+                              ? int(shaders::pointLightSoftWidthTexels(settings.shadowMapSize))
+                              : 0;
+    faces = pointLightFaces(
+        frame.lightView, view.light.position, settings.shadowMapSize,
+        shaders::pointFaceGuardTexels(settings.blur.radius, lookupReach, softWidth));
     frame.lightView.clipFromLight = faces.clipFromLight;
     frame.pointFaceTangent = faces.tangent;
   }

@@ -1,4 +1,4 @@
-// Point samples of a disk area light (penumbra/area_light.h).
+// Point samples of a disk or sphere area light (penumbra/area_light.h).
 #include "penumbra/area_light.h"
 
 #include <algorithm>
@@ -76,6 +76,39 @@ Light areaLightSample(const Light& light, glm::vec2 diskPoint) {
     sample.direction = glm::normalize(travel - radius * (diskPoint.x * a + diskPoint.y * b));
   }
   return sample;
+}
+
+std::vector<glm::vec3> stratifiedSphereSamples(int count) {
+  checkAreaLightSamples(count);
+  const int side = int(std::lround(std::sqrt(double(count))));
+  std::vector<glm::vec3> points;
+  points.reserve(size_t(count));
+  for (int j = 0; j < side; ++j) {
+    for (int i = 0; i < side; ++i) {
+      const double u = (double(i) + 0.5) / double(side);
+      const double v = (double(j) + 0.5) / double(side);
+      const double z = 1.0 - 2.0 * u;
+      const double ring = std::sqrt(std::max(0.0, 1.0 - z * z));
+      const double phi = 2.0 * glm::pi<double>() * v;
+      points.emplace_back(float(ring * std::cos(phi)), float(ring * std::sin(phi)), float(z));
+    }
+  }
+  return points;
+}
+
+Light sphereLightSample(const Light& light, glm::vec3 spherePoint) {
+  Light sample = light;
+  sample.size = 0.0f;
+  sample.position += 0.5f * light.size * spherePoint;
+  return sample;
+}
+
+float sphereLightSampleWeight(const Light& light, glm::vec3 spherePoint, glm::vec3 receiver) {
+  const glm::vec3 toReceiver = receiver - (light.position + 0.5f * light.size * spherePoint);
+  const float squared = glm::dot(toReceiver, toReceiver);
+  if (!(squared > 0.0f)) return 0.0f;
+  const float facing = glm::dot(spherePoint, toReceiver) / std::sqrt(squared);
+  return std::max(facing, 0.0f) / squared;
 }
 
 }  // namespace penumbra

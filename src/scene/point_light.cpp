@@ -18,7 +18,8 @@ PointLightFaces pointLightFaces(const LightView& view, glm::vec3 position, int s
                                 int guardTexels) {
   if (guardTexels < 0 || 2 * guardTexels >= shadowMapSize / 2) {
     throw Error("a point light's guard band of " + std::to_string(guardTexels) +
-                " texels (blur radius + lookup radius + 2) needs shadow maps wider than " +
+                " texels (blur radius + lookup reach + 1, plus a light size's soft width) needs "
+                "shadow maps wider than " +
                 std::to_string(4 * guardTexels) + " texels; this one is " +
                 std::to_string(shadowMapSize) + ": use a larger shadow map or a smaller blur");
   }

@@ -1,6 +1,7 @@
 // Point lights end to end: `render --light point` and `compare` on the lantern scene give every
-// technique a finite visibility in [0, 1]; matched PCF stays the filtered reference face by face;
-// unknown light kinds and point-light soft shadows are refused naming the valid choices.
+// technique a finite visibility in [0, 1], hard and soft (--light-size: a sphere light); matched
+// PCF stays the filtered reference face by face; unknown light kinds are refused naming the valid
+// choices.
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
@@ -54,18 +55,40 @@ TEST(PointLightCli, CompareMeasuresEveryTechniqueAndMatchedPcfIsTheReference) {
   }
 }
 
-TEST(PointLightCli, UnknownKindsAndPointLightSizesAreRefusedNamingWhy) {
+TEST(PointLightCli, RenderWithALightSizeGivesEveryTechniqueASoftVisibilityInUnitRange) {
+  ScratchFolder scratch;
+  const RunResult run =
+      runPenumbra({"render", "--scene", "lantern", "--light", "point", "--light-size", "0.3",
+                   "--technique", "all", "--filter", "trilinear", "--shadow-size", "128", "--width",
+                   "48", "--height", "48", "--out", "out"},
+                  scratch.path());
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  for (const char* t : kTechniques) {
+    const nlohmann::json record = nlohmann::json::parse(
+        readFile(scratch.path() / "out" / (std::string("lantern_") + t + ".json")));
+    EXPECT_EQ(record["light_kind"], "point") << t;
+    const nlohmann::json& v = record["visibility"];
+    EXPECT_GE(v["min"].get<double>(), 0.0) << t;
+    EXPECT_LE(v["max"].get<double>(), 1.0) << t;
+    // The room's walls are mostly lit, the cubes' own far sides and their shadows dark.
+    EXPECT_GT(v["mean"].get<double>(), 0.3) << t;
+    EXPECT_LT(v["min"].get<double>(), 0.5) << t;
+  }
+}
+
+TEST(PointLightCli, UnknownKindsAreRefusedNamingTheValidOnes) {
   ScratchFolder scratch;
   const RunResult unknown =
       runPenumbra({"render", "--light", "omni", "--out", "out"}, scratch.path());
   EXPECT_EQ(unknown.exitCode(), 1) << unknown.output;
   EXPECT_NE(unknown.output.find("valid kinds: directional, spot, point"), std::string::npos)
       << unknown.output;
-  const RunResult soft = runPenumbra({"render", "--scene", "lantern", "--light-size", "0.2",
-                                      "--filter", "trilinear", "--out", "out"},
-                                     scratch.path());
-  EXPECT_EQ(soft.exitCode(), 1) << soft.output;
-  EXPECT_NE(soft.output.find("point lights"), std::string::npos) << soft.output;
+  const RunResult tooBig = runPenumbra(
+      {"render", "--scene", "lantern", "--light-size", "11", "--out", "out"}, scratch.path());
+  EXPECT_EQ(tooBig.exitCode(), 1) << tooBig.output;
+  EXPECT_NE(tooBig.output.find("for a point light (world units of sphere diameter)"),
+            std::string::npos)
+      << tooBig.output;
 }
 
 }  // namespace

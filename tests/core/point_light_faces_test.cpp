@@ -54,6 +54,17 @@ TEST(PointLightFaces, EveryDirectionLandsInsideItsFacesNinetyDegreeRegion) {
   }
 }
 
+TEST(PointLightFaces, DirectionInvertsTheFaceProjection) {
+  // The area-light reference finds each pixel's receiver from its face, uv and distance.
+  const float t = pointFaceTangent(kSize, kGuard);
+  for (const glm::vec3& d : randomDirections(2000)) {
+    const int face = pointLightFace(d);
+    const glm::vec3 uv = pointFaceUv(face, d, t);
+    const glm::vec3 back = shaders::pointFaceDirection(face, glm::vec2(uv.x, uv.y), t);
+    EXPECT_NEAR(glm::dot(back, glm::normalize(d)), 1.0f, 1e-5f);  // fp32 round trip
+  }
+}
+
 TEST(PointLightFaces, NeighbouringFacesAgreeWithinTheGuardBand) {
   // A direction within the guard band of a neighbouring face lands inside that face's map, at the
   // point the neighbour's own projection gives: the band holds the neighbour's texels.

@@ -126,6 +126,8 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
   light.nearDistance = lightNear;
   light.farDistance = lightFar;
   light.texelWorldSize = cascadeTexelWorldSize[cascade];
+  light.maxWidthTexels =
+      pointLight != 0 ? pointLightSoftWidthTexels(shadowMapSize) : kMaxSoftWidthTexels;
   ShadowSample shadow = shadowLookup(sources, settings, technique, params, uv, receiver, uvDx,
                                      uvDy, depthPerTexel, light);
   return vec2(shadow.visibility, shadow.diagnostic);

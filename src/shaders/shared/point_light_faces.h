@@ -50,11 +50,24 @@ PENUMBRA_INLINE float pointFaceTangent(int shadowMapSize, int guardTexels) {
 // read beyond it. The prefilter's blur reaches `blurRadius` texels (its kernel clamps at the
 // layer's border, which must stay beyond the data the edge's texels average); the lookup's own
 // taps reach `lookupReach` texels further (a bilinear tap: 1; PCF of radius r: r + 1); one more
-// texel because the edge lies anywhere within its texel. Mip-mapped lookups at level L read
+// texel because the edge lies anywhere within its texel. A light with a size adds its soft
+// lookups' reach, `softWidthTexels` (pointLightSoftWidthTexels, 0 when hard): every tap lies
+// within one width w of the lookup (the blocker search and PCSS's kernel within w/2 + 1, the
+// summed-area box within w/2 + 1, the mip probes within 3w/8 plus a bilinear tap at the next
+// level of a probe's lod, 2 w / (4 sqrt 3): 0.67 w). Mip-mapped lookups at level L read
 // 2^L-texel blocks: levels whose blocks exceed the band read the clamped border at the edge
 // (minified views of a face's edge only; docs/renderer.md).
-PENUMBRA_INLINE int pointFaceGuardTexels(int blurRadius, int lookupReach) {
-  return blurRadius + lookupReach + 1;
+PENUMBRA_INLINE int pointFaceGuardTexels(int blurRadius, int lookupReach, int softWidthTexels) {
+  return blurRadius + lookupReach + 1 + softWidthTexels;
+}
+
+// The unit direction from the light through `uv` of face `face`: pointFaceUv's inverse (with
+// the distance from the light it gives the position; the area-light reference's receivers).
+PENUMBRA_INLINE vec3 pointFaceDirection(int face, vec2 uv, float tangent) {
+  PointFaceFrame f = pointLightFaceFrame(face);
+  float x = (uv.x * 2.0f - 1.0f) * tangent;
+  float y = (uv.y * 2.0f - 1.0f) * tangent;
+  return normalize(f.forward + x * f.right + y * f.up);
 }
 
 // Where a position relative to the light lands in face `face`'s map: uv in [0, 1] over the guarded

@@ -12,15 +12,19 @@
 PENUMBRA_BEGIN_SHARED
 
 // The light as the lookup sees it. Linear depth d in [0,1] is the distance
-// near + d (far - near): from the light (spot) or along its direction (directional).
+// near + d (far - near): from the light (spot, point) or along its direction (directional).
 struct SoftLight {
-  float size;          // 0: a point light. Spot: disk diameter, world units; directional: the
-                       // tangent of the angular diameter (penumbra per unit of distance)
-  int perspective;     // 1: spot light, 0: directional
+  float size;          // 0: hard. Spot: disk diameter, world units; point: sphere diameter, world
+                       // units, taken as the disk of that diameter facing the receiver
+                       // (docs/techniques.md "Soft shadows"); directional: the tangent of the
+                       // angular diameter (penumbra per unit of distance)
+  int perspective;     // 1: spot light or a point light's face, 0: directional
   float nearDistance;  // world units
   float farDistance;
-  float texelWorldSize;  // a level-0 texel's world size: directional everywhere, spot at unit
-                         // distance (LightView::texelWorldSize)
+  float texelWorldSize;  // a level-0 texel's world size: directional everywhere, spot and point
+                         // faces at unit distance (LightView::texelWorldSize)
+  float maxWidthTexels;  // the widest blocker search and filter: kMaxSoftWidthTexels, a point
+                         // light's pointLightSoftWidthTexels (its faces' guard band holds it)
 };
 
 // Taps per side of the blocker search and of PCSS's kernel: fixed counts, spread over a width
@@ -30,6 +34,14 @@ const int kPcssSide = 8;
 // The widest blocker search and filter, in level-0 texels: the search stays local and the
 // summed-area and mip lookups stay within the map's scale.
 const float kMaxSoftWidthTexels = 128.0f;
+
+// A point light's widest blocker search and filter: a sixteenth of the map, at most
+// kMaxSoftWidthTexels. Every tap of a lookup at a face's 90-degree edge lies within one width of
+// it (see pointFaceGuardTexels), so the faces' guard band grows by this many texels: 16 of 256,
+// 64 of 1024, keeping 7/8 of each face's texels on its 90 degrees (docs/techniques.md).
+PENUMBRA_INLINE float pointLightSoftWidthTexels(int shadowMapSize) {
+  return min(kMaxSoftWidthTexels, float(shadowMapSize / 16));
+}
 // A blocker lies in front of the receiver plane extended to its texel by more than this (linear
 // depth): the hard test's default constant bias, which absorbs the plane's fp32 rounding over a
 // wide search.
@@ -75,7 +87,7 @@ struct BlockerEstimate {
 // receiver plane (depthPerTexel: its depth gradient per texel), on a regular grid of taps.
 PENUMBRA_INLINE BlockerEstimate searchBlockers(LookupSources s, int size, SoftLight l, vec2 uv,
                                                float receiverDepth, vec2 depthPerTexel) {
-  float width = clamp(penumbraTexels(l, receiverDepth, 0.0f), 1.0f, kMaxSoftWidthTexels);
+  float width = clamp(penumbraTexels(l, receiverDepth, 0.0f), 1.0f, l.maxWidthTexels);
   vec2 centre = uv * float(size);
   float sum = 0.0f;
   float count = 0.0f;
@@ -97,9 +109,9 @@ PENUMBRA_INLINE BlockerEstimate searchBlockers(LookupSources s, int size, SoftLi
   return b;
 }
 
-// Step 2: the filter width in texels for the blockers found, in [0, kMaxSoftWidthTexels].
+// Step 2: the filter width in texels for the blockers found, in [0, l.maxWidthTexels].
 PENUMBRA_INLINE float softFilterTexels(SoftLight l, float receiverDepth, BlockerEstimate b) {
-  return clamp(penumbraTexels(l, receiverDepth, b.depth), 0.0f, kMaxSoftWidthTexels);
+  return clamp(penumbraTexels(l, receiverDepth, b.depth), 0.0f, l.maxWidthTexels);
 }
 
 // Step 3 for PCF: a box of `width` texels (at least one) sampled by kPcssSide^2 bilinear depth
