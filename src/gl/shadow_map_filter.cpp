@@ -97,6 +97,8 @@ MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDe
     reductions.push_back({"BILINEAR_MEAN", "1"});
   } else if (!allMean && layout.channels == 1) {
     reductions.push_back({"GATHER_ONE_CHANNEL", "1"});
+  } else if (!allMean && layout.layers == 1 && layout.format != StorageFormat::Unorm8) {
+    reductions.push_back({"GATHER_PER_CHANNEL", "1"});
   }
   const Program& general =
       programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);

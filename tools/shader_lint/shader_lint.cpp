@@ -89,6 +89,7 @@ std::vector<Defines> variants(const std::string& source) {
   expand("BILINEAR_MEAN", {"0", "1"});
   expand("GATHER_ONE_CHANNEL", {"0", "1"});
   expand("PACKED_UNORM8", {"0", "1"});
+  expand("GATHER_PER_CHANNEL", {"0", "1"});
   return result;
 }
 

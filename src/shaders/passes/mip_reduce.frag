@@ -41,7 +41,24 @@ uniform int layer;
 #define HALVING 0
 #endif
 
+#ifndef GATHER_PER_CHANNEL
+#define GATHER_PER_CHANNEL 0
+#endif
+
 layout(location = 0) out vec4 reduced;
+
+// A plain 2x2 block's channel by its reduction: `mean` from the bilinear sample, else the
+// gathered texels reduced in the loop's order ((x0, y0), (x1, y0), (x0, y1), (x1, y1) are the
+// gather's w, z, x, y).
+float reduceGathered(int reduction, vec4 block, float mean) {
+  if (reduction == kReduceMean) return mean;
+  ChannelAccumulator acc = startReduction(reduction, params.esm.exponent);
+  acc = accumulateTap(acc, block.w, 0.25f);
+  acc = accumulateTap(acc, block.z, 0.25f);
+  acc = accumulateTap(acc, block.x, 0.25f);
+  acc = accumulateTap(acc, block.y, 0.25f);
+  return reductionResult(acc);
+}
 
 void main() {
   ivec2 p = ivec2(gl_FragCoord.xy);
@@ -73,6 +90,20 @@ void main() {
     sum = accumulateMeanTexel(sum, unpackUnorm4x8(block.z), 0.25f);
     sum = accumulateMeanTexel(sum, unpackUnorm4x8(block.x), 0.25f);
     reduced = accumulateMeanTexel(sum, unpackUnorm4x8(block.y), 0.25f);
+    return;
+  }
+#endif
+#if GATHER_PER_CHANNEL && defined(LAYER_REDUCTIONS) && !PACKED_UNORM8
+  // One layer of mixed reductions known at compile time (the power CDF's min, max and mean):
+  // the mean channels from one bilinear sample, each other channel from one gather of its four
+  // texels; gathers of channels the sample serves are dead code.
+  if (plainBlock) {
+    vec3 at = vec3(corner, float(layer));
+    vec4 mean = textureLod(source, at, 0.0f);
+    reduced = vec4(reduceGathered(LAYER_REDUCTIONS[0], textureGather(source, at, 0), mean[0]),
+                   reduceGathered(LAYER_REDUCTIONS[1], textureGather(source, at, 1), mean[1]),
+                   reduceGathered(LAYER_REDUCTIONS[2], textureGather(source, at, 2), mean[2]),
+                   reduceGathered(LAYER_REDUCTIONS[3], textureGather(source, at, 3), mean[3]));
     return;
   }
 #endif
