@@ -60,6 +60,7 @@ static_assert(int(ChannelReduction::LogMeanExp) == shaders::kReduceLogMeanExp);
 // GPU-mirrored blocks keep std140/std430 layout: whole vec4 rows.
 static_assert(sizeof(shaders::LayerSplits) % 16 == 0);
 static_assert(sizeof(TechniqueParams) % 16 == 0);
+static_assert(sizeof(shaders::TexelLayerRangeTable) == 16 * size_t(shaders::kMaxTexelLayers));
 
 }  // namespace
 

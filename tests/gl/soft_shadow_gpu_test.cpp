@@ -150,18 +150,19 @@ Scene sphereEdgeScene() {
 // The sphere light's visibility at a ground point: the share, by solid angle, of the cone of
 // directions towards the sphere that the plate leaves open (the reference's weights make its
 // samples stand for solid angle, docs/reference.md). The plate at height h over x < 0 blocks
-// the directions w from p = (x, 0, z) with m . w > 0, m = (-1, -x, 0) (the plane through p and
-// the edge). In the cone's frame (axis a, half angle asin(r / |c - p|), m at angle beta off the
-// plane perpendicular to a), direction (theta, phi) is blocked when
-// cos(theta) sin(beta) + sin(theta) cos(beta) cos(phi) > 0: for each theta an arc of phi in
-// closed form, and theta integrated by the midpoint rule (20000 steps: error below 1e-8).
+// the directions w from p = (x, 0, z) with m . w > 0, m = (-h, -x, 0) (normal to the plane
+// through p and the edge, which runs from p along (-x, h, 0) and along z). In the cone's frame
+// (axis a, half angle asin(r / |c - p|), m at angle beta off the plane perpendicular to a),
+// direction (theta, phi) is blocked when cos(theta) sin(beta) + sin(theta) cos(beta) cos(phi) > 0:
+// for each theta an arc of phi in closed form, and theta integrated by the midpoint rule (20000
+// steps: error below 1e-8).
 double analyticSphereEdgeVisibility(glm::vec3 ground) {
   const glm::dvec3 p(ground);
   const glm::dvec3 c(0.0, double(kSphereHeight), 0.0);
   const double distance = glm::length(c - p);
   const glm::dvec3 a = (c - p) / distance;
   const double alpha = std::asin(0.5 * double(kSphereSize) / distance);
-  const glm::dvec3 m = glm::normalize(glm::dvec3(-1.0, -double(kPlateHeight) * p.x, 0.0));
+  const glm::dvec3 m = glm::normalize(glm::dvec3(-double(kPlateHeight), -p.x, 0.0));
   const double sinBeta = glm::dot(a, m);
   const double cosBeta = glm::length(m - sinBeta * a);
   const int steps = 20000;

@@ -53,9 +53,9 @@ PENUMBRA_INLINE float csmDepthScale(CsmParams p) {
 // each term directly takes 2M sines and cosines per texel (32 at M = 16: CSM's encode took 3.3x a
 // copy, docs/results/passes-llvmpipe-2026-12-01.md). A wave holds (sin c_k z, cos c_k z) of the
 // next texture's first term and (sin 2 pi z, cos 2 pi z) of the step. Each rotation adds a few
-// float roundings; after the 2M - 1 rotations of M = 16 the terms stay within 1.5e-5 of exact,
-// as close as evaluating each term in float (1.4e-5: the argument rounds; docs/techniques.md,
-// Csm.WaveRecurrenceStaysWithinItsRoundingOfTheDirectBasis).
+// float roundings; after the M - 1 = 15 rotations of M = 16 the terms stay within 7.3e-6 of
+// exact, as close as evaluating each term in float (7.1e-6: the argument 31 pi z rounds;
+// docs/techniques.md, Csm.WaveRecurrenceStaysWithinItsRoundingOfTheDirectBasis).
 // The wave of the first term at a scaled depth z (csmDepthScale times the linear depth).
 PENUMBRA_INLINE vec4 csmWave(float z) {
   float theta = csmFrequency(1) * z;
