@@ -4,7 +4,9 @@
 // choices.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "run_penumbra.h"
 
@@ -14,6 +16,22 @@ namespace {
 const char* const kTechniques[] = {"hard",  "pcf", "vsm", "lvsm",     "evsm2",
                                    "evsm4", "esm", "csm", "powercdf", "msm"};
 
+// Every technique's render record in `folder`: a point light, visibility in [0,1], mostly lit
+// (mean above 0.3) and shadowed somewhere (min below 0.5).
+void expectPointLightVisibilityInUnitRange(const std::filesystem::path& folder,
+                                           const std::string& scene) {
+  for (const char* t : kTechniques) {
+    const nlohmann::json record =
+        nlohmann::json::parse(readFile(folder / (scene + "_" + t + ".json")));
+    EXPECT_EQ(record["light_kind"], "point") << t;
+    const nlohmann::json& v = record["visibility"];
+    EXPECT_GE(v["min"].get<double>(), 0.0) << t;
+    EXPECT_LE(v["max"].get<double>(), 1.0) << t;
+    EXPECT_GT(v["mean"].get<double>(), 0.3) << t;
+    EXPECT_LT(v["min"].get<double>(), 0.5) << t;
+  }
+}
+
 TEST(PointLightCli, RenderGivesEveryTechniqueAVisibilityInUnitRange) {
   ScratchFolder scratch;
   const RunResult run = runPenumbra(
@@ -21,17 +39,8 @@ TEST(PointLightCli, RenderGivesEveryTechniqueAVisibilityInUnitRange) {
        "all", "--shadow-size", "128", "--width", "64", "--height", "36", "--out", "out"},
       scratch.path());
   ASSERT_EQ(run.exitCode(), 0) << run.output;
-  for (const char* t : kTechniques) {
-    const nlohmann::json record = nlohmann::json::parse(
-        readFile(scratch.path() / "out" / (std::string("backyard_") + t + ".json")));
-    EXPECT_EQ(record["light_kind"], "point") << t;
-    const nlohmann::json& v = record["visibility"];
-    EXPECT_GE(v["min"].get<double>(), 0.0) << t;
-    EXPECT_LE(v["max"].get<double>(), 1.0) << t;
-    // Lit where nothing occludes (most of the ground), shadowed behind the fence and boxes.
-    EXPECT_GT(v["mean"].get<double>(), 0.3) << t;
-    EXPECT_LT(v["min"].get<double>(), 0.5) << t;
-  }
+  // Lit where nothing occludes (most of the ground), shadowed behind the fence and boxes.
+  expectPointLightVisibilityInUnitRange(scratch.path() / "out", "backyard");
 }
 
 TEST(PointLightCli, CompareMeasuresEveryTechniqueAndMatchedPcfIsTheReference) {
@@ -63,17 +72,8 @@ TEST(PointLightCli, RenderWithALightSizeGivesEveryTechniqueASoftVisibilityInUnit
                    "48", "--height", "48", "--out", "out"},
                   scratch.path());
   ASSERT_EQ(run.exitCode(), 0) << run.output;
-  for (const char* t : kTechniques) {
-    const nlohmann::json record = nlohmann::json::parse(
-        readFile(scratch.path() / "out" / (std::string("lantern_") + t + ".json")));
-    EXPECT_EQ(record["light_kind"], "point") << t;
-    const nlohmann::json& v = record["visibility"];
-    EXPECT_GE(v["min"].get<double>(), 0.0) << t;
-    EXPECT_LE(v["max"].get<double>(), 1.0) << t;
-    // The room's walls are mostly lit, the cubes' own far sides and their shadows dark.
-    EXPECT_GT(v["mean"].get<double>(), 0.3) << t;
-    EXPECT_LT(v["min"].get<double>(), 0.5) << t;
-  }
+  // The room's walls are mostly lit, the cubes' own far sides and their shadows dark.
+  expectPointLightVisibilityInUnitRange(scratch.path() / "out", "lantern");
 }
 
 TEST(PointLightCli, UnknownKindsAreRefusedNamingTheValidOnes) {
