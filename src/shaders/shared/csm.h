@@ -4,6 +4,7 @@
 #define PENUMBRA_SHARED_CSM_H
 #include "constants.h"
 #include "prelude.h"
+#include "sin_cos_pi.h"
 PENUMBRA_BEGIN_SHARED
 
 const int kCsmMaxTerms = 16;
@@ -48,53 +49,62 @@ PENUMBRA_INLINE float csmDepthScale(CsmParams p) {
   return max(0.5f, 1.0f - (1.0f + p.offsetScale) / (2.0f * float(p.termCount)));
 }
 
-// The basis images by angle addition: the frequencies step by c_{k+1} - c_k = 2 pi, so one sine
-// and cosine of c_1 z and the double angle 2 pi z give every term by rotation, where evaluating
-// each term directly takes 2M sines and cosines per texel (32 at M = 16: CSM's encode took 3.3x a
-// copy, docs/results/passes-llvmpipe-2026-12-01.md). A wave holds (sin c_k z, cos c_k z) of the
-// next texture's first term and (sin 2 pi z, cos 2 pi z) of the step. Each rotation adds a few
-// float roundings; after the M - 1 = 15 rotations of M = 16 the terms stay within 7.3e-6 of
-// exact, as close as evaluating each term in float (7.1e-6: the argument 31 pi z rounds;
-// docs/techniques.md, Csm.WaveRecurrenceStaysWithinItsRoundingOfTheDirectBasis).
-// The wave of the first term at a scaled depth z (csmDepthScale times the linear depth).
-PENUMBRA_INLINE vec4 csmWave(float z) {
-  float theta = csmFrequency(1) * z;
-  float s = sin(theta);
-  float c = cos(theta);
-  return vec4(s, c, 2.0f * s * c, c * c - s * s);
+// The basis images by Chebyshev's recurrence: texture t holds the terms k = 2t + 1 and 2t + 2,
+// whose frequencies c_k are 4 pi apart from texture to texture, so with theta = 4 pi z each
+// component follows sin((n + 1) theta + phi) = 2 cos(theta) sin(n theta + phi) - sin((n - 1) theta
+// + phi) (and likewise cosine): one multiply-add per value and texture, from one sine and cosine
+// of c_1 z and the multiple-angle identities. Evaluating each term directly takes 2M sines and
+// cosines per texel (32 at M = 16: CSM's encode took 3.3x a copy of its textures on llvmpipe,
+// 1.9x with the terms by rotation; docs/results/passes-llvmpipe-2026-12-01.md). Accuracy: see
+// docs/techniques.md and Csm.BasisRecurrenceStaysWithinItsRoundingOfTheDirectBasis.
+struct CsmBasisWalk {
+  vec4 terms;          // texture t's (sin c_k z, cos c_k z, sin c_k+1 z, cos c_k+1 z), k = 2t + 1
+  vec4 previous;       // texture t - 1's (before texture 0: the frequencies -3 pi and -pi)
+  float twiceCosStep;  // 2 cos(4 pi z)
+};
+
+// The walk at texture 0 for a scaled depth z (csmDepthScale times the linear depth).
+PENUMBRA_INLINE CsmBasisWalk csmBasisWalk(float z) {
+  vec2 first = sinCosPi(z);  // c_1 = pi
+  float s = first[0];
+  float c = first[1];
+  float cc = c * c;
+  float s3 = s * (4.0f * cc - 1.0f);  // sin 3a = sin a (4 cos^2 a - 1)
+  float c3 = c * (4.0f * cc - 3.0f);  // cos 3a = cos a (4 cos^2 a - 3)
+  float cos2 = 2.0f * cc - 1.0f;      // cos 2a
+  CsmBasisWalk w;
+  w.terms = vec4(s, c, s3, c3);
+  w.previous = vec4(-s3, c3, -s, c);
+  w.twiceCosStep = 4.0f * cos2 * cos2 - 2.0f;  // 2 cos 4a
+  return w;
 }
 
-PENUMBRA_INLINE vec4 csmWaveStart(float depth, CsmParams p) {
-  return csmWave(csmDepthScale(p) * depth);
+PENUMBRA_INLINE CsmBasisWalk csmBasisWalkStart(float depth, CsmParams p) {
+  return csmBasisWalk(csmDepthScale(p) * depth);
 }
 
-// The wave one term on: c_k z + 2 pi z.
-PENUMBRA_INLINE vec4 csmWaveRotate(vec4 wave) {
-  return vec4(wave[0] * wave[3] + wave[1] * wave[2], wave[1] * wave[3] - wave[0] * wave[2], wave[2],
-              wave[3]);
+// The walk one texture on.
+PENUMBRA_INLINE CsmBasisWalk csmBasisWalkNext(CsmBasisWalk w) {
+  CsmBasisWalk next;
+  next.terms = w.twiceCosStep * w.terms - w.previous;
+  next.previous = w.terms;
+  next.twiceCosStep = w.twiceCosStep;
+  return next;
 }
 
-// The wave's basis texture: terms k and k + 1 as (sin c_k z, cos c_k z, sin c_k+1 z,
-// cos c_k+1 z) of the scaled depth (eq. 14), mapped from [-1,1] to [0,1] so that unorm8 storage
-// holds them; the map is affine, so filtering commutes.
-// The rotations' roundings may carry a term a few ulps past +-1: clamped, as unorm storage does.
-PENUMBRA_INLINE vec4 csmWaveTexture(vec4 wave) {
-  vec4 next = csmWaveRotate(wave);
-  vec4 basis = vec4(wave[0], wave[1], next[0], next[1]) * 0.5f + vec4(0.5f);
-  return clamp(basis, vec4(0.0f), vec4(1.0f));
+// The walk's basis texture (eq. 14), mapped from [-1,1] to [0,1] so that unorm8 storage holds it;
+// the map is affine, so filtering commutes. The recurrence's roundings may carry a term a few
+// ulps past +-1: clamped, as unorm storage does.
+PENUMBRA_INLINE vec4 csmBasisTexture(CsmBasisWalk w) {
+  return clamp(w.terms * 0.5f + vec4(0.5f), vec4(0.0f), vec4(1.0f));
 }
 
-// The wave of the texture after this one (two terms on).
-PENUMBRA_INLINE vec4 csmWaveNextTexture(vec4 wave) {
-  return csmWaveRotate(csmWaveRotate(wave));
-}
-
-// Basis texture `index` alone (terms 2 index + 1 and 2 index + 2), by the same rotations as the
-// encode's walk over every texture, so both give the same values.
+// Basis texture `index` alone (terms 2 index + 1 and 2 index + 2), by the same walk as the
+// encode's over every texture, so both give the same values.
 PENUMBRA_INLINE vec4 csmEncodeTexture(float depth, int index, CsmParams p) {
-  vec4 wave = csmWaveStart(depth, p);
-  for (int i = 0; i < index; ++i) wave = csmWaveNextTexture(wave);
-  return csmWaveTexture(wave);
+  CsmBasisWalk w = csmBasisWalkStart(depth, p);
+  for (int i = 0; i < index; ++i) w = csmBasisWalkNext(w);
+  return csmBasisTexture(w);
 }
 
 PENUMBRA_INLINE int csmTextureCount(CsmParams p) {
@@ -115,18 +125,21 @@ PENUMBRA_INLINE float csmReceiverOffset(CsmParams p) {
 // (eq. 11-13, the step oriented as visibility H(z - d)), attenuated and offset (§3.2), unclamped.
 PENUMBRA_INLINE float csmSeries(vec4 filteredBasis[8], float receiverDepth, CsmParams p) {
   float d = csmDepthScale(p) * receiverDepth - csmReceiverOffset(p);
-  // The receiver's terms by the encode's rotations: at d = z each product cancels as exactly as
-  // the stored basis allows.
-  vec4 wave = csmWave(d);
+  // The receiver's terms by the encode's walk: at d = z each product cancels as exactly as the
+  // stored basis allows.
+  CsmBasisWalk w = csmBasisWalk(d);
   float f = 0.5f;
-  for (int k = 1; k <= p.termCount; ++k) {
-    int texel = (k - 1) / 2;
-    int component = 2 * ((k - 1) % 2);
-    float sinZ = 2.0f * filteredBasis[texel][component] - 1.0f;
-    float cosZ = 2.0f * filteredBasis[texel][component + 1] - 1.0f;
-    float c = csmFrequency(k);
-    f += csmAttenuationFactor(k, p) * (2.0f / c) * (sinZ * wave[1] - cosZ * wave[0]);
-    wave = csmWaveRotate(wave);
+  for (int t = 0; t < csmTextureCount(p); ++t) {
+    vec4 basis = 2.0f * filteredBasis[t] - vec4(1.0f);
+    for (int j = 0; j < 2; ++j) {
+      int k = 2 * t + 1 + j;
+      if (k > p.termCount) break;
+      float sinZ = basis[2 * j];
+      float cosZ = basis[2 * j + 1];
+      float term = sinZ * w.terms[2 * j + 1] - cosZ * w.terms[2 * j];
+      f += csmAttenuationFactor(k, p) * (2.0f / csmFrequency(k)) * term;
+    }
+    w = csmBasisWalkNext(w);
   }
   return f;
 }

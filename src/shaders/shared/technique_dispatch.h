@@ -23,25 +23,31 @@ PENUMBRA_INLINE bool techniqueFiltersAfterTest(int technique) {
 }
 
 // A depth's walk over its channel texture's layers, in order: CSM's basis waves rotate from one
-// texture to the next (csmWaveStart) instead of evaluating every term's sine and cosine.
+// texture to the next (csmBasisWalk) instead of evaluating every term's sine and cosine.
 struct TexelEncoding {
   float depth;
   int texelLayer;
-  vec4 csmWave;  // CSM: the wave of texture texelLayer
+  CsmBasisWalk csm;  // CSM: at texture texelLayer
 };
 
 PENUMBRA_INLINE TexelEncoding startTexelEncoding(int technique, float depth, TechniqueParams p) {
   TexelEncoding e;
   e.depth = depth;
   e.texelLayer = 0;
-  e.csmWave = technique == kTechniqueCsm ? csmWaveStart(depth, p.csm) : vec4(0.0f);
+  if (technique == kTechniqueCsm) {
+    e.csm = csmBasisWalkStart(depth, p.csm);
+  } else {
+    e.csm.terms = vec4(0.0f);
+    e.csm.previous = vec4(0.0f);
+    e.csm.twiceCosStep = 0.0f;
+  }
   return e;
 }
 
 PENUMBRA_INLINE TexelEncoding nextTexelLayer(int technique, TexelEncoding e) {
   TexelEncoding next = e;
   next.texelLayer = e.texelLayer + 1;
-  if (technique == kTechniqueCsm) next.csmWave = csmWaveNextTexture(e.csmWave);
+  if (technique == kTechniqueCsm) next.csm = csmBasisWalkNext(e.csm);
   return next;
 }
 
@@ -100,7 +106,7 @@ PENUMBRA_INLINE vec4 encodeCurrentTexelLayer(int technique, TexelEncoding e, vec
   } else if (technique == kTechniqueEsm) {
     v = vec4(esmEncode(depth, p.esm), 0.0f, 0.0f, 0.0f);
   } else if (technique == kTechniqueCsm) {
-    v = csmWaveTexture(e.csmWave);
+    v = csmBasisTexture(e.csm);
   } else if (technique == kTechniquePowerCdf) {
     // Three channels per layer, four per texel: a texel spans at most two layers.
     int firstLayer = (4 * texelLayer) / 3;
