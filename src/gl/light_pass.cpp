@@ -6,6 +6,7 @@
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "texture_readback.h"
 
 namespace penumbra::gl {
 
@@ -46,8 +47,7 @@ void LightPass::prepare(const LightPassShape& shape) {
     glNamedFramebufferTextureLayer(fb, GL_DEPTH_ATTACHMENT, depthBuffer_.id(), 0, layer);
     if (glCheckNamedFramebufferStatus(fb, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
       throw Error("the light-pass framebuffer is incomplete (R32F + D32F, " +
-                  std::to_string(shape.samples) + " samples, layer " + std::to_string(layer) +
-                  ")");
+                  std::to_string(shape.samples) + " samples, layer " + std::to_string(layer) + ")");
     }
   }
   checkErrors("allocating the light pass");
@@ -55,7 +55,8 @@ void LightPass::prepare(const LightPassShape& shape) {
 
 void LightPass::render(ProgramCache& programs, const GpuScene& scene,
                        std::span<const LightLayerView> views) {
-  const Program& program = programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
+  const Program& program =
+      programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
   program.use();
   glViewport(0, 0, shape_.size, shape_.size);
   glEnable(GL_DEPTH_TEST);
@@ -94,17 +95,38 @@ void LightPass::render(ProgramCache& programs, const GpuScene& scene,
   checkErrors("light pass");
 }
 
-Image LightPass::readDepth(int layer) const {
-  if (multisampled()) throw Error("readDepthMap reads single-sampled light passes only");
+void LightPass::checkLayer(int layer) const {
   if (layer < 0 || layer >= shape_.cascades) {
     throw Error("light-pass layer " + std::to_string(layer) + " is out of range [0, " +
                 std::to_string(shape_.cascades - 1) + "]");
   }
+}
+
+Image LightPass::readDepth(int layer) const {
+  if (multisampled()) throw Error("readDepthMap reads single-sampled light passes only");
+  checkLayer(layer);
   Image image(shape_.size, shape_.size, 1);
   glGetTextureSubImage(depth_.id(), 0, 0, 0, layer, shape_.size, shape_.size, 1, GL_RED, GL_FLOAT,
                        GLsizei(image.data().size() * sizeof(float)), image.data().data());
   checkErrors("reading the light pass's depth");
   return image;
+}
+
+Image LightPass::readDepthSamples(ProgramCache& programs, int layer) const {
+  if (!multisampled()) return readDepth(layer);
+  checkLayer(layer);
+  const int size = shape_.size, samples = shape_.samples;
+  Texture perSample(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(perSample.id(), 1, GL_R32F, size, size, samples);
+  const Program& copy = programs.compute("passes/depth_samples.comp", {});
+  glProgramUniform2i(copy.id(), glGetUniformLocation(copy.id(), "size"), size, size);
+  copy.set("layer", layer);
+  copy.set("sampleCount", samples);
+  glBindTextureUnit(0, depth_.id());
+  glBindImageTexture(0, perSample.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
+  copy.dispatch((unsigned(size) + 7u) / 8u, (unsigned(size) + 7u) / 8u);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  return readTexture(perSample.id(), 0, size, size, samples, 1, GL_RED, false);
 }
 
 uint64_t LightPass::bytes() const {

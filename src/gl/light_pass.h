@@ -47,14 +47,17 @@ class LightPass {
   bool multisampled() const { return shape_.samples > 1; }
   // The R32F linear depth: GL_TEXTURE_2D_ARRAY, or _2D_MULTISAMPLE_ARRAY under MSAA.
   unsigned depthTexture() const { return depth_.id(); }
-  // One layer's depth (sample 0 under MSAA is refused), row 0 at the bottom.
+  // One layer's depth (refused under MSAA), row 0 at the bottom.
   Image readDepth(int layer) const;
+  // One layer's depth samples, one image channel per sample (MSAA or not), row 0 at the bottom.
+  Image readDepthSamples(ProgramCache& programs, int layer) const;
   uint64_t bytes() const;
 
   GpuTimer timer;
 
  private:
   void release();
+  void checkLayer(int layer) const;
 
   LightPassShape shape_;
   Texture depth_;

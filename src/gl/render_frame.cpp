@@ -406,6 +406,10 @@ Image Renderer::readDepthMap(int cascade) const {
   return state_->light.readDepth(cascade);
 }
 
+Image Renderer::readDepthSamples(int cascade) const {
+  return state_->light.readDepthSamples(state_->programs, cascade);
+}
+
 int Renderer::channelMipLevels() const {
   return state_->filter.shape().levels;
 }

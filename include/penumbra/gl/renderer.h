@@ -206,6 +206,8 @@ class Renderer {
   // A cascade's light-pass linear depth (sample 0 under MSAA) of the last render, row 0 at the
   // bottom.
   Image readDepthMap(int cascade = 0) const;
+  // Every light-pass sample of a cascade's depth (MSAA), one image channel per sample.
+  Image readDepthSamples(int cascade = 0) const;
   // A cascade's technique channels at a mip level after the last render (encoded and
   // prefiltered), one image channel per technique channel, row 0 at the bottom.
   Image readChannels(int level, int cascade = 0) const;
