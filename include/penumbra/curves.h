@@ -28,7 +28,8 @@ struct CurvesTable {
 // Validates the request (throws Error) and evaluates every column; every value is finite.
 CurvesTable computeCurves(const CurvesRequest& request);
 
-// CSV: header "receiver_depth,exact,<ids...>", one row per receiver depth.
+// CSV: header "receiver_depth,exact,<ids...>", one row per receiver depth. Throws Error when a
+// column name holds a comma (it would split the header).
 void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path);
 
 // The receiver depths a plot shows: all of [0,1], or a window around a step (the papers zoom

@@ -25,7 +25,7 @@ std::string format(double v, int digits = 3) {
 }
 
 struct CsmVariant {
-  std::string label;  // the curve's name in the plot
+  std::string label;  // the curve's name in the plot and its CSV header: no commas
   shaders::CsmParams params;
 };
 
@@ -121,7 +121,7 @@ FigureItem panelB(const std::filesystem::path& dir) {
   shaders::CsmParams attenuated = plainSeries(16);
   attenuated.attenuation = alpha;
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"M = 16, alpha = 0", plainSeries(16)}, {"M = 16, alpha = " + format(alpha, 1), attenuated}},
+      {{"alpha = 0", plainSeries(16)}, {"alpha = " + format(alpha, 1), attenuated}},
       "CSM Fig. 3(b): attenuation exp(-alpha (k/M)^2) against ringing, M = 16", dir, "csm_fig3b");
   const StepShape &raw = r[0].shape, &att = r[1].shape;
   FigureItem f;
@@ -148,7 +148,7 @@ FigureItem panelC(const std::filesystem::path& dir) {
   shaders::CsmParams offset = plainSeries(16);
   offset.offsetScale = 1.0f;  // the first ringing maximum, 1/(2M), onto d - z = 0 (§3.2.2)
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"M = 16, no offset", plainSeries(16)}, {"M = 16, offset 1/(2M)", offset}},
+      {{"no offset", plainSeries(16)}, {"offset 1/(2M)", offset}},
       "CSM Fig. 3(c): the offset applied to d before reconstruction, M = 16", dir, "csm_fig3c");
   const float before = r[0].litValue, after = r[1].litValue;
   FigureItem f;
@@ -177,7 +177,7 @@ FigureItem panelD(const std::filesystem::path& dir) {
   shaders::CsmParams scaled = plainSeries(16);
   scaled.scale = 2.0f;  // §3.2.2
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"M = 16, scale 1", plainSeries(16)}, {"M = 16, scale 2", scaled}},
+      {{"scale 1", plainSeries(16)}, {"scale 2", scaled}},
       "CSM Fig. 3(d): the reconstruction scaled by 2 (then clamped), M = 16", dir, "csm_fig3d");
   const StepShape &one = r[0].shape, &two = r[1].shape;
   FigureItem f;

@@ -42,6 +42,11 @@ CurvesTable computeCurves(const CurvesRequest& request) {
 }
 
 void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path) {
+  // The header is split at commas (gnuplot's columnheader, any CSV reader): a comma in a name
+  // would shift every later title onto the wrong curve.
+  for (const std::string& c : table.columns) {
+    if (c.find(',') != std::string::npos) throw Error("curve name '" + c + "' holds a comma");
+  }
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path.string());
   out << "receiver_depth";
