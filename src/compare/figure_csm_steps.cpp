@@ -104,8 +104,9 @@ FigureItem panelA(const std::filesystem::path& dir) {
       "frequencies noticeable as ringing (CSM paper Fig. 3(a), §3.2.1).";
   f.measured =
       "Plain truncated series (eq. 11), over d - z (one occluder at z = 0.5): " + measured +
-      ". Widths and distances are in d - z; ringing is the largest error outside the "
-      "transition, of the visibility clamped to [0,1] as rendered.";
+      ". Widths and distances are in d - z; the ringing amplitude is how far the visibility, "
+      "clamped to [0,1] as rendered, turns back: rises again after falling or dips again after "
+      "rising.";
   f.agrees = steeper && faster;
   f.verdict = f.agrees ? "each doubling of M narrows the transition and brings the first ringing "
                          "trough closer to the step (higher frequency). The ringing's amplitude "
