@@ -28,11 +28,21 @@ struct CurvesTable {
 // Validates the request (throws Error) and evaluates every column; every value is finite.
 CurvesTable computeCurves(const CurvesRequest& request);
 
-// CSV: header "receiver_depth,exact,<ids...>", one row per receiver depth.
+// CSV: header "receiver_depth,exact,<ids...>", one row per receiver depth. Throws Error when a
+// column name holds a comma (it would split the header).
 void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path);
 
-// A PNG plot of the CSV through gnuplot; throws Error when gnuplot is missing or fails.
+// The receiver depths a plot shows: all of [0,1], or a window around a step (the papers zoom
+// in on theirs: "the range has been scaled to emphasize the effects", CSM Fig. 3).
+struct CurvesPlotRange {
+  float from = 0.0f;  // in [0,1), below `to`
+  float to = 1.0f;
+};
+
+// A PNG plot of the CSV through gnuplot; throws Error when gnuplot is missing or fails, or the
+// range is empty or leaves [0,1].
 void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
-                const std::string& title, const std::filesystem::path& pngPath);
+                const std::string& title, const std::filesystem::path& pngPath,
+                CurvesPlotRange range = {});
 
 }  // namespace penumbra

@@ -42,6 +42,11 @@ CurvesTable computeCurves(const CurvesRequest& request) {
 }
 
 void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path) {
+  // The header is split at commas (gnuplot's columnheader, any CSV reader): a comma in a name
+  // would shift every later title onto the wrong curve.
+  for (const std::string& c : table.columns) {
+    if (c.find(',') != std::string::npos) throw Error("curve name '" + c + "' holds a comma");
+  }
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path.string());
   out << "receiver_depth";
@@ -56,7 +61,12 @@ void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path)
 }
 
 void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
-                const std::string& title, const std::filesystem::path& pngPath) {
+                const std::string& title, const std::filesystem::path& pngPath,
+                CurvesPlotRange range) {
+  if (!(range.from >= 0.0f && range.from < range.to && range.to <= 1.0f)) {
+    throw Error("curve plot range [" + std::to_string(range.from) + ", " +
+                std::to_string(range.to) + "] is not a window of [0, 1]");
+  }
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1200,750 enhanced font 'DejaVu Sans,11'\n"
      << "set output " << gnuplotQuote(pngPath.string()) << "\n"
@@ -64,7 +74,7 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
      << "set title " << gnuplotQuote(title) << " noenhanced\n"
      << "set xlabel 'receiver depth d (linear light-space depth)'\n"
      << "set ylabel 'visibility'\n"
-     << "set xrange [0:1]\nset yrange [-0.05:1.05]\n"
+     << "set xrange [" << range.from << ":" << range.to << "]\nset yrange [-0.05:1.05]\n"
      << "set key outside right top noenhanced\nset grid\n"
      // Eleven distinguishable colours (Tableau-like) so no two techniques share one.
      << "set linetype 1 lc rgb '#1f77b4'\nset linetype 2 lc rgb '#ff7f0e'\n"

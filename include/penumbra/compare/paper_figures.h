@@ -40,8 +40,8 @@ struct FigureItem {
 
 using FiguresProgress = std::function<void(const std::string& step)>;
 
-// The step-function curves: ESM Fig. 2, CSM Fig. 3 (with and without ringing suppression) and
-// the thesis's light-bleeding case (Fig. 3.4/3.5). Writes its plots into dir/curves.
+// The step-function curves: ESM Fig. 2(a) and 2(b), CSM Fig. 3(a)-(d) one panel each, and the
+// thesis's light-bleeding case (Fig. 3.4/3.5). Writes its plots into dir/curves.
 std::vector<FigureItem> curveFigures(const std::filesystem::path& dir);
 
 // The rendered figures and tables: ESM Table 3 and Fig. 1, CSM Fig. 6, thesis Fig. 4.2 and
