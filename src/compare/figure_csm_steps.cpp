@@ -4,6 +4,7 @@
 // truncated series, not 8-bit rounding.
 #include "figure_csm_steps.h"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -108,9 +109,22 @@ FigureItem panelA(const std::filesystem::path& dir) {
       "clamped to [0,1] as rendered, turns back: rises again after falling or dips again after "
       "rising.";
   f.agrees = steeper && faster;
+  float lowest = r[0].shape.ringing, highest = r[0].shape.ringing;
+  for (const MeasuredVariant& v : r) {
+    lowest = std::min(lowest, v.shape.ringing);
+    highest = std::max(highest, v.shape.ringing);
+  }
+  // Gibbs: the ripples next to a jump keep their height as the series grows (Fourier theory).
+  const std::string height =
+      highest < 1.25f * lowest
+          ? " The next ripple's height stays within " +
+                format(100.0f * (highest / std::max(lowest, 1e-9f) - 1.0f), 0) +
+                "% over M, as Gibbs' ripples do."
+          : " The next ripple's height changes by " + format(highest / std::max(lowest, 1e-9f), 2) +
+                "x over M.";
   f.verdict = f.agrees ? "each doubling of M narrows the transition and brings the first ringing "
-                         "trough closer to the step (higher frequency). The ringing's amplitude "
-                         "stays about the same, as Gibbs' overshoot does for any M."
+                         "trough closer to the step (higher frequency)." +
+                             height
                        : "the transition does not narrow, or the ringing's frequency does not "
                          "rise, with every doubling of M.";
   f.images = {"curves/csm_fig3a.png"};

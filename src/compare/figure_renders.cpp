@@ -317,6 +317,9 @@ FigureItem lvsmFigure42(gl::Renderer& renderer, const FiguresOptions& o,
   };
   const int groundLayer = shaders::selectLayer(depths.ground, lloydSplits);
   const float lloydBoundary = shaders::layerSplit(lloydSplits, groundLayer);
+  const float lloydGroundLayerStart =
+      shaders::overlappedLayerRange(lloydSplits, groundLayer, r[2].result.params.lvsm.overlap).x;
+  const bool seatClampsInGroundLayer = depths.seat <= lloydGroundLayerStart;
   f.paper =
       "On the scene of Fig. 3.5 (canopy, bench, ground) a 4-layer LVSM removes VSM's light "
       "bleeding completely, \"by a single well-positioned layer boundary\" (thesis §4.1.4, "
@@ -351,20 +354,25 @@ FigureItem lvsmFigure42(gl::Renderer& renderer, const FiguresOptions& o,
                 format(depths.seat - uniformLayerStart) + " apart over a ground " +
                 format(depths.ground - depths.seat) +
                 " behind the seat, so Chebyshev's bound still leaks " + format(regionUniform) +
-                " on the canopy-seat region (VSM " + format(regionVsm) +
-                "), above the 0.05 the pixel count takes as a leak";
-  f.verdict =
-      f.agrees
-          ? "Lloyd relaxation places a boundary at " + format(lloydBoundary) +
-                ", between the seat and the ground: in the ground's layer canopy and seat clamp "
-                "to one depth and the bleeding is gone (" +
-                format(regionLloyd) + " on the canopy-seat region, " +
-                format(vsm.leakShare / std::max(lloyd.leakShare, 1e-9), 0) +
-                "x fewer leaking pixels than VSM). Uniform splits leak on " +
-                percent(uniform.leakShare) + " of pixels against VSM's " + percent(vsm.leakShare) +
-                " because " + uniformReason + "."
-          : "Lloyd's boundaries do not separate the seat from the ground, or the bleeding "
-            "remains with them.";
+                " on the canopy-seat region (VSM " + format(regionVsm) + "), " +
+                (regionUniform > 0.05f ? "above" : "not above") +
+                " the 0.05 the pixel count takes as a leak";
+  f.verdict = f.agrees
+                  ? "Lloyd relaxation places a boundary at " + format(lloydBoundary) +
+                        ", between the seat and the ground: " +
+                        (seatClampsInGroundLayer
+                             ? "in the ground's layer (from " + format(lloydGroundLayerStart) +
+                                   ") canopy and seat clamp to one depth"
+                             : "the seat still lies inside the ground layer's overlap (from " +
+                                   format(lloydGroundLayerStart) + ")") +
+                        " and the bleeding is gone (" + format(regionLloyd) +
+                        " on the canopy-seat region, " +
+                        format(vsm.leakShare / std::max(lloyd.leakShare, 1e-9), 0) +
+                        "x fewer leaking pixels than VSM). Uniform splits leak on " +
+                        percent(uniform.leakShare) + " of pixels against VSM's " +
+                        percent(vsm.leakShare) + " because " + uniformReason + "."
+                  : "Lloyd's boundaries do not separate the seat from the ground, or the bleeding "
+                    "remains with them.";
   f.tableHtml = errorsTable(r);
   return f;
 }
@@ -488,34 +496,39 @@ FigureItem gumbauFigure3(gl::Renderer& renderer, const FiguresOptions& o,
       " read exactly lit (receiver at or in front of the filtered mean). Those lie a median " +
       format(a.fullyLitGap, 3) + " world units behind the nearest depth in the prefilter's " +
       "kernel, and for " + share(a.ownSlope, a.fullyLit) +
-      " of them that depth is within the receiver's own depth change across the kernel: no "
-      "separate occluder, the receiver's own surface shadowing it (in the error map, the "
-      "spheres' sides turning away from the light). The remaining " +
+      " of them that depth is within the receiver's own depth change across the kernel "
+      "(its slope times the kernel's half-diagonal): nothing in the kernel lies in front of the "
+      "receiver's plane by more than its slope explains. The remaining " +
       std::to_string(a.leaks - a.fullyLit) + " lie a median " + format(a.partialGap, 2) +
-      " world units behind an occluder and read " + format(a.partialExcess, 2) +
-      " above the reference (median), below 1: the power function's fit of the depth CDF "
-      "(eq. 2-4) above the true one (in the error map, where a sphere's shadow falls on the "
-      "sphere it stands on).";
+      " world units behind the nearest depth in the kernel and read " + format(a.partialExcess, 2) +
+      " above the reference (median), below 1.";
   f.agrees = cdf.leakShare < vsm.leakShare && cdf.leakShare < esm.leakShare;
   const bool ownSurfaceCause =
       2 * a.fullyLit > a.leaks && 2 * a.sharedVsm > a.leaks && 2 * a.ownSlope > a.fullyLit;
+  std::string leaksMoreThan;  // the techniques the power CDF does not beat
+  for (const VariantResult& v : {r[0], r[1]}) {
+    if (cdf.leakShare >= v.result.filtered.leakShare) {
+      leaksMoreThan += (leaksMoreThan.empty() ? "" : " and ") + v.variant.label;
+    }
+  }
   f.verdict =
       f.agrees ? "the power CDF leaks on fewer pixels than both."
       : ownSurfaceCause
-          ? "the power CDF leaks on more pixels than VSM here, but " + share(a.sharedVsm, a.leaks) +
-                " of its leaks are VSM's own pixels and " + share(a.fullyLit, a.leaks) +
-                " read exactly 1, most of those (" + share(a.ownSlope, a.fullyLit) +
-                ") with no occluder in the kernel but the receiver's own curved surface. There "
-                "the filtered mean is at or behind the receiver, and eq. 4 and Chebyshev's "
-                "bound both return 1 by construction (the planar-receiver assumption both "
-                "methods share, Gumbau §3: planar receivers at the mean are lit): the method's "
-                "limit, not an implementation error. The paper judges by eye the bleeding of "
-                "overlapping shadows and ESM's contact artifacts; we count every pixel 0.05 "
-                "brighter than the filtered reference, self-shadowed curved surfaces included. "
-                "The extra pixels are partial leaks of the power-function fit, not isolated "
-                "further."
-          : "the power CDF leaks on more pixels than VSM or ESM here, and most of its leaks are "
-            "neither VSM's nor at a fully lit receiver: the cause is not isolated.";
+          ? "the power CDF leaks on as many pixels as " + leaksMoreThan + " or more here, but " +
+                share(a.sharedVsm, a.leaks) + " of its leaks are VSM's own pixels and " +
+                share(a.fullyLit, a.leaks) + " read exactly 1, most of those (" +
+                share(a.ownSlope, a.fullyLit) +
+                ") with nothing in the kernel in front of the receiver's plane beyond its own "
+                "slope. There the filtered mean is at or behind the receiver, and eq. 4 and "
+                "Chebyshev's bound both return 1 by construction (the planar-receiver "
+                "assumption both methods share, Gumbau §3: planar receivers at the mean are "
+                "lit). The paper judges by eye the bleeding of overlapping shadows and ESM's "
+                "contact artifacts; we count every pixel 0.05 brighter than the filtered "
+                "reference, curved receivers included. The " +
+                std::to_string(a.leaks - a.fullyLit) + " partial leaks are not isolated further."
+          : "the power CDF leaks on as many pixels as " + leaksMoreThan +
+                " or more here, and most of its leaks are neither VSM's nor at a fully lit "
+                "receiver: the cause is not isolated.";
   f.tableHtml = errorsTable(r);
   return f;
 }

@@ -41,6 +41,8 @@ StepShape measureStepShape(const StepCurve& c) {
   while (lit > 0 && c.v[lit] < 0.9f) --lit;
   size_t shadow = fall;
   while (shadow + 1 < n && c.v[shadow] > 0.1f) ++shadow;
+  if (c.v[lit] < 0.9f) throw Error("step curve: visibility never reaches 0.9 before 1/2");
+  if (c.v[shadow] > 0.1f) throw Error("step curve: visibility never falls to 0.1 after 1/2");
   s.lit90 = c.x[lit];
   s.shadow10 = c.x[shadow];
   s.transitionWidth = s.shadow10 - s.lit90;
@@ -80,9 +82,9 @@ double stepErrorArea(const StepCurve& c, float from, float to) {
     if (a < 0.0f && b > 0.0f) {
       area += 0.5 * double(-a) * (std::abs(value(a) - 1.0f) + std::abs(value(0.0f) - 1.0f));
       area += 0.5 * double(b) * (std::abs(value(0.0f)) + std::abs(value(b)));
-    } else {
-      area += 0.5 * double(b - a) *
-              (std::abs(value(a) - exactStep(a)) + std::abs(value(b) - exactStep(b)));
+    } else {  // one side of the jump: the step is constant over [a, b], 0 if a is the jump
+      const float step = b <= 0.0f ? 1.0f : 0.0f;
+      area += 0.5 * double(b - a) * (std::abs(value(a) - step) + std::abs(value(b) - step));
     }
   }
   return area;

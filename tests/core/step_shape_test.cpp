@@ -41,7 +41,7 @@ TEST(StepShape, MeasuresTheFallOfALinearRamp) {
   EXPECT_FLOAT_EQ(s.firstTroughDistance, 0.0f);
 }
 
-TEST(StepShape, RingingIsTheLargestErrorOutsideTheTransition) {
+TEST(StepShape, RingingIsHowFarTheCurveTurnsBack) {
   // The ripples are linear between samples that hit their peaks: exact but for float rounding.
   const StepShape litSide = measureStepShape(ramp(-0.1f, 0.1f, 0.04f, 0.07f, -0.25f));
   EXPECT_NEAR(litSide.ringing, 0.07f, 1e-5f);
@@ -64,6 +64,10 @@ TEST(StepShape, ErrorAreaSplitsAnIntervalAtTheStep) {
   // Always lit, with no sample at x = 0: the error is 0 before the step and 1 after it.
   const StepCurve alwaysLit{{-0.5f, 0.5f, 0.75f}, {1.0f, 1.0f, 1.0f}};
   EXPECT_DOUBLE_EQ(stepErrorArea(alwaysLit, -0.5f, 0.75f), 0.75);
+  // A sample exactly at x = 0: the interval after it is on the shadowed side (step 0) from its
+  // first point on, so lit at 0 falling to 0 at 0.5 is a triangle of area 1/4.
+  const StepCurve litAtTheStep{{-0.5f, 0.0f, 0.5f}, {1.0f, 1.0f, 0.0f}};
+  EXPECT_DOUBLE_EQ(stepErrorArea(litAtTheStep, -0.5f, 0.5f), 0.25);
 }
 
 TEST(StepShape, RejectsCurvesItCannotMeasure) {
@@ -71,6 +75,11 @@ TEST(StepShape, RejectsCurvesItCannotMeasure) {
   EXPECT_THROW(measureStepShape(flat), Error);
   StepCurve unordered{{0.0f, 0.2f, 0.1f}, {1.0f, 0.0f, 0.0f}};
   EXPECT_THROW(measureStepShape(unordered), Error);
+  // Falls through 1/2 but never from 0.9, or never down to 0.1: no transition width to give.
+  StepCurve shallow{{0.0f, 0.1f, 0.2f}, {0.8f, 0.4f, 0.0f}};
+  EXPECT_THROW(measureStepShape(shallow), Error);
+  StepCurve stuck{{0.0f, 0.1f, 0.2f}, {1.0f, 0.4f, 0.3f}};
+  EXPECT_THROW(measureStepShape(stuck), Error);
   StepCurve shortCurve{{0.0f, 0.1f}, {1.0f, 0.0f}};
   EXPECT_THROW(stepErrorArea(shortCurve, 0.0f, 1.0f), Error);
 }
