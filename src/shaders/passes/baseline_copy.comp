@@ -1,8 +1,9 @@
 // `penumbra bench --passes`: the minimal kernel beside the encode pass — the same read of the
 // light pass's depth and the same writes to every channel layer, with no technique math. Each
 // channel gets its own value, as an encode's do: storing one value in all four lets the compiler
-// convert it to the storage format once, and on llvmpipe such a copy of CSM's eight RGBA8 layers
-// took 41 ms where four distinct values per texel took 55 (docs/results/passes-llvmpipe-*.md).
+// convert it to the storage format once: on llvmpipe such a copy of CSM's eight RGBA8 layers took
+// 41-46 ms where four distinct values per texel took 55-56 (passes-llvmpipe-2026-12-02.md in
+// docs/results).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray depth;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
