@@ -3,13 +3,45 @@
 
 #include <climits>
 #include <cstring>
+#include <vector>
 
 #include "stb_image.h"
 
 namespace penumbra::scene {
+namespace {
 
-std::optional<TextureImage> decodeImage(std::span<const uint8_t> bytes, const std::string& name,
+uint32_t bigEndian32(const uint8_t* p) {
+  return uint32_t(p[0]) << 24 | uint32_t(p[1]) << 16 | uint32_t(p[2]) << 8 | uint32_t(p[3]);
+}
+
+// A PNG without its empty IDAT chunks. stb_image reads an empty first IDAT chunk by copying zero
+// bytes into a buffer it has not allocated yet (memcpy to a null pointer: undefined behaviour,
+// reported by UBSan; found by the glTF fuzzer). Empty IDAT chunks carry no data, and each chunk
+// has its own CRC, so dropping them leaves the same image. Anything else is copied unchanged,
+// including a truncated last chunk, for stb_image to judge.
+std::vector<uint8_t> withoutEmptyPngDataChunks(std::span<const uint8_t> bytes) {
+  static const uint8_t kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() < 8 || std::memcmp(bytes.data(), kSignature, 8) != 0) {
+    return {bytes.begin(), bytes.end()};
+  }
+  std::vector<uint8_t> out(bytes.begin(), bytes.begin() + 8);
+  size_t at = 8;
+  while (at + 12 <= bytes.size()) {
+    const uint64_t chunk = 12 + uint64_t(bigEndian32(&bytes[at]));  // length, type, data, CRC
+    if (at + chunk > bytes.size()) break;
+    const bool emptyData = chunk == 12 && std::memcmp(&bytes[at + 4], "IDAT", 4) == 0;
+    if (!emptyData) out.insert(out.end(), bytes.begin() + at, bytes.begin() + at + chunk);
+    at += size_t(chunk);
+  }
+  out.insert(out.end(), bytes.begin() + at, bytes.end());
+  return out;
+}
+
+}  // namespace
+
+std::optional<TextureImage> decodeImage(std::span<const uint8_t> original, const std::string& name,
                                         std::string& why) {
+  const std::vector<uint8_t> bytes = withoutEmptyPngDataChunks(original);
   if (bytes.empty() || bytes.size() > size_t(INT_MAX)) {
     why = bytes.empty() ? "it is empty" : "it is larger than 2 GiB";
     return std::nullopt;

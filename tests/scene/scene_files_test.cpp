@@ -142,6 +142,20 @@ TEST(GltfLoader, RefusesAnImageWhoseBufferViewRunsPastItsBuffer) {
   }
 }
 
+// Found by the fuzzer: a PNG whose first IDAT chunk is empty made stb_image copy zero bytes to a
+// null pointer (undefined behaviour: the sanitizer build aborts on it). Empty data chunks are
+// dropped before decoding. The images are decoded while the file is read; the file then fails
+// on a mesh index out of range, a clear error, which the loader must reach.
+TEST(GltfLoader, APngWithAnEmptyFirstDataChunkIsDecodedWithoutUndefinedBehaviour) {
+  const fs::path file = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_png_empty_first_idat.glb";
+  try {
+    loadScene(file.string());
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("is out of range"), std::string::npos) << e.what();
+  }
+}
+
 TEST(GltfLoader, ComposesNodeTransformsParentFirst) {
   // Root: T(0,1,0) R(y, 30 degrees) S(1.5); child: T(0.5,0,0) with the quad.
   const std::string nodes =
