@@ -17,6 +17,7 @@
 #include "penumbra/scene.h"
 #include "report_plots.h"
 #include "shared/layers.h"
+#include "shared/light_depth.h"
 
 namespace penumbra::compare {
 namespace {
@@ -245,7 +246,7 @@ BenchDepths benchDepths(const Scene& scene) {
   const LightView light = fitLightView(scene);
   auto depthOf = [&](glm::vec3 world) {
     const glm::vec4 view = light.lightFromWorld * glm::vec4(world, 1.0f);
-    return (-view.z - light.nearDistance) / (light.farDistance - light.nearDistance);
+    return shaders::lightLinearDepth(glm::vec3(view), false, light.nearDistance, light.farDistance);
   };
   auto range = [&](const Mesh& m) {
     glm::vec2 r(1e30f, -1e30f);

@@ -11,6 +11,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/renderer.h"
 #include "renderer_state.h"
+#include "shared/light_depth.h"
 #include "shared/point_light_faces.h"
 #include "shared/shadow_lookup.h"
 
@@ -61,7 +62,7 @@ std::vector<std::optional<glm::vec3>> pointLightReceivers(const RenderResult& r,
       const int face = int(r.cascades.at(x, y, 0));
       const glm::vec2 uv(r.lookup.at(x, y, 0), r.lookup.at(x, y, 1));
       const float distance =
-          view.nearDistance + r.lookup.at(x, y, 2) * (view.farDistance - view.nearDistance);
+          shaders::lightDistanceAtDepth(r.lookup.at(x, y, 2), view.nearDistance, view.farDistance);
       receivers.emplace_back(lightPosition +
                              distance * shaders::pointFaceDirection(face, uv, tangent));
     }

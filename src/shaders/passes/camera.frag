@@ -68,8 +68,7 @@ const float kMaxReferenceTestsPerPixel = 48000.0f;
 int pointFace = 0;
 
 float linearDepth(vec3 lightView) {
-  float distance = lightPerspective != 0 ? length(lightView) : -lightView.z;
-  return (distance - lightNear) / (lightFar - lightNear);
+  return lightLinearDepth(lightView, lightPerspective != 0, lightNear, lightFar);
 }
 
 // A world position on the light's plane (one map: its uv; cascades: light-view x, y), its

@@ -3,6 +3,7 @@
 // Alpha-masked casters are tested against their base colour's alpha, so leaves cast the shadow
 // of their shape, not of their cards; with MSAA the renderer runs masked draws per sample.
 #include "../lib/material.glsl"
+#include "../shared/light_depth.h"
 
 in vec3 lightViewPosition;
 in vec2 baseColorTexcoord;
@@ -15,6 +16,6 @@ layout(location = 0) out float linearDepth;
 
 void main() {
   if (!materialCovers(baseColorTexcoord)) discard;
-  float distance = lightPerspective != 0 ? length(lightViewPosition) : -lightViewPosition.z;
-  linearDepth = clamp((distance - lightNear) / (lightFar - lightNear), 0.0f, 1.0f);
+  linearDepth = clamp(
+      lightLinearDepth(lightViewPosition, lightPerspective != 0, lightNear, lightFar), 0.0f, 1.0f);
 }

@@ -6,6 +6,7 @@
 // the camera pass, the light pass's matrices (penumbra/point_light.h) and the CPU tests.
 #ifndef PENUMBRA_SHARED_POINT_LIGHT_FACES_H
 #define PENUMBRA_SHARED_POINT_LIGHT_FACES_H
+#include "light_depth.h"
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
@@ -99,7 +100,7 @@ PENUMBRA_INLINE vec2 pointFaceUvStep(int face, vec3 fromLight, vec3 delta, float
 // Linear depth of a point light: the distance from the light over [near, far], like a spot
 // light's (thesis §4.1.3).
 PENUMBRA_INLINE float pointLightDepth(vec3 fromLight, float nearDistance, float farDistance) {
-  return (length(fromLight) - nearDistance) / (farDistance - nearDistance);
+  return lightLinearDepth(fromLight, true, nearDistance, farDistance);
 }
 
 PENUMBRA_END_SHARED

@@ -6,6 +6,7 @@
 #define PENUMBRA_SHARED_SOFT_SHADOW_H
 #include "filter_weights.h"
 #include "hard.h"
+#include "light_depth.h"
 #include "lookup_access.h"
 #include "lookup_footprint.h"
 #include "prelude.h"
@@ -48,7 +49,7 @@ PENUMBRA_INLINE float pointLightSoftWidthTexels(int shadowMapSize) {
 const float kBlockerTolerance = 0.0005f;
 
 PENUMBRA_INLINE float softLightDistance(SoftLight l, float depth) {
-  return l.nearDistance + depth * (l.farDistance - l.nearDistance);
+  return lightDistanceAtDepth(depth, l.nearDistance, l.farDistance);
 }
 
 // World size of a level-0 texel at linear depth `depth` (spot: at that distance, on the plane
