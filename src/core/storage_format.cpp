@@ -69,8 +69,11 @@ float quantizeToStorage(float v, StorageFormat format, HalfRounding halfRounding
     case StorageFormat::Float16:
       if (halfRounding == HalfRounding::TowardZero) return halfTowardZero(v);
       return glm::unpackHalf1x16(glm::packHalf1x16(v));
-    case StorageFormat::Unorm16: return std::round(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f;
-    case StorageFormat::Unorm8: return std::round(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
+    // Nearest, ties to even (IEEE's default mode, as the device converts colour outputs): a
+    // mip level's mean of four power-of-two-weighted texels often lands on a tie.
+    case StorageFormat::Unorm16:
+      return std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f;
+    case StorageFormat::Unorm8: return std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;
   }
   return v;
 }

@@ -27,7 +27,6 @@ void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters
     levels_ = mipLevelCount(size_, size_);
     texture_ = Texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(texture_.id(), levels_, GL_R32F, size_, size_, layers_);
-    levelViews_ = levelViews(texture_, GL_R32F, levels_, layers_);
   }
   const Program& base =
       programs.compute("passes/zmax_base.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
@@ -40,12 +39,11 @@ void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters
   mipChain_.reduce(
       mipReducePrograms(programs, {{"FORCE_REDUCTION", std::to_string(shaders::kReduceMax)}},
                         depthOnly),
-      parameters, texture_, levelViews_, layers_, size_);
+      parameters, texture_, levels_, layers_, size_);
   checkErrors("building the Z-max pyramid");
 }
 
 void ZmaxPyramid::release() {
-  levelViews_.clear();
   texture_ = Texture();
   levels_ = 0;
 }

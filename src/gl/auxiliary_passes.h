@@ -25,8 +25,7 @@ class ZmaxPyramid {
   uint64_t bytes() const;
 
  private:
-  Texture texture_;                  // 2D array, one R32F layer per cascade, full mip chain
-  std::vector<Texture> levelViews_;  // one-level views of texture_, for the mip pass
+  Texture texture_;  // 2D array, one R32F layer per cascade, full mip chain
   MipChainPass mipChain_;
   int levels_ = 0, size_ = 0, layers_ = 0;
 };

@@ -76,35 +76,14 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
   return shape;
 }
 
-// RGBA8 texels read by the mip pass as one 32-bit word each (R32UI views of the levels): one
-// gather returns a 2x2 block's four texels, unpacked exactly. Bilinear sampling would filter them
-// in 8-bit fixed point and lose the half bit of each average.
-bool mipReadsPackedUnorm8(const ChannelLayout& layout) {
-  return layout.format == StorageFormat::Unorm8 && layout.componentsPerTexel == 4;
-}
-
-unsigned mipSourceViewFormat(const ChannelLayout& layout) {
-  return mipReadsPackedUnorm8(layout) ? GL_R32UI : internalFormat(layout);
-}
-
 MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDefine> reductions,
                                     const ChannelLayout& layout) {
-  const bool allMean = std::any_of(reductions.begin(), reductions.end(),
-                                   [](const ShaderDefine& d) { return d.name == "ALL_MEAN"; });
-  if (mipReadsPackedUnorm8(layout)) {
-    reductions.push_back({"PACKED_UNORM8", "1"});
-  } else if (allMean && layout.format != StorageFormat::Unorm8) {
-    reductions.push_back({"BILINEAR_MEAN", "1"});
-  } else if (!allMean && layout.channels == 1) {
-    reductions.push_back({"GATHER_ONE_CHANNEL", "1"});
-  } else if (!allMean && layout.layers == 1 && layout.format != StorageFormat::Unorm8) {
-    reductions.push_back({"GATHER_PER_CHANNEL", "1"});
-  }
+  reductions.push_back({"SOURCE_FORMAT", imageFormatQualifier(layout)});
   const Program& general =
       programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions);
   reductions.push_back({"HALVING", "1"});
   return {programs.graphics("passes/fullscreen.vert", "passes/mip_reduce.frag", reductions),
-          general, mipReadsPackedUnorm8(layout)};
+          general, internalFormat(layout)};
 }
 
 void ShadowMapFilter::prepare(const ChannelShape& shape) {
@@ -115,9 +94,6 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
   channels_ = Texture(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
                      shape.size, layers);
-  channelLevels_ = shape.levels > 1 ? levelViews(channels_, mipSourceViewFormat(shape.layout),
-                                                 shape.levels, layers)
-                                    : std::vector<Texture>{};
   scratch_ = Texture();
   if (shape.scratch) {
     scratch_ = Texture(GL_TEXTURE_2D_ARRAY);
@@ -165,7 +141,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   mipsTimer.begin();
   if (!filtersAfterTest && shape_.levels > 1) {
     mipChain_.reduce(mipReducePrograms(programs, defines, shape_.layout), parameters, channels_,
-                     channelLevels_, shape_.layout.layers * shape_.cascades, shape_.size);
+                     shape_.levels, shape_.layout.layers * shape_.cascades, shape_.size);
   }
   if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
   mipsTimer.end();

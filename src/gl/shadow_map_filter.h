@@ -67,15 +67,12 @@ class ShadowMapFilter {
   bool prepared_ = false;
   Texture channels_;  // 2D array: layout.layers x cascades layers, `levels` levels
   Texture scratch_;   // 2D array, one level: the blur's intermediate
-  std::vector<Texture> channelLevels_;  // one-level views of channels_, for the mip pass
   MipChainPass mipChain_;
   std::optional<Buffer> satExtremes_, satStats_, satSums_;
 };
 
-// The mip pass's programs for a layout's reductions (passes/mip_reduce.frag): mean channels in
-// float or 16-bit storage take one bilinear sample per 2x2 block (8-bit unorm storage keeps the
-// exact four-fetch sum: llvmpipe filters it in 8-bit fixed point); one channel reduced otherwise
-// takes one gather per block.
+// The mip pass's programs for a layout's reductions (passes/mip_reduce.frag), reading the level
+// above as an image of the layout's format.
 MipReducePrograms mipReducePrograms(ProgramCache& programs, std::vector<ShaderDefine> reductions,
                                     const ChannelLayout& layout);
 

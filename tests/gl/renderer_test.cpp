@@ -141,6 +141,67 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
   }
 }
 
+// Each mip level is the CPU's reduction (reduceMipLevel) of the GPU's level above it, rounded to
+// storage once, for every technique and storage format, at a power of two and at 100 (levels of
+// 25 and 3 texels fold their odd row and column into the last block): the pass reads whole
+// texels and reduces them in the CPU's order, so a mean is the same four (or six, or nine) sums
+// of power-of-two-weighted values, a min or max the same texel. Exact, but for ESM's log-space
+// mean, whose exp and log are the GPU's own (within 4 ulps of the CPU's, relative).
+TEST_F(RendererTest, EachMipLevelIsTheCpuReductionOfTheGpuLevelAboveIt) {
+  const Image scene = sceneDepth();
+  for (const Image& depth : {scene, cropped(scene, 100)}) {
+    for (const auto& [technique, param] :
+         std::vector<std::pair<Technique, const char*>>{{Technique::Vsm, nullptr},
+                                                        {Technique::Vsm, "storage=unorm16"},
+                                                        {Technique::Evsm4, "storage=float16"},
+                                                        {Technique::Esm, nullptr},
+                                                        {Technique::Esm, "filtering=log"},
+                                                        {Technique::Msm, nullptr},
+                                                        {Technique::PowerCdf, nullptr},
+                                                        {Technique::PowerCdf, "layers=3"},
+                                                        {Technique::Csm, nullptr},
+                                                        {Technique::Lvsm, nullptr}}) {
+      gl::RenderSettings s = small(technique);
+      s.filter = gl::FilterMode::Trilinear;
+      s.blur = {BlurKernel::Gaussian, 2, 1.0f};
+      if (param != nullptr) {
+        const std::vector<Technique> one{technique};
+        applyParamAssignment(one, s.params, param);
+      }
+      renderer->filterDepthMap(depth, s);
+      const StorageFormat storage = techniqueStorage(technique, s.params);
+      const bool logSpace =
+          technique == Technique::Esm && s.params.esm.filterSpace == shaders::kEsmFilterLog;
+      std::vector<ChannelReduction> reductions;
+      for (int c = 0; c < channelCount(technique, s.params); ++c) {
+        reductions.push_back(channelReduction(technique, s.params, c));
+      }
+      int bad = 0;
+      for (int level = 0; level + 1 < renderer->channelMipLevels(); ++level) {
+        Image expected =
+            reduceMipLevel(renderer->readChannels(level), reductions, s.params.esm.exponent);
+        const HalfRounding rounding = renderer->halfFloatRounding();
+        for (float& v : expected.data()) v = quantizeToStorage(v, storage, rounding);
+        // Read back as floats: unorm codes convert by the device's own arithmetic (198/255 may
+        // read 0.77647066 where the CPU divides to 0.7764706), so both sides are compared as codes.
+        Image gpu = renderer->readChannels(level + 1);
+        for (float& v : gpu.data()) v = quantizeToStorage(v, storage, rounding);
+        ASSERT_EQ(gpu.data().size(), expected.data().size());
+        for (size_t i = 0; i < gpu.data().size(); ++i) {
+          const float want = expected.data()[i];
+          const float allowed = logSpace ? 4.0f * 1.2e-7f * std::abs(want) : 0.0f;
+          if (std::abs(gpu.data()[i] - want) > allowed && ++bad <= 3) {
+            ADD_FAILURE() << depth.width() << "^2 " << techniqueId(technique)
+                          << (param ? param : "") << " level " << level + 1 << " value " << i
+                          << ": gpu " << gpu.data()[i] << " cpu " << want;
+          }
+        }
+      }
+      EXPECT_EQ(bad, 0) << depth.width() << "^2 " << techniqueId(technique);
+    }
+  }
+}
+
 // Every cascade's mips reduce each channel by its own reduction: the power CDF's min and max
 // channels stay min and max in the last cascade too, with one texel layer (reductions resolved
 // at compile time) and with several (resolved per texel from the channel within its cascade).

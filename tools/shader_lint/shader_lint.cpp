@@ -86,10 +86,23 @@ std::vector<Defines> variants(const std::string& source) {
   expand("AXIS", {"0", "1"});
   expand("LAYER_COUNT", {"1", "12"});  // the encode's texel layers: 1..kMaxTexelLayers
   expand("ALL_MEAN", {"0", "1"});
-  expand("BILINEAR_MEAN", {"0", "1"});
-  expand("GATHER_ONE_CHANNEL", {"0", "1"});
-  expand("PACKED_UNORM8", {"0", "1"});
-  expand("GATHER_PER_CHANNEL", {"0", "1"});
+  expand("SOURCE_FORMAT", formats);
+  expand("HALVING", {"0", "1"});
+  // A pass over lib/layer_reduction.glsl resolves its reductions by one of three routes: at
+  // run time (neither defined), one layer's table, or one reduction for every channel.
+  if (source.find("layer_reduction.glsl") != std::string::npos) {
+    std::vector<Defines> next;
+    for (const Defines& d : result) {
+      next.push_back(d);
+      Defines table = d;
+      table.push_back({"LAYER_REDUCTIONS", "ivec4(1, 2, 0, 1)"});
+      next.push_back(table);
+      Defines forced = d;
+      forced.push_back({"FORCE_REDUCTION", "2"});
+      next.push_back(forced);
+    }
+    result = next;
+  }
   return result;
 }
 
