@@ -21,10 +21,6 @@ namespace {
 const float kOccluder = 0.5f;
 const CurvesPlotRange kZoom{0.35f, 0.75f};  // d - z in [-0.15, 0.25], as the paper zooms in
 
-std::string format(double v, int digits = 3) {
-  return fixedDigits(v, digits);
-}
-
 struct CsmVariant {
   std::string label;  // the curve's name in the plot and its CSV header: no commas
   shaders::CsmParams params;
@@ -36,16 +32,6 @@ struct MeasuredVariant {
   StepShape shape;
   float litValue;  // visibility at d - z = 0: a receiver on the occluder, exactly lit
 };
-
-shaders::CsmParams plainSeries(int termCount) {
-  shaders::CsmParams p = shaders::csmDefaultParams();
-  p.termCount = termCount;
-  p.attenuation = 0.0f;
-  p.offsetScale = 0.0f;
-  p.scale = 1.0f;
-  p.storage = shaders::kStorageFloat32;
-  return p;
-}
 
 // Evaluates every variant over receiver depth, plots them in one figure beside the exact step
 // (dir/name.png, name.csv) and measures each.
@@ -80,7 +66,7 @@ std::vector<MeasuredVariant> plotVariants(const std::vector<CsmVariant>& variant
 
 FigureItem panelA(const std::filesystem::path& dir) {
   std::vector<CsmVariant> variants;
-  for (int m : {4, 8, 16}) variants.push_back({"M = " + std::to_string(m), plainSeries(m)});
+  for (int m : {4, 8, 16}) variants.push_back({"M = " + std::to_string(m), shaders::csmPlainSeriesParams(m)});
   const std::vector<MeasuredVariant> r = plotVariants(
       variants, "CSM Fig. 3(a): M = 4, 8, 16, no attenuation, offset or scaling (occluder z = 0.5)",
       dir, "csm_fig3a");
@@ -89,8 +75,9 @@ FigureItem panelA(const std::filesystem::path& dir) {
   for (size_t i = 0; i < r.size(); ++i) {
     const StepShape& s = r[i].shape;
     measured += (i ? "; " : "") + r[i].variant.label + ": transition (0.9 to 0.1) " +
-                format(s.transitionWidth, 4) + " wide, ringing amplitude " + format(s.ringing) +
-                ", first ringing trough " + format(s.firstTroughDistance, 4) + " before the step";
+                fixedDigits(s.transitionWidth, 4) + " wide, ringing amplitude " +
+                fixedDigits(s.ringing) + ", first ringing trough " +
+                fixedDigits(s.firstTroughDistance, 4) + " before the step";
     if (i > 0) {
       steeper = steeper && s.transitionWidth < r[i - 1].shape.transitionWidth;
       faster = faster && s.firstTroughDistance > 0.0f &&
@@ -118,10 +105,10 @@ FigureItem panelA(const std::filesystem::path& dir) {
   const std::string height =
       highest < 1.25f * lowest
           ? " The next ripple's height stays within " +
-                format(100.0f * (highest / std::max(lowest, 1e-9f) - 1.0f), 0) +
+                fixedDigits(100.0f * (highest / std::max(lowest, 1e-9f) - 1.0f), 0) +
                 "% over M, as Gibbs' ripples do."
-          : " The next ripple's height changes by " + format(highest / std::max(lowest, 1e-9f), 2) +
-                "x over M.";
+          : " The next ripple's height changes by " +
+                fixedDigits(highest / std::max(lowest, 1e-9f), 2) + "x over M.";
   f.verdict = f.agrees ? "each doubling of M narrows the transition and brings the first ringing "
                          "trough closer to the step (higher frequency)." +
                              height
@@ -133,10 +120,10 @@ FigureItem panelA(const std::filesystem::path& dir) {
 
 FigureItem panelB(const std::filesystem::path& dir) {
   const float alpha = shaders::csmDefaultParams().attenuation;
-  shaders::CsmParams attenuated = plainSeries(16);
+  shaders::CsmParams attenuated = shaders::csmPlainSeriesParams(16);
   attenuated.attenuation = alpha;
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"alpha = 0", plainSeries(16)}, {"alpha = " + format(alpha, 1), attenuated}},
+      {{"alpha = 0", shaders::csmPlainSeriesParams(16)}, {"alpha = " + fixedDigits(alpha, 1), attenuated}},
       "CSM Fig. 3(b): attenuation exp(-alpha (k/M)^2) against ringing, M = 16", dir, "csm_fig3b");
   const StepShape &raw = r[0].shape, &att = r[1].shape;
   FigureItem f;
@@ -145,25 +132,27 @@ FigureItem panelB(const std::filesystem::path& dir) {
   f.paper =
       "Attenuating the k-th term by exp(-alpha (k/M)^2) suppresses the ringing, at the price of "
       "a less steep step (CSM paper Fig. 3(b), §3.2.1).";
-  f.measured = "M = 16, one occluder at z = 0.5: ringing amplitude " + format(raw.ringing) +
-               " without attenuation, " + format(att.ringing) +
-               " with alpha = " + format(alpha, 1) +
+  f.measured = "M = 16, one occluder at z = 0.5: ringing amplitude " + fixedDigits(raw.ringing) +
+               " without attenuation, " + fixedDigits(att.ringing) +
+               " with alpha = " + fixedDigits(alpha, 1) +
                " (our default); transition width (0.9 to 0.1 in d - z) " +
-               format(raw.transitionWidth, 4) + " and " + format(att.transitionWidth, 4) + ".";
+               fixedDigits(raw.transitionWidth, 4) + " and " + fixedDigits(att.transitionWidth, 4) +
+               ".";
   f.agrees = att.ringing < raw.ringing && att.transitionWidth > raw.transitionWidth;
-  f.verdict = f.agrees ? "attenuation lowers the ringing " + format(raw.ringing / att.ringing, 1) +
-                             "x and widens the transition " +
-                             format(att.transitionWidth / raw.transitionWidth, 2) + "x."
-                       : "attenuation does not both lower the ringing and widen the transition.";
+  f.verdict = f.agrees
+                  ? "attenuation lowers the ringing " + fixedDigits(raw.ringing / att.ringing, 1) +
+                        "x and widens the transition " +
+                        fixedDigits(att.transitionWidth / raw.transitionWidth, 2) + "x."
+                  : "attenuation does not both lower the ringing and widen the transition.";
   f.images = {"curves/csm_fig3b.png"};
   return f;
 }
 
 FigureItem panelC(const std::filesystem::path& dir) {
-  shaders::CsmParams offset = plainSeries(16);
+  shaders::CsmParams offset = shaders::csmPlainSeriesParams(16);
   offset.offsetScale = 1.0f;  // the first ringing maximum, 1/(2M), onto d - z = 0 (§3.2.2)
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"no offset", plainSeries(16)}, {"offset 1/(2M)", offset}},
+      {{"no offset", shaders::csmPlainSeriesParams(16)}, {"offset 1/(2M)", offset}},
       "CSM Fig. 3(c): the offset applied to d before reconstruction, M = 16", dir, "csm_fig3c");
   const float before = r[0].litValue, after = r[1].litValue;
   FigureItem f;
@@ -172,13 +161,13 @@ FigureItem panelC(const std::filesystem::path& dir) {
   f.paper =
       "Without an offset a lit receiver (d - z ~ 0) reads f = 0.5, half shadowed; subtracting a "
       "constant offset from d makes it read 1 (CSM paper Fig. 3(c), §3.2.2).";
-  f.measured =
-      "M = 16, receiver at the occluder's depth (d - z = 0, exactly lit): visibility " +
-      format(before) + " without offset, " + format(after) +
-      " with offset 1/(2M) of the scaled depth (= " +
-      format(shaders::csmReceiverOffset(offset) / shaders::csmDepthScale(offset), 4) +
-      " in d - z). The step's half-value moves from d - z = " + format(r[0].shape.halfCrossing, 4) +
-      " to " + format(r[1].shape.halfCrossing, 4) + ".";
+  f.measured = "M = 16, receiver at the occluder's depth (d - z = 0, exactly lit): visibility " +
+               fixedDigits(before) + " without offset, " + fixedDigits(after) +
+               " with offset 1/(2M) of the scaled depth (= " +
+               fixedDigits(shaders::csmReceiverOffset(offset) / shaders::csmDepthScale(offset), 4) +
+               " in d - z). The step's half-value moves from d - z = " +
+               fixedDigits(r[0].shape.halfCrossing, 4) + " to " +
+               fixedDigits(r[1].shape.halfCrossing, 4) + ".";
   // 0.5 within 0.02: the series is exactly 1/2 at t = 0 (eq. 11), less float rounding; lit
   // means at least 0.95, within the 5 % that the report's leak threshold ignores.
   f.agrees = std::abs(before - 0.5f) < 0.02f && after >= 0.95f;
@@ -189,10 +178,10 @@ FigureItem panelC(const std::filesystem::path& dir) {
 }
 
 FigureItem panelD(const std::filesystem::path& dir) {
-  shaders::CsmParams scaled = plainSeries(16);
+  shaders::CsmParams scaled = shaders::csmPlainSeriesParams(16);
   scaled.scale = 2.0f;  // §3.2.2
   const std::vector<MeasuredVariant> r = plotVariants(
-      {{"scale 1", plainSeries(16)}, {"scale 2", scaled}},
+      {{"scale 1", shaders::csmPlainSeriesParams(16)}, {"scale 2", scaled}},
       "CSM Fig. 3(d): the reconstruction scaled by 2 (then clamped), M = 16", dir, "csm_fig3d");
   const StepShape &one = r[0].shape, &two = r[1].shape;
   FigureItem f;
@@ -202,12 +191,12 @@ FigureItem panelD(const std::filesystem::path& dir) {
       "Scaling the expansion by 2 makes the transition steeper and also ensures lit surfaces "
       "(d - z ~ 0) are lit (CSM paper Fig. 3(d), §3.2.2).";
   f.measured = "M = 16, no offset: transition width (0.9 to 0.1 in d - z) " +
-               format(one.transitionWidth, 4) + " at scale 1, " + format(two.transitionWidth, 4) +
-               " at scale 2; visibility at d - z = 0 " + format(r[0].litValue) + " and " +
-               format(r[1].litValue) + ".";
+               fixedDigits(one.transitionWidth, 4) + " at scale 1, " +
+               fixedDigits(two.transitionWidth, 4) + " at scale 2; visibility at d - z = 0 " +
+               fixedDigits(r[0].litValue) + " and " + fixedDigits(r[1].litValue) + ".";
   f.agrees = two.transitionWidth < one.transitionWidth && r[1].litValue >= 0.95f;
   f.verdict = f.agrees ? "scaling by 2 narrows the transition " +
-                             format(one.transitionWidth / two.transitionWidth, 2) +
+                             fixedDigits(one.transitionWidth / two.transitionWidth, 2) +
                              "x and the lit receiver reads lit."
                        : "scaling by 2 does not both narrow the transition and light the lit "
                          "receiver.";

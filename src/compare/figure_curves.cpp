@@ -16,10 +16,6 @@
 namespace penumbra::compare {
 namespace {
 
-std::string format(double v, int digits = 3) {
-  return fixedDigits(v, digits);
-}
-
 FigureItem esmFigure2(const std::filesystem::path& dir) {
   // One occluder at z = 0.4 over half the region, the receiver plane behind it.
   CurvesRequest r;
@@ -44,10 +40,10 @@ FigureItem esmFigure2(const std::filesystem::path& dir) {
   f.paper =
       "exp(-c(d - z)) replaces the step: exact far behind the occluder, too bright just behind "
       "it, and the larger c the sharper the transition (ESM paper, Fig. 2, §3).";
-  f.measured = "c = " + format(c, 0) +
-               ": ESM is within 0.01 of the exact 0.5 from d - z = " + format(settled - 0.4f) +
-               " on (the formula's ln(50)/c = " + format(std::log(50.0) / c) +
-               "); at d - z = 0.01 it reads " + format(curveValueAt(t, "esm", 0.41f)) +
+  f.measured = "c = " + fixedDigits(c, 0) +
+               ": ESM is within 0.01 of the exact 0.5 from d - z = " + fixedDigits(settled - 0.4f) +
+               " on (the formula's ln(50)/c = " + fixedDigits(std::log(50.0) / c) +
+               "); at d - z = 0.01 it reads " + fixedDigits(curveValueAt(t, "esm", 0.41f)) +
                " (exact 0.5).";
   f.agrees = std::abs((settled - 0.4f) - std::log(50.0) / c) < 0.01;
   f.verdict = f.agrees ? "the transition width follows 1/c as the paper derives."
@@ -114,18 +110,22 @@ FigureItem esmFigure2b(const std::filesystem::path& dir) {
       "curve and the exact step H(z - d) over d - z in [-0.5, 0.5] (ESM 32-bit float, CSM's "
       "basis in 32-bit float so that 8-bit rounding does not count). CSM M = 16 without "
       "attenuation or scaling, offset " +
-      format(r.params.csm.offsetScale, 3) + " x 1/(2M) in our units: our CSM scales depths by " +
-      "kappa = " + format(kappa, 4) +
+      fixedDigits(r.params.csm.offsetScale, 3) +
+      " x 1/(2M) in our units: our CSM scales depths by " + "kappa = " + fixedDigits(kappa, 4) +
       " (shared/csm.h) before subtracting offsetScale/(2M), so this is the paper's 0.032 in d - z. "
-      "Error area: ESM " +
-      format(areaEsm, 4) + ", CSM " + format(areaCsm, 4) + " (our default CSM, attenuation 1 " +
-      "and offset 1: " + format(areaOurs, 4) +
-      "). Visibility first falls to 0.1 at d - z = " + format(shapeEsm.shadow10, 4) +
-      " for ESM and " + format(shapeCsm.shadow10, 4) + " for CSM.";
+      "The scaling also widens CSM's step in d - z by 1/kappa = " +
+      fixedDigits(1.0f / kappa, 3) +
+      "x over the paper's unscaled series, and its error area with it: unscaled, about kappa "
+      "times ours (" +
+      fixedDigits(kappa * areaCsm, 4) + ", still " + fixedDigits(kappa * areaCsm / areaEsm, 1) +
+      "x ESM's). Error area: ESM " + fixedDigits(areaEsm, 4) + ", CSM " + fixedDigits(areaCsm, 4) +
+      " (our default CSM, attenuation 1 " + "and offset 1: " + fixedDigits(areaOurs, 4) +
+      "). Visibility first falls to 0.1 at d - z = " + fixedDigits(shapeEsm.shadow10, 4) +
+      " for ESM and " + fixedDigits(shapeCsm.shadow10, 4) + " for CSM.";
   f.agrees = areaEsm < areaCsm && areaEsm < areaOurs;
-  f.verdict = f.agrees ? "ESM_80's error area is " + format(areaCsm / areaEsm, 1) +
+  f.verdict = f.agrees ? "ESM_80's error area is " + fixedDigits(areaCsm / areaEsm, 1) +
                              "x smaller than CSM_16's with the paper's offset (" +
-                             format(areaOurs / areaEsm, 1) + "x with our default CSM)."
+                             fixedDigits(areaOurs / areaEsm, 1) + "x with our default CSM)."
                        : "CSM_16 approximates the step at least as well as ESM_80 here.";
   f.images = {"curves/esm_fig2b.png"};
   return f;
@@ -149,10 +149,10 @@ FigureItem thesisBleeding(const std::filesystem::path& dir) {
       "Where two occluders share a filter region, VSM's Chebyshev bound lets light through onto "
       "a receiver behind both (exact: fully shadowed); EVSM's exponential warps reduce it "
       "(thesis §4.2). MSM (Peters and Klein 2015) is shown beside them.";
-  f.measured = "Receiver at 0.8 (exact visibility 0): VSM " + format(vsm) + " (the bound " +
-               format(bound) + "), EVSM4 " + format(curveValueAt(t, "evsm4", 0.8f)) + ", MSM " +
-               format(curveValueAt(t, "msm", 0.8f)) + ", LVSM " +
-               format(curveValueAt(t, "lvsm", 0.8f)) + ".";
+  f.measured = "Receiver at 0.8 (exact visibility 0): VSM " + fixedDigits(vsm) + " (the bound " +
+               fixedDigits(bound) + "), EVSM4 " + fixedDigits(curveValueAt(t, "evsm4", 0.8f)) +
+               ", MSM " + fixedDigits(curveValueAt(t, "msm", 0.8f)) + ", LVSM " +
+               fixedDigits(curveValueAt(t, "lvsm", 0.8f)) + ".";
   f.agrees = std::abs(vsm - bound) < 0.01 && curveValueAt(t, "evsm4", 0.8f) < vsm;
   f.verdict = f.agrees ? "VSM leaks exactly Chebyshev's bound; EVSM4 leaks less."
                        : "VSM's leak departs from Chebyshev's bound or EVSM4 leaks more.";

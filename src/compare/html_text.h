@@ -25,7 +25,7 @@ inline std::string escapeHtml(const std::string& text) {
 }
 
 // `value` with `digits` decimals.
-inline std::string fixedDigits(double value, int digits) {
+inline std::string fixedDigits(double value, int digits = 3) {
   char text[64];
   std::snprintf(text, sizeof text, "%.*f", digits, value);
   return text;

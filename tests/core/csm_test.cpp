@@ -16,15 +16,6 @@ namespace {
 
 using testing::float32Params;
 
-shaders::CsmParams plainSeries(int terms) {
-  shaders::CsmParams p = shaders::csmDefaultParams();
-  p.termCount = terms;
-  p.attenuation = 0.0f;
-  p.offsetScale = 0.0f;
-  p.scale = 1.0f;
-  return p;
-}
-
 // The unclamped series for one occluder at z and a receiver at d.
 float series(float occluder, float receiver, const shaders::CsmParams& p) {
   glm::vec4 basis[8];
@@ -50,9 +41,9 @@ float meanStepError(const shaders::CsmParams& p) {
 }
 
 TEST(Csm, StepReconstructionErrorShrinksFromFourToEightToSixteenTerms) {
-  const float e4 = meanStepError(plainSeries(4));
-  const float e8 = meanStepError(plainSeries(8));
-  const float e16 = meanStepError(plainSeries(16));
+  const float e4 = meanStepError(shaders::csmPlainSeriesParams(4));
+  const float e8 = meanStepError(shaders::csmPlainSeriesParams(8));
+  const float e16 = meanStepError(shaders::csmPlainSeriesParams(16));
   EXPECT_GT(e4, e8);
   EXPECT_GT(e8, e16);
   EXPECT_LT(e16, 0.03f);
@@ -60,7 +51,7 @@ TEST(Csm, StepReconstructionErrorShrinksFromFourToEightToSixteenTerms) {
 
 TEST(Csm, SeriesIsTheFourierExpansionOfTheStep) {
   // CSM eq. 11 evaluated directly for one occluder: 1/2 + sum 2/c_k sin(c_k (z - d)).
-  const shaders::CsmParams p = plainSeries(5);
+  const shaders::CsmParams p = shaders::csmPlainSeriesParams(5);
   const float z = 0.62f, d = 0.41f;
   const double kappa = 1.0 - 1.0 / 10.0;  // 1 - (1 + offset 0) / (2M)
   EXPECT_FLOAT_EQ(shaders::csmDepthScale(p), float(kappa));
@@ -74,7 +65,7 @@ TEST(Csm, SeriesIsTheFourierExpansionOfTheStep) {
 
 TEST(Csm, AttenuationReducesOvershoot) {
   auto overshoot = [](float alpha) {
-    shaders::CsmParams p = plainSeries(8);
+    shaders::CsmParams p = shaders::csmPlainSeriesParams(8);
     p.attenuation = alpha;
     float peak = 0.0f;
     for (int i = 1; i < 500; ++i) peak = std::max(peak, series(0.5f, 0.5f - float(i) / 1000.0f, p));
@@ -87,7 +78,7 @@ TEST(Csm, AttenuationReducesOvershoot) {
 
 TEST(Csm, OffsetMakesALitReceiverLit) {
   for (int terms : {4, 8, 16}) {
-    shaders::CsmParams p = plainSeries(terms);
+    shaders::CsmParams p = shaders::csmPlainSeriesParams(terms);
     EXPECT_NEAR(series(0.4f, 0.4f, p), 0.5f, 1e-5f) << "unshifted series is half lit at z = d";
     p.offsetScale = 1.0f;
     EXPECT_GT(series(0.4f, 0.4f, p), 0.99f) << "M = " << terms;
@@ -185,7 +176,7 @@ float transitionWidth(float occluder, const shaders::CsmParams& p) {
 // attenuation, from eq. 11 evaluated in double. Ignoring the scale gives 1; scaling about 1/2
 // (2f - 1/2, steeper without lighting) gives less than 1/2.
 TEST(Csm, ScalingByTwoHalvesTheTransitionAndLightsTheOccludersOwnDepth) {
-  shaders::CsmParams p = plainSeries(8);
+  shaders::CsmParams p = shaders::csmPlainSeriesParams(8);
   p.attenuation = shaders::csmDefaultParams().attenuation;
   const float unscaled = transitionWidth(0.5f, p);
   p.scale = 2.0f;

@@ -34,6 +34,18 @@ PENUMBRA_INLINE CsmParams csmDefaultParams() {
   return p;
 }
 
+// The plain truncated series of eq. 10-11 with M terms: no attenuation, offset or scaling, fp32
+// basis (the curves of CSM Fig. 3(a) and the series' own tests).
+PENUMBRA_INLINE CsmParams csmPlainSeriesParams(int termCount) {
+  CsmParams p = csmDefaultParams();
+  p.termCount = termCount;
+  p.attenuation = 0.0f;
+  p.offsetScale = 0.0f;
+  p.scale = 1.0f;
+  p.storage = kStorageFloat32;
+  return p;
+}
+
 // c_k = pi (2k - 1), k = 1..M (CSM eq. 11).
 PENUMBRA_INLINE float csmFrequency(int k) {
   return kPi * float(2 * k - 1);
