@@ -9,6 +9,7 @@
 
 #include "html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
+#include "penumbra/csv_field.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/render_record.h"
 #include "penumbra/gnuplot.h"
@@ -109,8 +110,8 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
     ordered_json cases = ordered_json::array();
     for (const CaseMeasurement& m : r.cases) {
       cases.push_back(caseJson(m));
-      csv << e.id << ",\"" << m.benchCase.label << "\",\"" << m.benchCase.series << "\","
-          << m.benchCase.x << "," << m.medianMs << "," << m.minMs << "," << m.maxMs << ","
+      csv << e.id << "," << csvField(m.benchCase.label) << "," << csvField(m.benchCase.series)
+          << "," << m.benchCase.x << "," << m.medianMs << "," << m.minMs << "," << m.maxMs << ","
           << m.shadowBytes << "," << m.timeRatio << "," << m.memoryRatio << ","
           << (m.benchCase.paperTimeRatio ? fixedDigits(*m.benchCase.paperTimeRatio, 3) : "") << ","
           << (m.benchCase.paperMemoryRatio ? fixedDigits(*m.benchCase.paperMemoryRatio, 3) : "")

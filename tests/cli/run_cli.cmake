@@ -1,6 +1,7 @@
 # Runs the penumbra command with ARGS (%OUT% replaced by a fresh folder OUT) and checks its exit
-# code, that its output matches EXPECT_OUTPUT, that EXPECT_FILES exist in OUT, and that CSVs
-# hold no NaN or Inf, and that EXPECT_ABSENT (paths relative to OUT's parent) do not exist.
+# code, that its output matches EXPECT_OUTPUT, that EXPECT_FILES exist in OUT, that CSVs keep
+# their header's columns and curve CSVs hold no NaN or Inf, and that EXPECT_ABSENT (paths
+# relative to OUT's parent) do not exist.
 cmake_policy(VERSION 3.25)
 file(REMOVE_RECURSE ${OUT})
 string(REPLACE "%OUT%" "${OUT}" args "${ARGS}")
@@ -19,6 +20,23 @@ foreach(f IN LISTS EXPECT_FILES)
   file(SIZE ${OUT}/${f} size)
   if(size EQUAL 0)
     message(FATAL_ERROR "${OUT}/${f} is empty")
+  endif()
+  # Every CSV row has its header's columns (RFC 4180: a quoted field may hold commas).
+  if(f MATCHES "\\.csv$")
+    file(STRINGS ${OUT}/${f} rows)
+    set(columns "")
+    foreach(row IN LISTS rows)
+      string(REGEX REPLACE "\"([^\"]|\"\")*\"" "q" bare "${row}")
+      string(REGEX REPLACE "[^,]" "" commas "${bare}")
+      string(LENGTH "${commas}" n)
+      if(columns STREQUAL "")
+        set(columns ${n})
+      elseif(NOT n EQUAL columns)
+        math(EXPR want "${columns} + 1")
+        math(EXPR got "${n} + 1")
+        message(FATAL_ERROR "${OUT}/${f}: a row has ${got} fields, the header ${want}: ${row}")
+      endif()
+    endforeach()
   endif()
   if(f MATCHES "curves\\.csv$")
     file(READ ${OUT}/${f} csv)

@@ -15,6 +15,7 @@
 #include "output_folder.h"
 #include "penumbra/compare/paper_bench.h"
 #include "penumbra/compare/paper_bench_report.h"
+#include "penumbra/csv_field.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/pass_bench.h"
@@ -140,8 +141,9 @@ void runBench(const BenchOptions& o) {
       std::cout << std::fixed << std::setprecision(1) << "| " << techniqueId(t) << " | " << r.format
                 << " | " << p.pass << " | " << p.passMs << " | " << p.baseline << " | "
                 << p.baselineMs << " | " << std::setprecision(2) << p.ratio() << " |\n";
-      csv << techniqueId(t) << "," << r.format << "," << p.pass << "," << p.passMs << ","
-          << p.baseline << "," << p.baselineMs << "," << p.ratio() << "\n";
+      csv << techniqueId(t) << "," << csvField(r.format) << "," << csvField(p.pass) << ","
+          << p.passMs << "," << csvField(p.baseline) << "," << p.baselineMs << "," << p.ratio()
+          << "\n";
       rows.push_back({{"technique", techniqueId(t)},
                       {"format", r.format},
                       {"pass", p.pass},
