@@ -69,8 +69,8 @@ float quantizeToStorage(float v, StorageFormat format, HalfRounding halfRounding
     case StorageFormat::Float16:
       if (halfRounding == HalfRounding::TowardZero) return halfTowardZero(v);
       return glm::unpackHalf1x16(glm::packHalf1x16(v));
-    // Nearest, ties to even (IEEE's default mode, as the device converts colour outputs): a
-    // mip level's mean of four power-of-two-weighted texels often lands on a tie.
+    // Nearest, ties to even: IEEE's default, and how llvmpipe converts colour outputs (GL leaves
+    // ties to the implementation). A mip level's mean of four codes often lands on a tie.
     case StorageFormat::Unorm16:
       return std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 65535.0f) / 65535.0f;
     case StorageFormat::Unorm8: return std::nearbyint(std::clamp(v, 0.0f, 1.0f) * 255.0f) / 255.0f;

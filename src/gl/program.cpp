@@ -166,16 +166,6 @@ Texture::Texture(unsigned target) {
   glCreateTextures(target, 1, &texture_);
 }
 
-Texture Texture::view(const Texture& source, unsigned target, unsigned format, int firstLevel,
-                      int levels, int layers) {
-  Texture view;
-  // A view's name must be generated but never bound: glGenTextures, not glCreateTextures.
-  glGenTextures(1, &view.texture_);
-  glTextureView(view.texture_, target, source.id(), format, GLuint(firstLevel), GLuint(levels), 0,
-                GLuint(layers));
-  return view;
-}
-
 Texture::Texture(Texture&& other) noexcept : texture_(std::exchange(other.texture_, 0)) {}
 
 Texture& Texture::operator=(Texture&& other) noexcept {
@@ -185,21 +175,6 @@ Texture& Texture::operator=(Texture&& other) noexcept {
 
 Texture::~Texture() {
   if (texture_ != 0) glDeleteTextures(1, &texture_);
-}
-
-Sampler::Sampler() {
-  glCreateSamplers(1, &sampler_);
-}
-
-Sampler::Sampler(Sampler&& other) noexcept : sampler_(std::exchange(other.sampler_, 0)) {}
-
-Sampler& Sampler::operator=(Sampler&& other) noexcept {
-  std::swap(sampler_, other.sampler_);
-  return *this;
-}
-
-Sampler::~Sampler() {
-  if (sampler_ != 0) glDeleteSamplers(1, &sampler_);
 }
 
 }  // namespace penumbra::gl

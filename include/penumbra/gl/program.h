@@ -68,10 +68,6 @@ class Texture {
  public:
   Texture() = default;
   explicit Texture(unsigned target);
-  // A view of `levels` levels from `firstLevel` and every one of `layers` layers of `source`
-  // (immutable storage) in `format`, as a texture of `target` (glTextureView).
-  static Texture view(const Texture& source, unsigned target, unsigned format, int firstLevel,
-                      int levels, int layers);
   Texture(Texture&& other) noexcept;
   Texture& operator=(Texture&& other) noexcept;
   ~Texture();
@@ -82,22 +78,6 @@ class Texture {
 
  private:
   unsigned texture_ = 0;
-};
-
-// An owned GL sampler object: filtering state for one pass, independent of the texture's own.
-class Sampler {
- public:
-  Sampler();  // glCreateSamplers
-  Sampler(Sampler&& other) noexcept;
-  Sampler& operator=(Sampler&& other) noexcept;
-  ~Sampler();
-  Sampler(const Sampler&) = delete;
-  Sampler& operator=(const Sampler&) = delete;
-
-  unsigned id() const { return sampler_; }
-
- private:
-  unsigned sampler_ = 0;
 };
 
 }  // namespace penumbra::gl

@@ -6,10 +6,10 @@
 // (2x slower on llvmpipe, docs/results/passes-llvmpipe-2026-12-01.md).
 //
 // The source texels are read whole, each once for all four channels, by imageLoad: on llvmpipe
-// four image loads of a 2x2 block cost less than the one bilinear sample of the driver's own
-// mipmap generation, where four texelFetches cost 1.4x as much, and one bilinear sample for the
-// means beside one gather per min or max channel as much again (the power CDF's mips at 4096^2:
-// 0.92-1.01x the driver's against 1.43-1.68x, docs/results/passes-llvmpipe-2026-12-02.md).
+// four image loads of a 2x2 block cost about as much as the one bilinear sample of the driver's
+// own mipmap generation, where four texelFetches cost 1.4x as much, and one bilinear sample for
+// the means beside one gather per min or max channel as much again (the power CDF's mips at
+// 4096^2: 0.92-1.01x the driver's against 1.43-1.68x, docs/results/passes-llvmpipe-2026-12-02.md).
 // Every reduction, the mean included, is then the CPU's sum in the CPU's order (reduceMipLevel):
 // no filtering hardware's rounding, no unorm8 fixed point.
 #include "../lib/layer_reduction.glsl"
