@@ -27,7 +27,8 @@ void plotSweep(const ExperimentResult& r, const std::filesystem::path& png) {
     if (bySeries[m.benchCase.series].empty()) order.push_back(m.benchCase.series);
     bySeries[m.benchCase.series].push_back(&m);
   }
-  const std::filesystem::path data = png.string() + ".dat";
+  GnuplotRun gnuplot(png.parent_path());
+  const std::filesystem::path data = gnuplot.scratchFile("sweep.dat");
   {
     std::ofstream out(data);
     for (const std::string& s : order) {
@@ -41,19 +42,18 @@ void plotSweep(const ExperimentResult& r, const std::filesystem::path& png) {
   const bool logScale = r.experiment.id == "kernel-scaling";
   std::ostringstream gp;
   gp << "set terminal pngcairo size 720,460 font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotQuote(png.string()) << "\n"
-     << "set title " << gnuplotQuote(r.experiment.title) << " noenhanced\n"
-     << "set xlabel " << gnuplotQuote(r.experiment.xLabel) << " noenhanced\n"
+     << "set output " << gnuplotPath(png) << "\n"
+     << "set title " << gnuplotText(r.experiment.title) << " noenhanced\n"
+     << "set xlabel " << gnuplotText(r.experiment.xLabel) << " noenhanced\n"
      << "set ylabel 'frame shadow cost, ms (median; bars: min-max)'\nset grid\n"
      << "set key top left noenhanced\n"
      << (logScale ? "set logscale xy\n" : "set yrange [0:*]\n") << "plot ";
   for (size_t i = 0; i < order.size(); ++i) {
-    gp << (i ? ", " : "") << gnuplotQuote(data.string()) << " index " << i
-       << " using 1:2:3:4 with yerrorlines lw 2 title " << gnuplotQuote(order[i]);
+    gp << (i ? ", " : "") << gnuplotPath(data) << " index " << i
+       << " using 1:2:3:4 with yerrorlines lw 2 title " << gnuplotText(order[i]);
   }
   gp << "\n";
-  runGnuplot(gp.str());
-  std::filesystem::remove(data);
+  gnuplot.run(gp.str());
 }
 
 ordered_json caseJson(const CaseMeasurement& m) {

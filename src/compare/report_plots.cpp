@@ -31,7 +31,8 @@ std::string gnuplotPalette() {
 
 void plotErrorHeatMap(const Image& error, double range, const std::string& title,
                       const std::filesystem::path& png) {
-  const std::filesystem::path data = png.string() + ".bin";
+  GnuplotRun gnuplot(png.parent_path());
+  const std::filesystem::path data = gnuplot.scratchFile("error.bin");
   {
     std::ofstream out(data, std::ios::binary);
     out.write(reinterpret_cast<const char*>(error.data().data()),
@@ -42,18 +43,17 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
   // Room for the colour bar and its label whatever the image size.
   gp << "set terminal pngcairo size " << error.width() + 240 << "," << std::max(error.height() + 80, 340)
      << " font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotQuote(png.string()) << "\n"
-     << "set title " << gnuplotQuote(title) << " noenhanced\n"
+     << "set output " << gnuplotPath(png) << "\n"
+     << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set palette defined (" << gnuplotPalette() << ")\n"
      << "set cbrange [" << -range << ":" << range << "]\n"
      << "set cblabel 'red: leaks light   blue: over-darkens'\n"
      << "unset xtics\nunset ytics\nset size ratio -1\n"
      << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5
      << "]\n"
-     << "plot " << gnuplotQuote(data.string()) << " binary array=(" << error.width() << ","
+     << "plot " << gnuplotPath(data) << " binary array=(" << error.width() << ","
      << error.height() << ") format='%float' flipy with image notitle\n";
-  runGnuplot(gp.str());
-  std::filesystem::remove(data);
+  gnuplot.run(gp.str());
 }
 
 void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidth, int tileHeight,
@@ -62,23 +62,24 @@ void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidt
   std::ostringstream gp;
   gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 30)
      << " font 'DejaVu Sans,11'\n"
-     << "set output " << gnuplotQuote(png.string()) << "\n"
+     << "set output " << gnuplotPath(png) << "\n"
      << "set multiplot layout " << rows << "," << columns << "\n"
      << "unset key\nunset tics\nunset border\nset size ratio -1\n"
      << "set lmargin 0.5\nset rmargin 0.5\nset bmargin 0.5\nset tmargin 1.8\n";
   for (const GridTile& t : tiles) {
-    gp << "set title " << gnuplotQuote(t.title) << " noenhanced\n"
-       << "plot " << gnuplotQuote(t.png.string()) << " binary filetype=png with rgbimage\n";
+    gp << "set title " << gnuplotText(t.title) << " noenhanced\n"
+       << "plot " << gnuplotPath(t.png) << " binary filetype=png with rgbimage\n";
   }
   gp << "unset multiplot\n";
-  runGnuplot(gp.str());
+  GnuplotRun(png.parent_path()).run(gp.str());
 }
 
 void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::string& xLabel,
                        const std::string& yLabel, const std::string& title, bool logX,
                        const std::filesystem::path& png) {
-  const std::filesystem::path data = png.string() + ".dat";
-  const std::filesystem::path front = png.string() + ".front.dat";
+  GnuplotRun gnuplot(png.parent_path());
+  const std::filesystem::path data = gnuplot.scratchFile("points.dat");
+  const std::filesystem::path front = gnuplot.scratchFile("front.dat");
   std::vector<ScatterPoint> sorted = points;
   std::sort(sorted.begin(), sorted.end(),
             [](const auto& a, const auto& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
@@ -96,19 +97,17 @@ void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::strin
   }
   std::ostringstream gp;
   gp << "set terminal pngcairo size 720,480 font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotQuote(png.string()) << "\n"
-     << "set title " << gnuplotQuote(title) << " noenhanced\n"
-     << "set xlabel " << gnuplotQuote(xLabel) << " noenhanced\nset ylabel " << gnuplotQuote(yLabel)
+     << "set output " << gnuplotPath(png) << "\n"
+     << "set title " << gnuplotText(title) << " noenhanced\n"
+     << "set xlabel " << gnuplotText(xLabel) << " noenhanced\nset ylabel " << gnuplotText(yLabel)
      << " noenhanced\nset grid\nset key top right\nset offsets graph 0.05, graph 0.15, graph 0.1, "
         "graph 0.05\n"
-     << (logX ? "set logscale x\n" : "") << "plot " << gnuplotQuote(front.string())
+     << (logX ? "set logscale x\n" : "") << "plot " << gnuplotPath(front)
      << " using 1:2 with linespoints lw 2 lc rgb '#b2182b' title 'Pareto front', "
-     << gnuplotQuote(data.string())
+     << gnuplotPath(data)
      << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
      << "'' using 1:2:3 with labels offset 0,1 font ',9' notitle noenhanced\n";
-  runGnuplot(gp.str());
-  std::filesystem::remove(data);
-  std::filesystem::remove(front);
+  gnuplot.run(gp.str());
 }
 
 }  // namespace penumbra::compare

@@ -69,9 +69,9 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
   }
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1200,750 enhanced font 'DejaVu Sans,11'\n"
-     << "set output " << gnuplotQuote(pngPath.string()) << "\n"
+     << "set output " << gnuplotPath(pngPath) << "\n"
      << "set datafile separator ','\n"
-     << "set title " << gnuplotQuote(title) << " noenhanced\n"
+     << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set xlabel 'receiver depth d (linear light-space depth)'\n"
      << "set ylabel 'visibility'\n"
      << "set xrange [" << range.from << ":" << range.to << "]\nset yrange [-0.05:1.05]\n"
@@ -83,14 +83,14 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
      << "set linetype 7 lc rgb '#e377c2'\nset linetype 8 lc rgb '#7f7f7f'\n"
      << "set linetype 9 lc rgb '#bcbd22'\nset linetype 10 lc rgb '#17becf'\n"
      << "set linetype 11 lc rgb '#000080'\nset linetype cycle 11\n"
-     << "plot " << gnuplotQuote(csvPath.string())
+     << "plot " << gnuplotPath(csvPath)
      << " using 1:2 with lines lw 3 lc rgb 'black' dt 2 title columnheader(2)";
   for (size_t c = 1; c < table.columns.size(); ++c) {
     gp << ", '' using 1:" << c + 2 << " with lines lt " << c << " lw 2 title columnheader(" << c + 2
        << ")";
   }
   gp << "\n";
-  runGnuplot(gp.str());
+  GnuplotRun(pngPath.parent_path()).run(gp.str());
 }
 
 }  // namespace penumbra

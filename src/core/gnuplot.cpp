@@ -1,50 +1,124 @@
-// gnuplot invocation through a temporary script file.
+// gnuplot invocation: a script in a private folder, run without a shell.
 #include "penumbra/gnuplot.h"
 
-#include <sys/wait.h>
+#include <fcntl.h>
 #include <unistd.h>
-#include <cstdio>
+
+#include <cerrno>
 #include <cstdlib>
-#include <filesystem>
+#include <cstring>
 #include <fstream>
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/run_program.h"
 
 namespace penumbra {
+namespace fs = std::filesystem;
 
-std::string gnuplotQuote(const std::string& text) {
-  std::string out = "\"";
-  for (char c : text) {
-    if (c == '"' || c == '\\') out += '\\';
-    out += c;
-  }
-  return out + "\"";
+namespace {
+
+bool isControl(char c) {
+  return (unsigned char)c < 0x20 || c == 0x7f;
 }
 
-void runGnuplot(const std::string& script) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path();
-  const fs::path scriptPath = dir / ("penumbra-plot-" + std::to_string(getpid()) + ".gp");
-  const fs::path logPath = dir / ("penumbra-plot-" + std::to_string(getpid()) + ".log");
-  {
-    std::ofstream out(scriptPath);
-    out << script;
-    if (!out) throw Error("cannot write the gnuplot script " + scriptPath.string());
+std::string singleQuoted(std::string_view text) {
+  std::string out = "'";
+  for (char c : text) {
+    if (c == '\'') out += '\'';
+    out += c;
   }
-  const std::string command = "gnuplot " + scriptPath.string() + " > " + logPath.string() + " 2>&1";
-  const int status = std::system(command.c_str());
+  return out + "'";
+}
+
+// Writes `text` to a file that must not exist yet (the private folder is ours alone, but a
+// file is still never written through a link).
+void writeNewFile(const fs::path& path, const std::string& text) {
+  const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
+  if (fd < 0) throw Error("cannot create " + path.string() + ": " + std::strerror(errno));
+  size_t written = 0;
+  while (written < text.size()) {
+    const ssize_t n = ::write(fd, text.data() + written, text.size() - written);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) {
+      const std::string reason = std::strerror(errno);
+      ::close(fd);
+      throw Error("cannot write " + path.string() + ": " + reason);
+    }
+    written += size_t(n);
+  }
+  ::close(fd);
+}
+
+}  // namespace
+
+std::string gnuplotText(std::string_view text) {
+  std::string clean(text);
+  for (char& c : clean) {
+    if (isControl(c)) c = '?';
+  }
+  return singleQuoted(clean);
+}
+
+std::string gnuplotPath(const fs::path& path) {
+  std::error_code ec;
+  const fs::path absolute = fs::absolute(path, ec);
+  if (ec) throw Error("cannot resolve " + path.string() + ": " + ec.message());
+  const std::string text = absolute.string();
+  for (char c : text) {
+    if (isControl(c)) {
+      throw Error("the path " + gnuplotText(text) +
+                  " holds a control character (a line break, tab or escape), which gnuplot "
+                  "cannot be given safely; choose another name");
+    }
+  }
+  return singleQuoted(text);
+}
+
+GnuplotRun::GnuplotRun(const fs::path& folder) {
+  std::string pattern = (folder / ".gnuplot-XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) {
+    throw Error("cannot create a private folder for gnuplot in " + folder.string() + ": " +
+                std::strerror(errno));
+  }
+  scratch_ = pattern;
+}
+
+GnuplotRun::~GnuplotRun() {
+  std::error_code ec;
+  fs::remove_all(scratch_, ec);
+}
+
+fs::path GnuplotRun::scratchFile(std::string_view name) const {
+  const fs::path file(name);
+  if (file.empty() || file.has_parent_path() || name == "." || name == "..") {
+    throw Error("gnuplot scratch file name '" + std::string(name) + "' is not a plain file name");
+  }
+  return scratch_ / file;
+}
+
+void GnuplotRun::run(const std::string& script) {
+  const fs::path scriptPath = scratch_ / "plot.gp";
+  const fs::path logPath = scratch_ / "gnuplot.log";
+  writeNewFile(scriptPath, script);
+  const ProgramResult result = runProgram({"gnuplot", scriptPath.string()}, logPath);
+  std::error_code ec;
+  fs::remove(scriptPath, ec);
+  if (!result.started) {
+    throw Error("gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
+  }
   std::ifstream logFile(logPath);
   std::stringstream log;
   log << logFile.rdbuf();
-  fs::remove(scriptPath);
-  fs::remove(logPath);
-  if (status != 0) {
-    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
-      throw Error(
-          "gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
+  fs::remove(logPath, ec);
+  if (!result.succeeded()) {
+    std::string message = log.str();
+    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+    if (message.empty()) {
+      message = result.exitCode < 0 ? "killed by a signal"
+                                    : "exit status " + std::to_string(result.exitCode);
     }
-    throw Error("gnuplot failed: " + log.str());
+    throw Error("gnuplot failed: " + message);
   }
 }
 

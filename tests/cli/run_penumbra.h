@@ -13,6 +13,7 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace penumbra::test {
@@ -25,9 +26,12 @@ struct RunResult {
   int exitCode() const { return WIFEXITED(status) ? WEXITSTATUS(status) : -1; }
 };
 
+// Environment variables set for the child only.
+using Environment = std::vector<std::pair<std::string, std::string>>;
+
 // Starts penumbra with `args` in `cwd`; its stdout and stderr go to `log`.
 inline pid_t startPenumbra(const std::vector<std::string>& args, const fs::path& cwd,
-                           const fs::path& log) {
+                           const fs::path& log, const Environment& environment = {}) {
   std::vector<std::string> all{PENUMBRA_EXECUTABLE};
   all.insert(all.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -37,6 +41,7 @@ inline pid_t startPenumbra(const std::vector<std::string>& args, const fs::path&
   if (pid == 0) {
     const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     if (fd < 0 || dup2(fd, 1) < 0 || dup2(fd, 2) < 0 || chdir(cwd.c_str()) != 0) _exit(127);
+    for (const auto& [name, value] : environment) setenv(name.c_str(), value.c_str(), 1);
     execv(argv[0], argv.data());
     _exit(127);
   }
@@ -50,9 +55,10 @@ inline std::string readFile(const fs::path& path) {
 }
 
 // Runs penumbra to completion.
-inline RunResult runPenumbra(const std::vector<std::string>& args, const fs::path& cwd) {
+inline RunResult runPenumbra(const std::vector<std::string>& args, const fs::path& cwd,
+                             const Environment& environment = {}) {
   const fs::path log = cwd / ".penumbra-test-output";
-  const pid_t pid = startPenumbra(args, cwd, log);
+  const pid_t pid = startPenumbra(args, cwd, log, environment);
   RunResult result;
   waitpid(pid, &result.status, 0);
   result.output = readFile(log);

@@ -1,11 +1,6 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
-#include <fcntl.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -20,6 +15,7 @@
 #include "penumbra/gl/render_record.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
+#include "penumbra/run_program.h"
 #include "render_options.h"
 #include "scene_options.h"
 #include "settings_options.h"
@@ -40,28 +36,9 @@ struct RenderCommandOptions {
   const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
 };
 
-// Runs a program found on PATH with exactly these arguments (no shell, so any path is safe) and
-// returns its exit status (-1 when it cannot be started). stdout is discarded.
-int runProgram(const std::vector<std::string>& args) {
-  std::vector<char*> argv;
-  std::vector<std::string> copies = args;
-  for (std::string& a : copies) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  pid_t pid = 0;
-  const int started = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&actions);
-  if (started != 0) return -1;
-  int status = 0;
-  if (waitpid(pid, &status, 0) != pid || !WIFEXITED(status)) return -1;
-  return WEXITSTATUS(status);
-}
-
 // --frames encodes with Debian's ffmpeg: found missing before anything is rendered.
 void requireFfmpeg() {
-  if (runProgram({"ffmpeg", "-loglevel", "quiet", "-version"}) != 0) {
+  if (!runProgram({"ffmpeg", "-loglevel", "quiet", "-version"}).succeeded()) {
     throw Error(
         "--frames encodes an MP4 with ffmpeg, which was not found on PATH "
         "(scripts/install-deps installs Debian's ffmpeg)");
@@ -89,12 +66,15 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
   }
   files["frames"] = "frames/" + stem + "_%04d.png";
   files["video"] = stem + ".mp4";
+  // Absolute paths: ffmpeg reads a leading "name:" as a protocol (concat:, subfile:, ...).
+  const fs::path absoluteDir = fs::absolute(dir);
   const std::vector<std::string> command{
       "ffmpeg", "-y", "-loglevel", "error", "-framerate", "30", "-i",
-      (dir / "frames" / (stem + "_%04d.png")).string(), "-c:v", "libx264", "-pix_fmt", "yuv420p",
+      (absoluteDir / "frames" / (stem + "_%04d.png")).string(), "-c:v", "libx264", "-pix_fmt",
+      "yuv420p",
       // H.264 in yuv420p needs even sizes.
-      "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", (dir / files.at("video")).string()};
-  if (runProgram(command) != 0) {
+      "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", (absoluteDir / files.at("video")).string()};
+  if (!runProgram(command).succeeded()) {
     throw Error("ffmpeg could not encode " + (dir / files.at("video")).string() +
                 " (is Debian's ffmpeg installed? scripts/install-deps installs it); the frames "
                 "are in " +

@@ -1,8 +1,7 @@
 // Offline shader validation: expands each shader like the renderer does and pipes it to
 // glslangValidator. Usage: penumbra-shader-lint [EXTRA_NAME=FILE ...]; exits non-zero on failure.
-#include <sys/wait.h>
-#include <unistd.h>
-#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -10,6 +9,7 @@
 #include <vector>
 
 #include "penumbra/error.h"
+#include "penumbra/run_program.h"
 #include "penumbra/shader_library.h"
 
 namespace {
@@ -26,27 +26,33 @@ std::string stageOf(const std::string& path) {
   return "";
 }
 
-// Runs glslangValidator on the expanded text; returns its output, empty when it passed.
+// Runs glslangValidator (no shell) on the expanded text in a private folder; returns its
+// output, empty when it passed.
 std::string validate(const penumbra::ExpandedShader& shader, const std::string& stage) {
   char scratch[] = "/tmp/penumbra-lint-XXXXXX";
-  const int fd = mkstemp(scratch);
-  if (fd < 0) return "cannot create a temporary file";
-  close(fd);
-  const std::string input = std::string(scratch) + "." + stage;
+  if (mkdtemp(scratch) == nullptr) return "cannot create a temporary folder";
+  const std::filesystem::path folder = scratch;
+  const std::filesystem::path input = folder / ("shader." + stage);
+  const std::filesystem::path log = folder / "glslang.log";
   {
     std::ofstream out(input);
     out << shader.source;
   }
   std::string output;
-  FILE* pipe = popen(("glslangValidator -S " + stage + " " + input + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return "cannot run glslangValidator";
-  char buffer[4096];
-  while (size_t n = fread(buffer, 1, sizeof buffer, pipe)) output.append(buffer, n);
-  const int status = pclose(pipe);
-  std::remove(input.c_str());
-  std::remove(scratch);
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return "";
-  if (WIFEXITED(status) && WEXITSTATUS(status) == 127) {
+  penumbra::ProgramResult result;
+  try {
+    result = penumbra::runProgram({"glslangValidator", "-S", stage, input.string()}, log);
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    output = text.str();
+  } catch (const penumbra::Error& e) {
+    output = e.what();
+  }
+  std::error_code ec;
+  std::filesystem::remove_all(folder, ec);
+  if (result.succeeded()) return "";
+  if (!result.started) {
     return "glslangValidator not found: run scripts/install-deps (Debian package glslang-tools)";
   }
   return shader.translateLog(output);

@@ -1,0 +1,159 @@
+// Text that reaches gnuplot is data: titles and paths holding backquotes, macros, quotes and line
+// breaks are drawn or written as given and never run, and gnuplot runs without a shell from a
+// private folder that it leaves behind empty-handed.
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "penumbra/error.h"
+#include "penumbra/gnuplot.h"
+#include "penumbra/run_program.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+class ScratchFolder {
+ public:
+  ScratchFolder() {
+    std::string pattern = (fs::temp_directory_path() / "penumbra-gnuplot-test-XXXXXX").string();
+    if (mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+    path_ = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::remove_all(path_, ec);
+  }
+  const fs::path& path() const { return path_; }
+
+ private:
+  fs::path path_;
+};
+
+std::vector<std::string> namesIn(const fs::path& folder) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+TEST(Gnuplot, TextIsSingleQuotedWithQuotesDoubledAndControlCharactersReplaced) {
+  EXPECT_EQ(gnuplotText("it's `date`"), "'it''s `date`'");
+  EXPECT_EQ(gnuplotText("a\nb\rc\td"), "'a?b?c?d'");
+}
+
+TEST(Gnuplot, PathIsAbsoluteSoItCannotNameAPipe) {
+  // gnuplot's `set output '|cmd'` and `plot '<cmd'` run commands; an absolute path starts '/'.
+  const std::string quoted = gnuplotPath("|touch x");
+  EXPECT_EQ(quoted.substr(0, 2), "'/") << quoted;
+  EXPECT_NE(quoted.find("|touch x'"), std::string::npos) << quoted;
+}
+
+TEST(Gnuplot, PathWithALineBreakIsRefused) {
+  EXPECT_THROW(gnuplotPath("plot\nsystem('touch x')"), Error);
+}
+
+// Every construct that made gnuplot run a command before: backquotes and macros in titles and in
+// the output file's name, a quote closing the literal early, a line break starting a new command.
+TEST(Gnuplot, HostileTitlesAndFileNamesAreNeverRun) {
+  ScratchFolder scratch;
+  // gnuplot runs in the scratch folder, so a relative `touch PWNED` would land there.
+  const fs::path previous = fs::current_path();
+  fs::current_path(scratch.path());
+  const fs::path victim = scratch.path() / "PWNED";
+  const std::string touch = "touch " + victim.string();
+  const fs::path out = scratch.path() / "plot`touch PWNED`$(touch PWNED).txt";
+  const std::vector<std::string> titles{
+      "t`" + touch + "`", "t\" . system('" + touch + "') . \"", "t' . system('" + touch + "') . '",
+      "t\nsystem('" + touch + "')", "t@x", "t$(" + touch + ")"};
+  for (const std::string& title : titles) {
+    std::ostringstream script;
+    script << "x = 'system(\"" << touch << "\")'\n"
+           << "set terminal dumb size 300,12\nset output " << gnuplotPath(out) << "\n"
+           << "set title " << gnuplotText(title) << " noenhanced\nplot x*x notitle\n";
+    GnuplotRun(scratch.path()).run(script.str());
+    EXPECT_FALSE(fs::exists(victim)) << "ran a command from the title " << title;
+    // The title made it through as text (its line breaks as '?').
+    std::ifstream in(out);
+    const std::string drawn{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+    std::string expected = title;
+    std::replace(expected.begin(), expected.end(), '\n', '?');
+    EXPECT_NE(drawn.find(expected), std::string::npos) << drawn;
+  }
+  // Only the plot itself is left: the script, the log and the private folder are gone.
+  EXPECT_EQ(namesIn(scratch.path()), std::vector<std::string>{out.filename().string()});
+  fs::current_path(previous);
+}
+
+TEST(Gnuplot, FailureCarriesGnuplotsMessageAndLeavesNothing) {
+  ScratchFolder scratch;
+  try {
+    GnuplotRun(scratch.path()).run("plot no_such_function(x)\n");
+    FAIL() << "an invalid script ran";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("gnuplot failed:"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("no_such_function"), std::string::npos) << e.what();
+  }
+  EXPECT_TRUE(namesIn(scratch.path()).empty());
+}
+
+TEST(Gnuplot, ScratchFilesStayInThePrivateFolder) {
+  ScratchFolder scratch;
+  {
+    GnuplotRun run(scratch.path());
+    const fs::path data = run.scratchFile("points.dat");
+    EXPECT_EQ(data.parent_path().parent_path(), scratch.path());
+    EXPECT_EQ(fs::status(data.parent_path()).permissions() & fs::perms::all, fs::perms::owner_all);
+    EXPECT_THROW(run.scratchFile("../escape.dat"), Error);
+    EXPECT_THROW(run.scratchFile(".."), Error);
+  }
+  EXPECT_TRUE(namesIn(scratch.path()).empty());
+}
+
+TEST(RunProgram, ArgumentsReachTheProgramUnparsed) {
+  ScratchFolder scratch;
+  const fs::path log = scratch.path() / "log";
+  const std::string hostile = "a b;touch " + (scratch.path() / "PWNED").string() + "`x`$(y)'\"";
+  const ProgramResult result = runProgram({"printf", "%s", hostile}, log);
+  EXPECT_TRUE(result.succeeded());
+  std::ifstream in(log);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()),
+            hostile);
+  EXPECT_FALSE(fs::exists(scratch.path() / "PWNED"));
+}
+
+TEST(RunProgram, AMissingProgramIsReportedAsNotStarted) {
+  const ProgramResult result = runProgram({"penumbra-no-such-program-xyz"});
+  EXPECT_FALSE(result.started);
+  EXPECT_FALSE(result.succeeded());
+}
+
+TEST(RunProgram, ExitStatusIsReported) {
+  EXPECT_EQ(runProgram({"false"}).exitCode, 1);
+  EXPECT_TRUE(runProgram({"true"}).succeeded());
+}
+
+// A log path where someone planted a link to a file of theirs: refused, the file untouched.
+TEST(RunProgram, APlantedLinkAtTheLogIsNeverWrittenThrough) {
+  ScratchFolder scratch;
+  const fs::path victim = scratch.path() / "victim.txt";
+  std::ofstream(victim) << "precious";
+  fs::create_symlink(victim, scratch.path() / "log");
+  EXPECT_THROW(runProgram({"echo", "overwritten"}, scratch.path() / "log"), Error);
+  std::ifstream in(victim);
+  EXPECT_EQ(std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()),
+            "precious");
+}
+
+}  // namespace
+}  // namespace penumbra
