@@ -22,6 +22,10 @@ std::string gnuplotText(std::string_view text);
 // path holding control characters, which no literal can carry safely.
 std::string gnuplotPath(const std::filesystem::path& path);
 
+// gnuplotPath for the file a script writes (`set output`), listed first in the output folder's
+// journal (output_journal.h) since gnuplot, not penumbra, creates it.
+std::string gnuplotOutput(const std::filesystem::path& path);
+
 // One gnuplot run: a private scratch folder inside `folder` (which must exist), removed with
 // its contents by the destructor.
 class GnuplotRun {

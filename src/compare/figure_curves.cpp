@@ -10,6 +10,7 @@
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/curves.h"
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/params.h"
 #include "shared/csm.h"
 
@@ -163,7 +164,7 @@ FigureItem thesisBleeding(const std::filesystem::path& dir) {
 }  // namespace
 
 std::vector<FigureItem> curveFigures(const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir / "curves");
+  createOutputDirectory(dir / "curves");
   std::vector<FigureItem> items = {esmFigure2(dir / "curves"), esmFigure2b(dir / "curves")};
   for (FigureItem& f : csmFigure3Panels(dir / "curves")) items.push_back(std::move(f));
   items.push_back(thesisBleeding(dir / "curves"));

@@ -9,6 +9,7 @@
 #include "html_text.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/paper_figures.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/params.h"
 #include "penumbra/scene.h"
 #include "render_figure_tools.h"
@@ -177,7 +178,7 @@ FigureItem evsmFigure48(gl::Renderer& renderer, const FiguresOptions& o,
 std::vector<FigureItem> renderedFigures(gl::Renderer& renderer, const FiguresOptions& options,
                                         const std::filesystem::path& dir,
                                         const FiguresProgress& progress) {
-  std::filesystem::create_directories(dir / "renders");
+  createOutputDirectory(dir / "renders");
   auto step = [&](const char* what) {
     if (progress) progress(what);
   };

@@ -11,8 +11,10 @@
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/csv_field.h"
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/gl/render_record.h"
 #include "penumbra/gnuplot.h"
+#include "penumbra/text_file.h"
 
 namespace penumbra::compare {
 namespace {
@@ -42,7 +44,7 @@ void plotSweep(const ExperimentResult& r, const std::filesystem::path& png) {
   const bool logScale = r.experiment.id == "kernel-scaling";
   std::ostringstream gp;
   gp << "set terminal pngcairo size 720,460 font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotPath(png) << "\n"
+     << "set output " << gnuplotOutput(png) << "\n"
      << "set title " << gnuplotText(r.experiment.title) << " noenhanced\n"
      << "set xlabel " << gnuplotText(r.experiment.xLabel) << " noenhanced\n"
      << "set ylabel 'frame shadow cost, ms (median; bars: min-max)'\nset grid\n"
@@ -80,7 +82,7 @@ ordered_json caseJson(const CaseMeasurement& m) {
 
 void writePaperBenchReport(const std::vector<ExperimentResult>& results,
                            const PaperBenchContext& context, const std::filesystem::path& dir) {
-  std::filesystem::create_directories(dir / "plots");
+  createOutputDirectory(dir / "plots");
   ordered_json experiments = ordered_json::array();
   std::ostringstream csv;
   csv << "experiment,label,series,x,median_ms,min_ms,max_ms,shadow_bytes,time_ratio,"
@@ -158,12 +160,9 @@ void writePaperBenchReport(const std::vector<ExperimentResult>& results,
       {"device", context.device},   {"timing", results.empty() ? "" : results[0].timing},
       {"scene", context.scene},     {"repeats", context.repeats},
       {"command", context.command}, {"experiments", experiments}};
-  std::ofstream(dir / "bench.json") << record.dump(2) << "\n";
-  std::ofstream(dir / "bench.csv") << csv.str();
-  std::ofstream(dir / "index.html") << page.str();
-  if (!std::ofstream(dir / "index.html", std::ios::app)) {
-    throw Error("cannot write the bench report in " + dir.string());
-  }
+  writeTextFile(dir / "bench.json", record.dump(2) + "\n");
+  writeTextFile(dir / "bench.csv", csv.str());
+  writeTextFile(dir / "index.html", page.str());
 }
 
 }  // namespace penumbra::compare

@@ -6,6 +6,7 @@
 #include "html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/error.h"
+#include "penumbra/text_file.h"
 
 namespace penumbra::compare {
 namespace {
@@ -104,9 +105,7 @@ void writePaperFigures(gl::Renderer& renderer, const FiguresOptions& options,
   page += "</ul>\n";
   for (const FigureItem& f : items) page += itemHtml(f);
   page += benchHtml(bench) + "</body></html>\n";
-  std::ofstream out(dir / "index.html");
-  out << page;
-  if (!out) throw Error("cannot write " + (dir / "index.html").string());
+  writeTextFile(dir / "index.html", page);
 }
 
 }  // namespace penumbra::compare

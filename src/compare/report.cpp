@@ -9,6 +9,8 @@
 
 #include "penumbra/curves.h"
 #include "penumbra/error.h"
+#include "penumbra/text_file.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/gl/render_record.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
@@ -106,9 +108,7 @@ ordered_json shimmerJson(const TechniqueResult& t) {
 }
 
 void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream out(path);
-  out << text;
-  if (!out) throw Error("cannot write " + path.string());
+  writeTextFile(path, text);
 }
 
 void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
@@ -405,6 +405,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   // Not create_directories: a staging folder removed under us (an interrupt) must stay removed.
   for (const char* sub : {"images", "crops", "plots"}) {
     std::error_code ec;
+    recordOutput(dir / sub);
     fs::create_directory(dir / sub, ec);
     if (ec) throw Error("cannot create " + (dir / sub).string() + ": " + ec.message());
   }

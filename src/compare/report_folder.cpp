@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 
 namespace penumbra::compare {
 namespace fs = std::filesystem;
@@ -54,7 +55,7 @@ std::vector<std::string> entriesBelow(const fs::path& folder) {
     const std::string relative = it->path().lexically_relative(folder).generic_string();
     if (relative != kReportMarkerFile) entries.push_back(relative);
   }
-  if (ec) throw Error("cannot list the report folder " + quoted(folder) + ": " + ec.message());
+  if (ec) throw Error("cannot list the output folder " + quoted(folder) + ": " + ec.message());
   std::sort(entries.begin(), entries.end());
   return entries;
 }
@@ -89,43 +90,43 @@ Existing classify(const fs::path& target) {
   std::error_code ec;
   const fs::file_status status = fs::symlink_status(target, ec);
   if (status.type() == fs::file_type::not_found) return Existing::None;
-  if (ec) throw Error("cannot inspect the report folder " + quoted(target) + ": " + ec.message());
+  if (ec) throw Error("cannot inspect the output folder " + quoted(target) + ": " + ec.message());
   if (fs::is_symlink(status)) {
-    throw Error("the report folder " + quoted(target) +
+    throw Error("the output folder " + quoted(target) +
                 " is a symbolic link; give the folder it points to");
   }
   if (!fs::is_directory(status)) {
-    throw Error("the report folder " + quoted(target) + " exists and is not a folder");
+    throw Error("the output folder " + quoted(target) + " exists and is not a folder");
   }
   if (isPenumbraReport(target)) {
     return unlistedEntry(target).empty() ? Existing::Report : Existing::Other;
   }
   const bool empty = fs::is_empty(target, ec);
-  if (ec) throw Error("cannot inspect the report folder " + quoted(target) + ": " + ec.message());
+  if (ec) throw Error("cannot inspect the output folder " + quoted(target) + ": " + ec.message());
   return empty ? Existing::EmptyFolder : Existing::Other;
 }
 
 void refuseOther(const fs::path& target) {
   if (isPenumbraReport(target)) {
-    throw Error("the report folder " + quoted(target) +
+    throw Error("the output folder " + quoted(target) +
                 " holds files penumbra did not write there (" + unlistedEntry(target) +
                 "); move them out, choose another folder, or pass --force to replace it and "
                 "everything in it");
   }
-  throw Error("the report folder " + quoted(target) +
+  throw Error("the output folder " + quoted(target) +
               " exists and is not a penumbra report (it has no " + std::string(kReportMarkerFile) +
               " file); choose another folder, or pass --force to replace it and everything in it");
 }
 
 // `target` made absolute and lexically normal, without a trailing separator.
 fs::path normalisedTarget(const fs::path& outDir) {
-  if (outDir.empty()) throw Error("the report folder path is empty; name a folder to write to");
+  if (outDir.empty()) throw Error("the output folder path is empty; name a folder to write to");
   std::error_code ec;
   fs::path target = fs::absolute(outDir, ec).lexically_normal();
-  if (ec) throw Error("cannot resolve the report folder " + quoted(outDir) + ": " + ec.message());
+  if (ec) throw Error("cannot resolve the output folder " + quoted(outDir) + ": " + ec.message());
   if (!target.has_filename() && target.has_relative_path()) target = target.parent_path();
   if (!target.has_relative_path()) {
-    throw Error("the report folder " + quoted(outDir) + " is the file-system root");
+    throw Error("the output folder " + quoted(outDir) + " is the file-system root");
   }
   const fs::path cwd = fs::current_path(ec);
   if (!ec) {
@@ -135,7 +136,7 @@ fs::path normalisedTarget(const fs::path& outDir) {
     const fs::path here = fs::weakly_canonical(cwd, hereError);
     const fs::path inside = here.lexically_relative(real);
     if (!realError && !hereError && !inside.empty() && *inside.begin() != "..") {
-      throw Error("the report folder " + quoted(outDir) +
+      throw Error("the output folder " + quoted(outDir) +
                   " is the current folder or contains it; name a folder below it");
     }
   }
@@ -156,9 +157,41 @@ long pidAfter(std::string_view entry, std::string_view prefix) {
   return pid;
 }
 
+// Removes from `folder` the entries its marker lists ("entry <relative path>"), deepest first,
+// folders only once empty, then the marker and the folder itself if nothing else is left: what
+// someone else put there stays.
+void removeListedEntries(const fs::path& folder, const std::vector<std::string>& markerText) {
+  std::vector<std::string> listed;
+  for (const std::string& line : markerText) {
+    if (line.rfind("entry ", 0) != 0) continue;
+    const fs::path relative = fs::path(line.substr(6)).lexically_normal();
+    if (relative.empty() || relative.is_absolute() || *relative.begin() == ".." ||
+        relative == kReportMarkerFile) {
+      continue;
+    }
+    listed.push_back(relative.generic_string());
+  }
+  // Reverse order puts "a/b" before "a": children go before their folder.
+  std::sort(listed.rbegin(), listed.rend());
+  std::error_code ec;
+  for (const std::string& entry : listed) {
+    const fs::path path = folder / entry;
+    if (fs::is_directory(fs::symlink_status(path, ec))) {
+      if (!fs::is_empty(path, ec)) continue;
+    }
+    fs::remove(path, ec);
+  }
+  if (entriesBelow(folder).empty()) {
+    fs::remove(folder / kReportMarkerFile, ec);
+    fs::remove(folder, ec);
+  }
+}
+
 // Staging and set-aside folders of runs to the same target whose process is gone (a run killed
-// by SIGKILL cannot clean up after itself). Only folders carrying penumbra's marker are removed;
-// a staging folder's marker must also name the dead process.
+// by SIGKILL cannot clean up after itself). Only folders carrying penumbra's marker are touched,
+// a staging folder's marker must also name the dead process, and only the entries the marker
+// lists are removed: a staging folder's marker lists each file before it is written
+// (output_journal.h), a set-aside report's every entry of the finished report.
 void removeStaleFolders(const fs::path& target) {
   const std::string name = target.filename().string();
   const std::string stagingPrefix = name + std::string(kStagingSuffix);
@@ -177,8 +210,11 @@ void removeStaleFolders(const fs::path& target) {
     if (stagingPid != 0 && (lines.size() < 2 || lines[1] != "staging " + std::to_string(pid))) {
       continue;
     }
-    std::error_code removeError;
-    fs::remove_all(entry.path(), removeError);
+    try {
+      removeListedEntries(entry.path(), lines);
+    } catch (const Error&) {
+      // An unreadable leftover stays; it is not this run's to force.
+    }
   }
 }
 
@@ -214,7 +250,7 @@ void ReportFolder::createStaging() {
   std::error_code ec;
   fs::create_directories(parent, ec);
   if (ec) {
-    throw Error("cannot write the report next to " + quoted(target_) + ": cannot create " +
+    throw Error("cannot write the output next to " + quoted(target_) + ": cannot create " +
                 quoted(parent) + ": " + ec.message());
   }
   removeStaleFolders(target_);
@@ -224,33 +260,35 @@ void ReportFolder::createStaging() {
     // This process's own earlier staging folder (an earlier ReportFolder that was not discarded).
     const std::vector<std::string> lines = markerLines(staging);
     if (lines.size() < 2 || lines[1] != "staging " + std::to_string(pid)) {
-      throw Error("cannot write the report next to " + quoted(target_) + ": " + quoted(staging) +
+      throw Error("cannot write the output next to " + quoted(target_) + ": " + quoted(staging) +
                   " exists and is not this run's staging folder");
     }
     fs::remove_all(staging, ec);
   }
   if (!fs::create_directory(staging, ec) || ec) {
-    throw Error("cannot write the report next to " + quoted(target_) + ": cannot create " +
+    throw Error("cannot write the output next to " + quoted(target_) + ": cannot create " +
                 quoted(staging) + (ec ? ": " + ec.message() : std::string()));
   }
   staging_ = staging;
   try {
     writeMarker(staging_, stagingMarker(pid));
+    startOutputJournal(staging_, staging_ / kReportMarkerFile);
   } catch (const Error& e) {
     discard();
-    throw Error("cannot write the report next to " + quoted(target_) + ": " + e.what());
+    throw Error("cannot write the output next to " + quoted(target_) + ": " + e.what());
   }
 }
 
 void ReportFolder::commit() {
-  if (staging_.empty()) throw Error("no staged report to move to " + quoted(target_));
+  if (staging_.empty()) throw Error("no staged output to move to " + quoted(target_));
+  stopOutputJournal();
   writeMarker(staging_, finishedMarker(staging_));
   // The run took a while: check the target again.
   const Existing existing = classify(target_);
   if (existing == Existing::Other && !force_) {
     const fs::path kept = staging_;
     staging_.clear();  // the finished report stays where it is
-    throw Error("the report folder " + quoted(target_) +
+    throw Error("the output folder " + quoted(target_) +
                 " appeared during the run and is not a penumbra report; the new report is in " +
                 quoted(kept));
   }
@@ -258,7 +296,7 @@ void ReportFolder::commit() {
   if (existing == Existing::None) {
     fs::rename(staging_, target_, ec);
     if (ec) {
-      throw Error("cannot move the finished report to " + quoted(target_) + ": " + ec.message());
+      throw Error("cannot move the finished output to " + quoted(target_) + ": " + ec.message());
     }
     staging_.clear();
     return;
@@ -268,18 +306,28 @@ void ReportFolder::commit() {
                                std::to_string(long(::getpid())));
   fs::rename(target_, aside, ec);
   if (ec) {
-    throw Error("cannot move the earlier report " + quoted(target_) + " aside: " + ec.message());
+    throw Error("cannot move the earlier output " + quoted(target_) + " aside: " + ec.message());
   }
   fs::rename(staging_, target_, ec);
   if (ec) {
     std::error_code restore;
     fs::rename(aside, target_, restore);
-    throw Error("cannot move the finished report to " + quoted(target_) + ": " + ec.message());
+    throw Error("cannot move the finished output to " + quoted(target_) + ": " + ec.message());
   }
   staging_.clear();
   // An empty folder goes with rmdir, which cannot delete anything that appeared in it meanwhile.
+  // An earlier report loses only what its marker lists (a file that appeared in it meanwhile
+  // keeps the folder); --force replaces a foreign folder whole, as it says.
   if (existing == Existing::EmptyFolder) {
     fs::remove(aside, ec);
+  } else if (existing == Existing::Report) {
+    removeListedEntries(aside, markerLines(aside));
+    const bool kept = fs::exists(fs::symlink_status(aside, ec));
+    ec.clear();  // "no such file" is the success here
+    if (kept) {
+      throw Error("the report is in " + quoted(target_) + "; files that appeared in the earlier "
+                  "one during the run were kept in " + quoted(aside));
+    }
   } else {
     fs::remove_all(aside, ec);
   }
@@ -292,6 +340,7 @@ void ReportFolder::commit() {
 
 void ReportFolder::discard() noexcept {
   if (staging_.empty()) return;
+  stopOutputJournal();
   removeReportStaging(staging_);
   staging_.clear();
 }

@@ -43,7 +43,7 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
   // Room for the colour bar and its label whatever the image size.
   gp << "set terminal pngcairo size " << error.width() + 240 << "," << std::max(error.height() + 80, 340)
      << " font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotPath(png) << "\n"
+     << "set output " << gnuplotOutput(png) << "\n"
      << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set palette defined (" << gnuplotPalette() << ")\n"
      << "set cbrange [" << -range << ":" << range << "]\n"
@@ -62,7 +62,7 @@ void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidt
   std::ostringstream gp;
   gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 30)
      << " font 'DejaVu Sans,11'\n"
-     << "set output " << gnuplotPath(png) << "\n"
+     << "set output " << gnuplotOutput(png) << "\n"
      << "set multiplot layout " << rows << "," << columns << "\n"
      << "unset key\nunset tics\nunset border\nset size ratio -1\n"
      << "set lmargin 0.5\nset rmargin 0.5\nset bmargin 0.5\nset tmargin 1.8\n";
@@ -97,7 +97,7 @@ void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::strin
   }
   std::ostringstream gp;
   gp << "set terminal pngcairo size 720,480 font 'DejaVu Sans,10'\n"
-     << "set output " << gnuplotPath(png) << "\n"
+     << "set output " << gnuplotOutput(png) << "\n"
      << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set xlabel " << gnuplotText(xLabel) << " noenhanced\nset ylabel " << gnuplotText(yLabel)
      << " noenhanced\nset grid\nset key top right\nset offsets graph 0.05, graph 0.15, graph 0.1, "

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/gnuplot.h"
 #include "penumbra/params.h"
 
@@ -47,6 +48,7 @@ void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path)
   for (const std::string& c : table.columns) {
     if (c.find(',') != std::string::npos) throw Error("curve name '" + c + "' holds a comma");
   }
+  recordOutput(path);
   std::ofstream out(path);
   if (!out) throw Error("cannot write " + path.string());
   out << "receiver_depth";
@@ -69,7 +71,7 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
   }
   std::ostringstream gp;
   gp << "set terminal pngcairo size 1200,750 enhanced font 'DejaVu Sans,11'\n"
-     << "set output " << gnuplotPath(pngPath) << "\n"
+     << "set output " << gnuplotOutput(pngPath) << "\n"
      << "set datafile separator ','\n"
      << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set xlabel 'receiver depth d (linear light-space depth)'\n"

@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/run_program.h"
 
 namespace penumbra {
@@ -34,6 +35,7 @@ std::string singleQuoted(std::string_view text) {
 // Writes `text` to a file that must not exist yet (the private folder is ours alone, but a
 // file is still never written through a link).
 void writeNewFile(const fs::path& path, const std::string& text) {
+  recordOutput(path);
   const int fd = ::open(path.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, 0600);
   if (fd < 0) throw Error("cannot create " + path.string() + ": " + std::strerror(errno));
   size_t written = 0;
@@ -75,6 +77,12 @@ std::string gnuplotPath(const fs::path& path) {
   return singleQuoted(text);
 }
 
+std::string gnuplotOutput(const fs::path& path) {
+  std::string quoted = gnuplotPath(path);
+  recordOutput(path);
+  return quoted;
+}
+
 GnuplotRun::GnuplotRun(const fs::path& folder) {
   std::string pattern = (folder / ".gnuplot-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr) {
@@ -82,6 +90,8 @@ GnuplotRun::GnuplotRun(const fs::path& folder) {
                 std::strerror(errno));
   }
   scratch_ = pattern;
+  // Listed as soon as it exists (mkdtemp chose the name): a killed run's next run removes it.
+  recordOutput(scratch_);
 }
 
 GnuplotRun::~GnuplotRun() {
@@ -94,6 +104,7 @@ fs::path GnuplotRun::scratchFile(std::string_view name) const {
   if (file.empty() || file.has_parent_path() || name == "." || name == "..") {
     throw Error("gnuplot scratch file name '" + std::string(name) + "' is not a plain file name");
   }
+  recordOutput(scratch_ / file);
   return scratch_ / file;
 }
 
@@ -101,6 +112,7 @@ void GnuplotRun::run(const std::string& script) {
   const fs::path scriptPath = scratch_ / "plot.gp";
   const fs::path logPath = scratch_ / "gnuplot.log";
   writeNewFile(scriptPath, script);
+  recordOutput(logPath);
   const ProgramResult result = runProgram({"gnuplot", scriptPath.string()}, logPath);
   std::error_code ec;
   fs::remove(scriptPath, ec);

@@ -18,6 +18,7 @@
 
 #include "penumbra/diagnostic_images.h"
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/srgb.h"
 
 namespace penumbra {
@@ -26,6 +27,7 @@ namespace {
 using FilePtr = std::unique_ptr<FILE, int (*)(FILE*)>;
 
 FilePtr open(const std::filesystem::path& path, const char* mode) {
+  if (mode[0] == 'w') recordOutput(path);
   FilePtr file(std::fopen(path.c_str(), mode), &std::fclose);
   if (!file) throw Error("cannot open " + path.string() + (mode[0] == 'w' ? " for writing" : ""));
   return file;
@@ -183,6 +185,7 @@ void writeFloatExr(const Image& image, const std::filesystem::path& path) {
   try {
     Imf::Header header(image.width(), image.height());
     header.channels().insert("Y", Imf::Channel(Imf::FLOAT));
+    recordOutput(path);
     Imf::OutputFile file(path.c_str(), header);
     Imf::FrameBuffer frame;
     frame.insert("Y",

@@ -61,24 +61,101 @@ TEST(CurvesOut, EmptyPathIsRefused) {
   ScratchFolder scratch;
   const RunResult run = runPenumbra({"curves", "--no-plot", "--out", ""}, scratch.path());
   EXPECT_EQ(run.exitCode(), 1) << run.output;
-  EXPECT_NE(run.output.find("output folder path is empty"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("path is empty"), std::string::npos) << run.output;
   EXPECT_FALSE(fs::exists(scratch.path() / "curves.csv"));
 }
 
-TEST(CurvesOut, WritesIntoAnExistingFolderAndDeletesNothing) {
+TEST(CurvesOut, AFolderOfTheUserIsRefusedAndLeftUntouched) {
   ScratchFolder scratch;
   writeFile(scratch.path() / "c" / "photo.jpg", "jpeg");
+  const auto before = snapshot(scratch.path());
   const RunResult run = runPenumbra({"curves", "--no-plot", "--out", "c/"}, scratch.path());
+  EXPECT_EQ(run.exitCode(), 1) << run.output;
+  EXPECT_NE(run.output.find("is not a penumbra report"), std::string::npos) << run.output;
+  EXPECT_TRUE(lineCount(run.output, 1)) << run.output;
+  EXPECT_EQ(snapshot(scratch.path()), before);
+}
+
+TEST(CurvesOut, AnEarlierOutputIsReplacedWhole) {
+  ScratchFolder scratch;
+  ASSERT_EQ(runPenumbra({"curves", "--out", "c"}, scratch.path()).exitCode(), 0);
+  ASSERT_TRUE(fs::exists(scratch.path() / "c" / "curves.png"));
+  const RunResult run = runPenumbra({"curves", "--no-plot", "--out", "c"}, scratch.path());
   EXPECT_EQ(run.exitCode(), 0) << run.output;
-  EXPECT_EQ(readFile(scratch.path() / "c" / "photo.jpg"), "jpeg");
   EXPECT_TRUE(fs::exists(scratch.path() / "c" / "curves.csv"));
+  EXPECT_FALSE(fs::exists(scratch.path() / "c" / "curves.png")) << "a stale plot was kept";
+}
+
+// Every subcommand that writes a folder refuses the root, the current folder and a folder of the
+// user's before it does any work, and leaves them as they were.
+TEST(EveryCommandOut, RootCurrentAndForeignFoldersAreRefused) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "work" / "index.html", "mine");
+  writeFile(scratch.path() / "mine" / "index.html", "mine");
+  writeFile(scratch.path() / "mine" / "plots" / "sweep.png.dat", "mine too");
+  const auto before = snapshot(scratch.path());
+  const std::vector<std::vector<std::string>> commands{
+      {"render", "--scene", "planar"},
+      {"curves", "--no-plot"},
+      {"bench", "--passes", "--scene", "planar", "--technique", "vsm"},
+      {"bench", "--experiment", "kernel-scaling", "--scene", "planar"},
+      {"figures"},
+      {"compare", "--scene", "planar", "--technique", "vsm"}};
+  const std::vector<std::pair<std::string, std::string>> outs{
+      {"/", "file-system root"},
+      {".", "is the current folder or contains it"},
+      {"..", "is the current folder or contains it"},
+      {"../mine/", "is not a penumbra report"}};
+  for (const std::vector<std::string>& command : commands) {
+    for (const auto& [out, expected] : outs) {
+      std::vector<std::string> args = command;
+      args.insert(args.end(), {"--out", out});
+      const RunResult run = runPenumbra(args, scratch.path() / "work");
+      EXPECT_EQ(run.exitCode(), 1) << command[0] << " --out " << out << ": " << run.output;
+      EXPECT_NE(run.output.find(expected), std::string::npos)
+          << command[0] << " --out " << out << ": " << run.output;
+    }
+  }
+  EXPECT_EQ(snapshot(scratch.path()), before);
+}
+
+// Names and TMPDIR values that ran commands through gnuplot's backquotes and the shell that
+// started it (issue 23): the plot is written under the literal name, nothing runs, TMPDIR is
+// not used at all (no file there, the file before the space untouched), no scratch file is left.
+TEST(CurvesOut, HostileNamesAndTmpdirRunNothingAndLeaveNothing) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "x" / "my", "unrelated");
+  fs::create_directories(scratch.path() / "x" / "my dir");
+  fs::create_directories(scratch.path() / "t;touch PWNED4;");
+  const std::string out = "c`touch PWNED3`$(touch PWNED5)";
+  for (const std::string& tmpdir :
+       {(scratch.path() / "x" / "my dir").string(), std::string("t;touch PWNED4;")}) {
+    const RunResult run = runPenumbra({"curves", "--out", out}, scratch.path(), {{"TMPDIR", tmpdir}});
+    EXPECT_EQ(run.exitCode(), 0) << run.output;
+  }
+  EXPECT_TRUE(fs::exists(scratch.path() / out / "curves.png"));
+  std::vector<std::string> names;
+  for (const auto& entry : fs::recursive_directory_iterator(scratch.path())) {
+    names.push_back(fs::relative(entry.path(), scratch.path()).string());
+  }
+  std::sort(names.begin(), names.end());
+  const std::vector<std::string> expected{out,
+                                          out + "/.penumbra-report",
+                                          out + "/curves.csv",
+                                          out + "/curves.png",
+                                          "t;touch PWNED4;",
+                                          "x",
+                                          "x/my",
+                                          "x/my dir"};
+  EXPECT_EQ(names, expected);
+  EXPECT_EQ(readFile(scratch.path() / "x" / "my"), "unrelated");
 }
 
 TEST(RenderOut, EmptyPathIsRefused) {
   ScratchFolder scratch;
   const RunResult run = runPenumbra({"render", "--out", ""}, scratch.path());
   EXPECT_EQ(run.exitCode(), 1) << run.output;
-  EXPECT_NE(run.output.find("output folder path is empty"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("path is empty"), std::string::npos) << run.output;
 }
 
 }  // namespace

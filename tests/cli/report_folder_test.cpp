@@ -8,6 +8,8 @@
 #include <unistd.h>
 
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
+#include "penumbra/text_file.h"
 #include "run_penumbra.h"
 
 namespace penumbra::compare {
@@ -201,7 +203,7 @@ TEST(ReportFolder, CannotCreateBelowAFile) {
   writeFile(scratch.path() / "file", "text");
   ReportFolder folder(scratch.path() / "file" / "report", false);
   const std::string message = errorOf([&] { folder.createStaging(); });
-  EXPECT_NE(message.find("cannot write the report next to"), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot write the output next to"), std::string::npos) << message;
   EXPECT_NE(message.find("Not a directory"), std::string::npos) << message;
   EXPECT_EQ(readFile(scratch.path() / "file"), "text");
 }
@@ -244,7 +246,7 @@ TEST(ReportFolder, ReadOnlyParentIsRefusedWithTheReason) {
   waitpid(child, &status, 0);
   fs::permissions(parent, fs::perms::owner_all);
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "child status " << status;
-  EXPECT_NE(message.find("cannot write the report next to"), std::string::npos) << message;
+  EXPECT_NE(message.find("cannot write the output next to"), std::string::npos) << message;
   EXPECT_NE(message.find("Permission denied"), std::string::npos) << message;
 }
 
@@ -275,6 +277,55 @@ TEST(ReportFolder, RemovesLeftoversOfDeadRunsThatCarryTheMarkerOnly) {
   EXPECT_EQ(readFile(otherPid / "notes.txt"), "mine");
   EXPECT_TRUE(fs::exists(live / marker));
   EXPECT_TRUE(fs::exists(otherTarget / marker));  // another target's leftovers are its own business
+}
+
+// A killed run's staging folder loses exactly what its marker lists: a file someone put into it,
+// and the folders that hold such files, stay. The same for a set-aside earlier report.
+TEST(ReportFolder, RemovesOnlyTheEntriesADeadRunListed) {
+  ScratchFolder scratch;
+  const long dead = deadPid();
+  const std::string marker = std::string(kReportMarkerFile);
+  const fs::path staging = scratch.path() / ("report.partial-" + std::to_string(dead));
+  writeFile(staging / marker, "penumbra report 1\nstaging " + std::to_string(dead) +
+                                  "\nentry images\nentry images/vsm.png\nentry plots\n"
+                                  "entry plots/grid.png\nentry index.html\nentry ../outside.txt\n");
+  writeFile(staging / "images" / "vsm.png", "penumbra's");
+  writeFile(staging / "plots" / "grid.png", "penumbra's");
+  writeFile(staging / "plots" / "mine.dat", "a user's");
+  writeFile(staging / "notes.txt", "a user's");
+  writeFile(scratch.path() / "outside.txt", "a user's");
+  const fs::path aside = scratch.path() / ("report.replaced-" + std::to_string(dead));
+  writeFile(aside / marker, "penumbra report 1\nentry index.html\n");
+  writeFile(aside / "index.html", "penumbra's");
+
+  ReportFolder folder(scratch.path() / "report", false);
+  folder.createStaging();
+  EXPECT_FALSE(fs::exists(staging / "images"));
+  EXPECT_FALSE(fs::exists(staging / "plots" / "grid.png"));
+  EXPECT_FALSE(fs::exists(staging / "index.html"));
+  EXPECT_EQ(readFile(staging / "plots" / "mine.dat"), "a user's");
+  EXPECT_EQ(readFile(staging / "notes.txt"), "a user's");
+  EXPECT_EQ(readFile(scratch.path() / "outside.txt"), "a user's");
+  EXPECT_FALSE(fs::exists(aside));  // everything in it was listed: gone, marker and folder too
+}
+
+// What this run writes is listed before it is written, so a SIGKILL at any point leaves a list
+// of exactly this run's files.
+TEST(ReportFolder, StagingMarkerListsEachFileAsItIsWritten) {
+  ScratchFolder scratch;
+  ReportFolder folder(scratch.path() / "report", false);
+  folder.createStaging();
+  writeTextFile(folder.staging() / "index.html", "page");
+  createOutputDirectory(folder.staging() / "images");
+  writeTextFile(folder.staging() / "images" / "a.txt", "a");
+  writeTextFile(scratch.path() / "elsewhere.txt", "not in the staging folder");
+  EXPECT_EQ(readFile(folder.staging() / kReportMarkerFile),
+            "penumbra report 1\nstaging " + std::to_string(getpid()) +
+                "\nentry index.html\nentry images\nentry images/a.txt\n");
+  folder.discard();
+  // After the folder is done with, nothing is listed any more.
+  writeTextFile(scratch.path() / "after.txt", "x");
+  EXPECT_TRUE(fs::exists(scratch.path() / "after.txt"));
 }
 
 }  // namespace

@@ -12,11 +12,13 @@
 #include <sstream>
 
 #include "command_line.h"
+#include "interrupt_cleanup.h"
 #include "output_folder.h"
 #include "penumbra/compare/paper_bench.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/csv_field.h"
 #include "penumbra/error.h"
+#include "penumbra/text_file.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/pass_bench.h"
 #include "penumbra/gl/renderer.h"
@@ -35,7 +37,7 @@ struct BenchOptions {
   TechniqueOptions technique{"esm,vsm,evsm4,msm", {}};
   RenderOptions render;
   int repeat = 3;
-  std::string outDir = "out/bench";
+  OutputOptions output{"out/bench"};
 
   BenchOptions() {
     // The measurement: 2048², 9-tap box, trilinear (mips every frame).
@@ -61,9 +63,10 @@ void runPaperExperiments(const BenchOptions& o) {
   sizes.height = o.render.height;
   std::vector<compare::Experiment> experiments;
   for (const std::string& id : ids) experiments.push_back(compare::makePaperExperiment(id, sizes));
-  Scene scene = loadScene(o.scene.scene);
+  Scene scene = loadScene(o.scene.scene, sceneLoadOptions(o.scene));
   applyOverrides(scene, sceneOverrides(o.scene));
-  checkOutputPath(o.outDir);
+  CommandOutput output(o.output);
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   for (const compare::Experiment& e : experiments) {
@@ -80,10 +83,12 @@ void runPaperExperiments(const BenchOptions& o) {
     }
     for (const std::string& f : results.back().findings) std::cout << "  " << f << "\n";
   }
-  const std::filesystem::path dir = createOutputFolder(o.outDir);
+  const std::filesystem::path dir = output.begin(interrupt);
   compare::writePaperBenchReport(
       results, {renderer.deviceDescription(), scene.name, o.repeat, o.commandLine}, dir);
-  std::cout << "\nwrote " << (dir / "index.html").string() << ", bench.json and bench.csv\n";
+  output.finish(interrupt);
+  std::cout << "\nwrote " << (output.target() / "index.html").string()
+            << ", bench.json and bench.csv\n";
 }
 
 void runBench(const BenchOptions& o) {
@@ -112,17 +117,17 @@ void runBench(const BenchOptions& o) {
                 " has no prefilter passes to measure (it filters after the test): choose "
                 "techniques that prefilter, or all");
   }
-  Scene scene = loadScene(o.scene.scene);
+  Scene scene = loadScene(o.scene.scene, sceneLoadOptions(o.scene));
   applyOverrides(scene, sceneOverrides(o.scene));
-  checkOutputPath(o.outDir);
-
+  CommandOutput output(o.output);
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   for (Technique t : techniques) {
     settings.technique = t;
     renderer.validate(settings);
   }
-  const std::filesystem::path dir = createOutputFolder(o.outDir);
+  const std::filesystem::path dir = output.begin(interrupt);
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   std::ostringstream csv;
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio\n";
@@ -167,9 +172,10 @@ void runBench(const BenchOptions& o) {
       {"filter", filterModeName(settings.filter)},
       {"repeats", o.repeat},
       {"rows", rows}};
-  std::ofstream(dir / "passes.json") << record.dump(2) << "\n";
-  std::ofstream(dir / "passes.csv") << csv.str();
-  std::cout << "\nwrote " << (dir / "passes.json").string() << " and passes.csv\n";
+  writeTextFile(dir / "passes.json", record.dump(2) + "\n");
+  writeTextFile(dir / "passes.csv", csv.str());
+  output.finish(interrupt);
+  std::cout << "\nwrote " << (output.target() / "passes.json").string() << " and passes.csv\n";
 }
 
 }  // namespace
@@ -191,7 +197,7 @@ void registerBenchCommand(CLI::App& app) {
   cmd->add_option("--repeat", o->repeat, "timed frames after one warm-up (medians)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
+  addOutputOptions(*cmd, o->output, "the results");
   cmd->callback([o, cmd] {
     if (!o->experiments.empty()) {
       // The experiments fix their techniques, kernels and lookups; only the sizes are the user's.

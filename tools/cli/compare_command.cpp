@@ -6,9 +6,9 @@
 #include <memory>
 
 #include "interrupt_cleanup.h"
+#include "output_folder.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
-#include "penumbra/compare/report_folder.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/params.h"
@@ -42,8 +42,7 @@ struct CompareOptions {
   bool blurGiven = false;    // --blur
   int frames = 4;
   double tau = 0.05;
-  std::string outDir = "out/compare";
-  bool force = false;
+  OutputOptions output{"out/compare"};
   bool quiet = false;
   std::string settingsFile;
   const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
@@ -56,6 +55,7 @@ void runCompare(const CompareOptions& o) {
       resolveSettings(*o.command, o.settingsFile, o.scene, o.technique, o.render);
   request.scene = resolved.scene;
   checkSceneSource(request.scene);  // unknown scenes and missing files fail before anything else
+  request.sceneLoad = sceneLoadOptions(o.scene);
   request.view = resolved.view;
   request.techniques = resolved.techniques;
   // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
@@ -80,15 +80,12 @@ void runCompare(const CompareOptions& o) {
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
-  compare::ReportFolder folder(o.outDir, o.force);  // a bad --out fails before any GL work
-  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
+  CommandOutput output(o.output);  // a bad --out fails before any GL work
+  InterruptCleanup interrupt;      // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   compare::validateRequest(request, renderer);
-  interrupt.uninterrupted([&] {
-    folder.createStaging();
-    interrupt.setCleanup([staging = folder.staging()] { compare::removeReportStaging(staging); });
-  });
+  const std::filesystem::path staging = output.begin(interrupt);
   compare::ComparisonResult result;
   {
     ProgressBar bar(o.quiet);
@@ -97,13 +94,10 @@ void runCompare(const CompareOptions& o) {
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
   printSceneWarnings(result.scene);
-  compare::writeReportFiles(result, folder.staging());
-  interrupt.uninterrupted([&] {
-    folder.commit();
-    interrupt.setCleanup({});
-  });
+  compare::writeReportFiles(result, staging);
+  output.finish(interrupt);
   if (!o.quiet) {
-    std::cout << "wrote " << (folder.target() / "index.html").string() << "\n";
+    std::cout << "wrote " << (output.target() / "index.html").string() << "\n";
   }
 }
 
@@ -130,12 +124,7 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_option("--tau", o->tau, "leak / over-darkening threshold on visibility")
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir,
-                  "report folder; an earlier penumbra report there is replaced once the new one is "
-                  "complete, any other existing folder is refused")
-      ->capture_default_str();
-  cmd->add_flag("--force", o->force,
-                "replace --out even when it is not a penumbra report (deletes everything in it)");
+  addOutputOptions(*cmd, o->output, "the report");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
   cmd->callback([o, cmd] {
     o->filterGiven = cmd->get_option("--filter")->count() > 0;

@@ -5,6 +5,7 @@
 #include <iostream>
 #include <memory>
 
+#include "interrupt_cleanup.h"
 #include "output_folder.h"
 #include "penumbra/curves.h"
 #include "technique_options.h"
@@ -14,7 +15,7 @@ namespace {
 
 struct CurvesOptions {
   std::string occluders = "0.3:0.5,0.5:0.5";
-  std::string outDir = "out/curves";
+  OutputOptions output{"out/curves"};
   int samples = 1001;
   bool noPlot = false;
   TechniqueOptions technique;
@@ -27,18 +28,21 @@ void runCurves(const CurvesOptions& options) {
   request.techniques = selectedTechniques(options.technique);
   request.params = selectedParams(options.technique, request.techniques);
   request.samples = options.samples;
+  CommandOutput output(options.output);
   const CurvesTable table = computeCurves(request);
 
   namespace fs = std::filesystem;
-  const fs::path dir = createOutputFolder(options.outDir);
-  const fs::path csv = dir / "curves.csv";
-  writeCurvesCsv(table, csv);
-  std::cout << "wrote " << csv.string() << "\n";
+  InterruptCleanup interrupt;
+  const fs::path dir = output.begin(interrupt);
+  writeCurvesCsv(table, dir / "curves.csv");
   if (!options.noPlot) {
-    const fs::path png = dir / "curves.png";
-    plotCurves(csv, table, "shadow test over receiver depth, occluders " + options.occluders, png);
-    std::cout << "wrote " << png.string() << "\n";
+    plotCurves(dir / "curves.csv", table,
+               "shadow test over receiver depth, occluders " + options.occluders,
+               dir / "curves.png");
   }
+  output.finish(interrupt);
+  std::cout << "wrote " << (output.target() / "curves.csv").string() << "\n";
+  if (!options.noPlot) std::cout << "wrote " << (output.target() / "curves.png").string() << "\n";
 }
 
 }  // namespace
@@ -53,8 +57,7 @@ void registerCurvesCommand(CLI::App& app) {
                   "DEPTH:WEIGHT,... occluder depths in [0,1] with their share of the filter "
                   "region; the planar receiver fills the rest")
       ->capture_default_str();
-  cmd->add_option("-o,--out", options->outDir, "output folder for curves.csv and curves.png")
-      ->capture_default_str();
+  addOutputOptions(*cmd, options->output, "curves.csv and curves.png");
   cmd->add_option("--samples", options->samples, "receiver depths evenly over [0,1], 2..100000")
       ->capture_default_str();
   cmd->add_flag("--no-plot", options->noPlot, "write the CSV only");

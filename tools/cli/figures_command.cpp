@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "command_line.h"
+#include "interrupt_cleanup.h"
 #include "output_folder.h"
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/gl/context.h"
@@ -16,21 +17,23 @@ namespace {
 
 struct FiguresCommandOptions {
   compare::FiguresOptions figures;
-  std::string outDir = "out/figures";
+  OutputOptions output{"out/figures"};
 };
 
 void runFigures(FiguresCommandOptions& o) {
-  checkOutputPath(o.outDir);
+  CommandOutput output(o.output);
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   const auto start = std::chrono::steady_clock::now();
-  const std::filesystem::path dir = createOutputFolder(o.outDir);
+  const std::filesystem::path dir = output.begin(interrupt);
   compare::writePaperFigures(renderer, o.figures, dir, [&](const std::string& step) {
     const double s =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "[" << int(s) << " s] " << step << "\n" << std::flush;
   });
-  std::cout << "wrote " << (dir / "index.html").string() << "\n";
+  output.finish(interrupt);
+  std::cout << "wrote " << (output.target() / "index.html").string() << "\n";
 }
 
 }  // namespace
@@ -56,7 +59,7 @@ void registerFiguresCommand(CLI::App& app) {
   cmd->add_option("--bench-repeat", f.benchRepeats, "timed frames per bench case (medians)")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
+  addOutputOptions(*cmd, o->output, "the figures page");
   cmd->callback([o, cmd] {
     compare::FiguresOptions& fo = o->figures;
     fo.benchSizes.width = fo.width;

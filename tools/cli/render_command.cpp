@@ -7,7 +7,9 @@
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <sstream>
 
+#include "interrupt_cleanup.h"
 #include "output_folder.h"
 #include "penumbra/animation.h"
 #include "penumbra/error.h"
@@ -15,7 +17,9 @@
 #include "penumbra/gl/render_record.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/run_program.h"
+#include "penumbra/text_file.h"
 #include "render_options.h"
 #include "scene_options.h"
 #include "settings_options.h"
@@ -28,7 +32,7 @@ struct RenderCommandOptions {
   SceneOptions scene;
   TechniqueOptions technique{"evsm4", {}};
   RenderOptions render;
-  std::string outDir = "out/render";
+  OutputOptions output{"out/render"};
   int repeat = 1;
   int frames = 1;
   std::vector<std::string> animate{"orbit"};
@@ -55,7 +59,7 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
   std::vector<Animation> animations;
   for (const std::string& name : options.animate) animations.push_back(parseAnimation(name));
   namespace fs = std::filesystem;
-  fs::create_directories(dir / "frames");
+  createOutputDirectory(dir / "frames");
   gl::RenderResult result;
   for (int frame = 0; frame < options.frames; ++frame) {
     const AnimatedView view = animatedView(scene, animations, frame, options.frames);
@@ -74,11 +78,10 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
       "yuv420p",
       // H.264 in yuv420p needs even sizes.
       "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", (absoluteDir / files.at("video")).string()};
+  recordOutput(dir / files.at("video"));
   if (!runProgram(command).succeeded()) {
-    throw Error("ffmpeg could not encode " + (dir / files.at("video")).string() +
-                " (is Debian's ffmpeg installed? scripts/install-deps installs it); the frames "
-                "are in " +
-                (dir / "frames").string());
+    throw Error("ffmpeg could not encode " + files.at("video") +
+                " (is Debian's ffmpeg installed? scripts/install-deps installs it)");
   }
   return result;
 }
@@ -95,7 +98,7 @@ void runRender(const RenderCommandOptions& options) {
                                                 options.scene, options.technique, options.render);
   const SceneOverrides& overrides = resolved.view;
   const auto loadStart = std::chrono::steady_clock::now();
-  Scene scene = loadScene(resolved.scene);
+  Scene scene = loadScene(resolved.scene, sceneLoadOptions(options.scene));
   const double loadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
           .count();
@@ -108,8 +111,8 @@ void runRender(const RenderCommandOptions& options) {
   gl::RenderSettings settings = resolved.render;
   requireCascadableLight(settings.cascades, scene.light);
 
-  checkOutputPath(options.outDir);  // before any GL work
-
+  CommandOutput output(options.output);  // before any GL work
+  InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   for (Technique technique : techniques) {
@@ -120,7 +123,8 @@ void runRender(const RenderCommandOptions& options) {
             << loadMs << " ms\n";
   // Only once every technique is known to fit, so that a refused request leaves no folder.
   namespace fs = std::filesystem;
-  const fs::path dir = createOutputFolder(options.outDir);
+  const fs::path dir = output.begin(interrupt);
+  std::vector<std::string> summaries;
   for (Technique technique : techniques) {
     settings.technique = technique;
     const std::string stem = scene.name + "_" + std::string(techniqueId(technique));
@@ -148,17 +152,20 @@ void runRender(const RenderCommandOptions& options) {
     writeColorPng(result.color, dir / files.at("color"));
     writeFloatExr(result.visibility, dir / files.at("visibility_exr"));
     writeGrey16Png(result.visibility, dir / files.at("visibility_png"));
-    std::ofstream json(dir / files.at("record"));
-    json << gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files);
-    if (!json) throw Error("cannot write " + (dir / files.at("record")).string());
-    std::cout << "wrote " << (dir / files.at("color")).string() << "  (";
+    writeTextFile(dir / files.at("record"),
+                  gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files));
+    std::ostringstream summary;
+    summary << "wrote " << (output.target() / files.at("color")).string() << "  (";
     if (renderer.timerQueriesMeasureExecution()) {
-      std::cout << "GPU " << result.gpuTimes.total() << " ms, ";
+      summary << "GPU " << result.gpuTimes.total() << " ms, ";
     }
-    std::cout << "wall " << result.wallTimes.total() << " ms, technique memory "
-              << double(result.memory.technique + result.memory.summedArea) / (1024.0 * 1024.0)
-              << " MiB)\n";
+    summary << "wall " << result.wallTimes.total() << " ms, technique memory "
+            << double(result.memory.technique + result.memory.summedArea) / (1024.0 * 1024.0)
+            << " MiB)";
+    summaries.push_back(summary.str());
   }
+  output.finish(interrupt);
+  for (const std::string& line : summaries) std::cout << line << "\n";
 }
 
 }  // namespace
@@ -186,7 +193,7 @@ void registerRenderCommand(CLI::App& app) {
       ->needs(frames)
       ->delimiter(',')
       ->capture_default_str();
-  cmd->add_option("-o,--out", o->outDir, "output folder")->capture_default_str();
+  addOutputOptions(*cmd, o->output, "the images, visibility and records");
   cmd->callback([o] { runRender(*o); });
 }
 
