@@ -109,7 +109,7 @@ TEST(CompareOut, PathBelowAFileFailsWithOneLine) {
        "--height", "32", "--frames", "2", "--supersample", "1", "--quiet", "--out", "file/report"},
       scratch.path());
   EXPECT_EQ(run.exitCode(), 1) << run.output;
-  EXPECT_NE(run.output.find("cannot write the report next to"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("cannot write the output next to"), std::string::npos) << run.output;
   EXPECT_EQ(std::count(run.output.begin(), run.output.end(), '\n'), 1) << run.output;
   EXPECT_EQ(readFile(scratch.path() / "file"), "text");
 }
