@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "penumbra/run_program.h"
 #include "run_penumbra.h"
 
 namespace penumbra::test {
@@ -64,15 +65,19 @@ TEST(CompareCascades, OneMapHasNoShimmerToReport) {
 
 // Frames the video stream holds, counted by decoding it (Debian's ffmpeg ships ffprobe).
 int decodedFrames(const fs::path& video) {
-  const std::string command = "ffprobe -v error -count_frames -select_streams v:0 "
-                              "-show_entries stream=nb_read_frames -of csv=p=0 '" +
-                              video.string() + "'";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return -1;
-  int frames = -1;
-  if (std::fscanf(pipe, "%d", &frames) != 1) frames = -1;
-  pclose(pipe);
-  return frames;
+  const fs::path log = video.parent_path().parent_path() / "ffprobe.log";
+  const ProgramResult result =
+      runProgram({"ffprobe", "-v", "error", "-count_frames", "-select_streams", "v:0",
+                  "-show_entries", "stream=nb_read_frames", "-of", "csv=p=0", video.string()},
+                 log);
+  const std::string text = readFile(log);
+  fs::remove(log);
+  if (!result.succeeded()) return -1;
+  try {
+    return std::stoi(text);
+  } catch (const std::exception&) {
+    return -1;
+  }
 }
 
 TEST(RenderFrames, WritesEveryFrameAndAnMp4OfTheSameLength) {

@@ -14,6 +14,7 @@
 #include "penumbra/gl/settings_json.h"
 #include "penumbra/image_io.h"
 #include "penumbra/metrics.h"
+#include "penumbra/run_program.h"
 #include "penumbra/scene.h"
 #include "penumbra/technique.h"
 #include "run_penumbra.h"
@@ -46,7 +47,7 @@ RunResult runProgram(const std::vector<std::string>& args, const fs::path& cwd) 
 }
 
 bool haveXvfbRun() {
-  return std::system("command -v xvfb-run > /dev/null 2>&1") == 0;
+  return penumbra::runProgram({"xvfb-run", "--help"}).started;
 }
 
 // CI must run these tests; elsewhere they skip without xvfb-run (Debian's xvfb).
@@ -290,7 +291,7 @@ TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
 }
 
 bool haveXdotool() {
-  return std::system("command -v xdotool > /dev/null 2>&1") == 0;
+  return penumbra::runProgram({"xdotool", "version"}).started;
 }
 
 // The viewer run interactively (no --frames) under Xvfb, driven by xdotool as a user would: F12
