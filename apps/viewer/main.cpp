@@ -1,6 +1,7 @@
 // `penumbra-viewer`: tune every technique live and see why it fails (docs/viewer.md).
 #include <CLI/CLI.hpp>
 #include <iostream>
+#include <string>
 #include <vector>
 
 #include "penumbra/error.h"
@@ -41,12 +42,22 @@ int main(int argc, char** argv) {
   app.add_option("--window-height", options.windowHeight, "window height in pixels")
       ->check(CLI::Range(64, 16384))
       ->capture_default_str();
+  std::string maxMemory;
+  app.add_option("--max-memory", maxMemory,
+                 "host memory a scene file may take (its files, geometry with every instance "
+                 "expanded, decoded textures): MiB, or with a unit K, M, G or T; default half "
+                 "this machine's memory, " +
+                     penumbra::memorySizeText(penumbra::defaultSceneMemoryLimit()) +
+                     " (docs/untrusted-input.md)");
   CLI11_PARSE(app, argc, argv);
   if (probe.size() == 2) {
     options.probeX = probe[0];
     options.probeY = probe[1];
   }
   try {
+    if (!maxMemory.empty()) {
+      options.sceneLoad.maxMemoryBytes = penumbra::parseMemorySize(maxMemory, "--max-memory");
+    }
     penumbra::viewer::runViewer(options);
   } catch (const std::exception& e) {
     std::cerr << "penumbra-viewer: " << e.what() << "\n";

@@ -52,8 +52,8 @@ void setMessage(ViewerState& state, std::string message, bool isError) {
   state.messageIsError = isError;
 }
 
-void loadSceneInto(ViewerState& state) {
-  Scene scene = loadScene(state.settings.scene);
+void loadSceneInto(ViewerState& state, const SceneLoadOptions& options) {
+  Scene scene = loadScene(state.settings.scene, options);
   applyOverrides(scene, state.settings.view);
   for (const std::string& w : scene.warnings)
     std::cerr << "penumbra-viewer: warning: " << w << "\n";
@@ -79,7 +79,7 @@ class Viewer {
       state_.splitParams = state_.settings.render.params;
     }
     if (!options.settingsFile.empty()) state_.settingsPath = options.settingsFile;
-    loadSceneInto(state_);
+    loadSceneInto(state_, options_.sceneLoad);
     renderer_.setScene(state_.scene);
   }
 
@@ -109,7 +109,7 @@ class Viewer {
       applyFileChanges(changes);
       if (changes.scene) {
         if (tryOrReport([&] {
-              loadSceneInto(state_);
+              loadSceneInto(state_, options_.sceneLoad);
               renderer_.setScene(state_.scene);
             })) {
           renderNeeded = true;

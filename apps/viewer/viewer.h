@@ -4,6 +4,8 @@
 
 #include <string>
 
+#include "penumbra/scene.h"
+
 namespace penumbra::viewer {
 
 struct ViewerOptions {
@@ -18,6 +20,7 @@ struct ViewerOptions {
   int probeX = -1, probeY = -1;  // >= 0: the pixel under the cursor at start (scripted runs)
   int windowWidth = 1280;
   int windowHeight = 800;
+  SceneLoadOptions sceneLoad;  // --max-memory: what loading a scene file may take
 };
 
 // Runs until the window closes (or the scripted frames are done); throws Error for bad settings

@@ -159,12 +159,49 @@ std::string builtinSceneNameList();
 // Throws Error naming the valid scenes when the name is unknown.
 Scene makeBuiltinScene(std::string_view name);
 
+// Scene files are untrusted input: a few hundred kilobytes can describe gigabytes of geometry or
+// texels, or a hierarchy deep enough to exhaust a recursive walk. These bound what a file may
+// cost to load (docs/untrusted-input.md).
+//
+// The deepest glTF node hierarchy loaded, in levels (a root is level 1). Real models nest fewer
+// than 50 levels (a skeleton's joints, an assembly's parts); this is twenty times that. The walk
+// keeps a transform per level on the heap, not on the thread's stack, but a hierarchy this deep
+// is a hostile or broken file, not a model.
+inline constexpr int kMaxGltfNodeDepth = 1024;
+
+// The range of SceneLoadOptions::maxMemoryBytes: 1 MiB to 1 PiB.
+inline constexpr uint64_t kMinSceneMemoryBytes = uint64_t(1) << 20;
+inline constexpr uint64_t kMaxSceneMemoryBytes = uint64_t(1) << 50;
+
+// Half this machine's physical memory (sysconf), within the range above; 4 GiB where the machine
+// does not say. The GL renderer's budget on a GL that does not report its memory is the other
+// half.
+uint64_t defaultSceneMemoryLimit();
+
+struct SceneLoadOptions {
+  // Host memory a scene file may take: the files it reads, its geometry with every instance
+  // expanded and its decoded textures. Estimated from counts and image headers before any
+  // geometry is expanded or any texture decoded; loadScene refuses a file above it with the bytes
+  // needed. [kMinSceneMemoryBytes, kMaxSceneMemoryBytes].
+  uint64_t maxMemoryBytes = defaultSceneMemoryLimit();
+};
+
+// A memory size as an option gives it (`option` names it in messages): a number of MiB ("512"),
+// or a number with a binary unit K, M, G or T, optionally followed by B or iB ("1.5G", "512MiB",
+// "2GB": G = 2^30 bytes alike). Throws Error naming the option, the text and the range above.
+uint64_t parseMemorySize(std::string_view text, std::string_view option);
+// Three significant digits in the largest binary unit that keeps them above 1: "3.26 GiB",
+// "512 MiB", "812 bytes".
+std::string memorySizeText(uint64_t bytes);
+
 // A built-in scene's name, or a path to a .gltf, .glb or .obj file (scene_loaders.cpp). A file
 // scene is named after its file and keeps the file's first camera and light
 // (KHR_lights_punctual) where it has them, else a camera framing its bounds and a directional
-// light from above. Throws Error naming the file and the fault for malformed files, and the
-// valid names and extensions for anything else.
-Scene loadScene(std::string_view nameOrPath);
+// light from above. Throws Error naming the file and the fault for malformed files (a hierarchy
+// deeper than kMaxGltfNodeDepth, more memory than options.maxMemoryBytes, a file it names that
+// is not a regular file, an allocation that fails), and the valid names and extensions for
+// anything else.
+Scene loadScene(std::string_view nameOrPath, const SceneLoadOptions& options = {});
 // Checks, without loading, that loadScene can try `nameOrPath`: a built-in name or an existing
 // file with a supported extension. Throws Error as loadScene does.
 void checkSceneSource(std::string_view nameOrPath);

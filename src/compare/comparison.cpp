@@ -97,7 +97,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
                                const Progress& progress) {
   validateRequest(request, renderer);
   ComparisonResult result;
-  result.scene = loadScene(request.scene);
+  result.scene = loadScene(request.scene, request.sceneLoad);
   applyOverrides(result.scene, request.view);
   requireCascadableLight(request.settings.cascades, result.scene.light);
   result.areaLight = result.scene.light.size > 0.0f;

@@ -231,6 +231,39 @@ class Checker {
   std::string name_;
 };
 
+// Arrays and objects nested deeper than this are refused before anything parses the JSON:
+// tinygltf converts "extras" and extension objects to its own values recursively, with half a
+// KiB of stack a level (a 200 KB file of brackets overflowed the thread's stack). glTF's own
+// structure nests fewer than 10 levels.
+constexpr int kMaxJsonNesting = 128;
+
+void refuseDeepNesting(std::span<const uint8_t> text, const std::string& name) {
+  int depth = 0;
+  bool inString = false, escaped = false;
+  for (size_t at = 0; at < text.size(); ++at) {
+    const uint8_t c = text[at];
+    if (inString) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        inString = false;
+      }
+    } else if (c == '"') {
+      inString = true;
+    } else if (c == '[' || c == '{') {
+      if (++depth > kMaxJsonNesting) {
+        throw Error(name + ": its JSON nests arrays and objects deeper than " +
+                    std::to_string(kMaxJsonNesting) + " levels (at byte " + std::to_string(at) +
+                    " of the JSON); penumbra reads at most " + std::to_string(kMaxJsonNesting));
+      }
+    } else if (c == ']' || c == '}') {
+      --depth;
+    }
+  }
+}
+
 uint32_t readUint32(const uint8_t* p) {
   return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
 }
@@ -247,6 +280,7 @@ void checkGltfJsonTypes(std::span<const uint8_t> bytes, const std::string& name)
     if (length > bytes.size() - 20) return;
     text = bytes.subspan(20, length);
   }
+  refuseDeepNesting(text, name);
   json document = json::parse(text.begin(), text.end(), nullptr, false);
   if (document.is_discarded()) return;  // not JSON: tinygltf's message says where
   if (!document.is_object()) throw Error(name + ": the glTF JSON must be an object");

@@ -1,5 +1,8 @@
 // glTF 2.0 import: tinygltf parses, this file checks every index, accessor and transform before
-// it is used and flattens the node hierarchy into world-space meshes (glTF 2.0 §3.5-3.9).
+// it is used and flattens the node hierarchy into world-space meshes (glTF 2.0 §3.5-3.9). The
+// hierarchy is walked with a stack of its own, to a bounded depth; the memory the meshes and the
+// referenced images will take is budgeted from counts and image headers before any is expanded
+// or decoded (docs/untrusted-input.md).
 #include "gltf_loader.h"
 
 #include <tiny_gltf.h>
@@ -7,34 +10,46 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
+#include <set>
 
 #include "file_scene.h"
 #include "gltf_json_types.h"
 #include "image_decoding.h"
 #include "penumbra/error.h"
+#include "scene_file_reading.h"
 
 namespace penumbra::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
+// An image's encoded bytes, kept as the file is parsed and decoded only if a material uses it.
+struct EncodedImage {
+  std::vector<uint8_t> bytes;  // a URI's (a file's, a data URI's)
+  int bufferView = -1;         // or these bytes of the file's buffers (checked against them)
+};
+
 // What the callbacks handed to tinygltf share: file access and the warnings collected.
 struct LoadContext {
   std::string name;
   bool readFiles = false;
+  MemoryBudget* budget = nullptr;
   std::vector<std::string> warnings;
+  std::map<int, EncodedImage> images;      // by image index
+  std::string refusal;                     // the first file refused (not regular, over budget)
   const tinygltf::Model* model = nullptr;  // the one being parsed: its buffers are read by now
 };
 
+// Anything there, regular or not: readWholeFile refuses what is not a regular file, where a "not
+// found" would only make an image's a warning.
 bool fileExists(const std::string& path, void* user) {
   const auto* context = static_cast<const LoadContext*>(user);
   std::error_code ec;
-  return context->readFiles && fs::is_regular_file(path, ec);
+  return context->readFiles && fs::exists(path, ec);
 }
 
 std::string expandFilePath(const std::string& path, void*) {
@@ -43,18 +58,27 @@ std::string expandFilePath(const std::string& path, void*) {
 
 bool readWholeFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
                    void* user) {
-  const auto* context = static_cast<const LoadContext*>(user);
+  auto* context = static_cast<LoadContext*>(user);
   if (!context->readFiles) {
     if (err) *err += "external file '" + path + "' is not read here\n";
     return false;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) {
-    if (err) *err += "cannot open '" + path + "'\n";
+  // tinygltf only warns where an image cannot be read: a refusal is kept and thrown after parsing
+  // (and nothing is thrown through tinygltf's code).
+  try {
+    std::optional<std::vector<uint8_t>> bytes =
+        readSceneFile(path, "'" + path + "'", context->name, *context->budget);
+    if (!bytes) {
+      if (err) *err += "cannot open '" + path + "'\n";
+      return false;
+    }
+    *out = std::move(*bytes);
+    return true;
+  } catch (const Error& e) {
+    if (context->refusal.empty()) context->refusal = e.what();
+    if (err) *err += std::string(e.what()) + "\n";
     return false;
   }
-  out->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  return true;
 }
 
 bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsigned char>&,
@@ -63,8 +87,8 @@ bool writeWholeFile(std::string* err, const std::string&, const std::vector<unsi
   return false;
 }
 
-// tinygltf's image callback: an image that fails to decode is left empty, and the material
-// falls back to its factor with a warning (an unreadable texture is no reason to refuse a scene).
+// tinygltf's image callback: keeps the encoded bytes; the importer decodes the images materials
+// use (an unused image costs its file, never its texels).
 bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::string*, int, int,
                const unsigned char* bytes, int size, void* user) {
   auto* context = static_cast<LoadContext*>(user);
@@ -84,30 +108,20 @@ bool loadImage(tinygltf::Image* image, const int index, std::string* err, std::s
       return false;
     }
   }
-  std::string why;
-  const std::string name = image->uri.empty() ? "image " + std::to_string(index) : image->uri;
-  std::optional<TextureImage> decoded =
-      decodeImage(std::span<const uint8_t>(bytes, size_t(std::max(size, 0))), name, why);
-  if (!decoded) {
-    context->warnings.push_back(context->name + ": " + name + " cannot be used: " + why +
-                                "; its materials use their base-colour factor alone");
-    image->image.clear();
-    image->width = image->height = 0;
-    return true;
+  EncodedImage& encoded = context->images[index];
+  if (image->bufferView >= 0) {
+    encoded.bufferView = image->bufferView;
+  } else {
+    encoded.bytes.assign(bytes, bytes + std::max(size, 0));
   }
-  image->width = decoded->width;
-  image->height = decoded->height;
-  image->component = 4;
-  image->bits = 8;
-  image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
-  image->image = std::move(decoded->rgba);
   return true;
 }
 
 class Importer {
  public:
-  Importer(const tinygltf::Model& model, std::string name)
-      : model_(model), name_(std::move(name)) {}
+  Importer(const tinygltf::Model& model, std::string name,
+           const std::map<int, EncodedImage>& images, MemoryBudget& budget)
+      : model_(model), name_(std::move(name)), images_(images), budget_(budget) {}
 
   Scene run(std::vector<std::string> warnings);
 
@@ -129,8 +143,22 @@ class Importer {
   std::vector<glm::vec2> readTexcoords(int accessor, const std::string& what) const;
   std::vector<uint32_t> readIndices(int accessor, const std::string& what) const;
 
+  // A node of the scene's trees and where it sits in the world.
+  struct NodeInstance {
+    int node;
+    glm::mat4 worldFromNode;
+  };
+  // What a mesh expands to, once per node that draws it.
+  struct MeshCost {
+    uint64_t triangles = 0;
+    uint64_t bytes = 0;
+  };
+
   glm::mat4 localTransform(int node) const;
-  void visit(int node, const glm::mat4& parentFromNode, std::vector<int>& path);
+  std::vector<NodeInstance> walkHierarchy(const std::vector<int>& roots);
+  MeshCost meshCost(int mesh, std::set<int>& imagesUsed) const;
+  void budgetMemory(const std::vector<NodeInstance>& instances);
+  std::span<const uint8_t> encodedImage(int image) const;
   void addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& worldFromMesh);
   void applyMaterial(Mesh& mesh, int material, const std::string& where, int& texcoordSet);
   int sceneTexture(int texture, const std::string& where);
@@ -139,6 +167,8 @@ class Importer {
 
   const tinygltf::Model& model_;
   std::string name_;
+  const std::map<int, EncodedImage>& images_;
+  MemoryBudget& budget_;
   Scene scene_;
   std::vector<int> parentCount_;
   std::map<int, int> textureOfImage_;
@@ -377,40 +407,130 @@ glm::mat4 Importer::localTransform(int index) const {
   return m;
 }
 
-void Importer::visit(int node, const glm::mat4& parentWorld, std::vector<int>& path) {
-  if (node < 0 || size_t(node) >= model_.nodes.size()) {
-    fail("a scene or node names node " + std::to_string(node) + ", but the file has " +
-         std::to_string(model_.nodes.size()) + " nodes");
-  }
-  for (int ancestor : path) {
-    if (ancestor == node) {
+std::vector<Importer::NodeInstance> Importer::walkHierarchy(const std::vector<int>& roots) {
+  std::vector<NodeInstance> instances;
+  // The path from the root to the node being walked: each level's node, its world transform and
+  // the next child to enter.
+  struct Level {
+    int node;
+    glm::mat4 worldFromNode;
+    size_t nextChild;
+  };
+  std::vector<Level> path;
+  std::vector<bool> onPath(model_.nodes.size(), false);
+  const auto enter = [&](int node, const glm::mat4& worldFromParent) {
+    if (node < 0 || size_t(node) >= model_.nodes.size()) {
+      fail("a scene or node names node " + std::to_string(node) + ", but the file has " +
+           std::to_string(model_.nodes.size()) + " nodes");
+    }
+    if (onPath[size_t(node)]) {
       std::string cycle;
-      for (int n : path) cycle += std::to_string(n) + " -> ";
+      for (const Level& level : path) cycle += std::to_string(level.node) + " -> ";
       fail("the node hierarchy is recursive: " + cycle + std::to_string(node));
     }
-  }
-  // A strict tree (glTF 2.0 §3.5.3): a node reached twice would also multiply its subtree.
-  if (++parentCount_[size_t(node)] > 1) {
-    fail("node " + std::to_string(node) +
-         " is reached twice (two parents, or a root that is also a child); glTF nodes form "
-         "strict trees");
-  }
-  const glm::mat4 world = parentWorld * localTransform(node);
-  const tinygltf::Node& n = model_.nodes[size_t(node)];
-  if (n.mesh >= 0) {
-    if (size_t(n.mesh) >= model_.meshes.size()) {
-      fail("node " + std::to_string(node) + " names mesh " + std::to_string(n.mesh) +
-           ", but the file has " + std::to_string(model_.meshes.size()) + " meshes");
+    if (path.size() >= size_t(kMaxGltfNodeDepth)) {
+      fail("the node hierarchy is deeper than " + std::to_string(kMaxGltfNodeDepth) +
+           " levels (node " + std::to_string(node) + " is at level " +
+           std::to_string(path.size() + 1) + " below root " + std::to_string(path.front().node) +
+           "); penumbra loads at most " + std::to_string(kMaxGltfNodeDepth) + " levels");
     }
-    for (size_t p = 0; p < model_.meshes[size_t(n.mesh)].primitives.size(); ++p)
-      addPrimitive(n.mesh, int(p), world);
+    // A strict tree (glTF 2.0 §3.5.3): a node reached twice would also multiply its subtree.
+    if (++parentCount_[size_t(node)] > 1) {
+      fail("node " + std::to_string(node) +
+           " is reached twice (two parents, or a root that is also a child); glTF nodes form "
+           "strict trees");
+    }
+    const glm::mat4 worldFromNode = worldFromParent * localTransform(node);
+    instances.push_back({node, worldFromNode});
+    path.push_back({node, worldFromNode, 0});
+    onPath[size_t(node)] = true;
+  };
+  for (int root : roots) {
+    enter(root, glm::mat4(1.0f));
+    while (!path.empty()) {
+      Level& level = path.back();
+      const std::vector<int>& children = model_.nodes[size_t(level.node)].children;
+      if (level.nextChild == children.size()) {
+        onPath[size_t(level.node)] = false;
+        path.pop_back();
+        continue;
+      }
+      const int child = children[level.nextChild++];
+      const glm::mat4 worldFromParent = level.worldFromNode;  // enter() may move the path
+      enter(child, worldFromParent);
+    }
   }
-  if (n.skin >= 0) warn("node " + std::to_string(node) + " is skinned; drawn in its bind pose");
-  noteCamera(node, world);
-  noteLight(node, world);
-  path.push_back(node);
-  for (int child : n.children) visit(child, world, path);
-  path.pop_back();
+  return instances;
+}
+
+// As addPrimitive will expand each primitive: triangle lists, one vertex per triangle corner
+// where the file has no normals (flat normals). Primitives addPrimitive will refuse (modes,
+// missing positions) cost nothing here; accessors are checked as addPrimitive checks them.
+Importer::MeshCost Importer::meshCost(int meshIndex, std::set<int>& imagesUsed) const {
+  MeshCost cost;
+  const tinygltf::Mesh& mesh = model_.meshes[size_t(meshIndex)];
+  for (size_t p = 0; p < mesh.primitives.size(); ++p) {
+    const tinygltf::Primitive& primitive = mesh.primitives[p];
+    const std::string where =
+        "mesh " + std::to_string(meshIndex) + " primitive " + std::to_string(p);
+    const int mode = primitive.mode < 0 ? TINYGLTF_MODE_TRIANGLES : primitive.mode;
+    const auto position = primitive.attributes.find("POSITION");
+    if ((mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+         mode != TINYGLTF_MODE_TRIANGLE_FAN) ||
+        position == primitive.attributes.end()) {
+      continue;
+    }
+    const uint64_t positions = view(position->second, where + " POSITION").count;
+    const uint64_t corners =
+        primitive.indices >= 0 ? view(primitive.indices, where + " indices").count : positions;
+    const uint64_t triangles = mode == TINYGLTF_MODE_TRIANGLES ? corners / 3
+                               : corners >= 3                  ? corners - 2
+                                                               : 0;
+    const bool hasNormals = primitive.attributes.count("NORMAL") != 0;
+    const uint64_t vertices = hasNormals ? positions : 3 * triangles;
+    cost.triangles += triangles;
+    cost.bytes += sizeof(Mesh) + vertices * sizeof(Vertex) + 3 * triangles * sizeof(uint32_t);
+
+    const int material = primitive.material;
+    if (material < 0 || size_t(material) >= model_.materials.size()) continue;
+    const int texture =
+        model_.materials[size_t(material)].pbrMetallicRoughness.baseColorTexture.index;
+    if (texture < 0 || size_t(texture) >= model_.textures.size()) continue;
+    const int image = model_.textures[size_t(texture)].source;
+    if (image >= 0 && size_t(image) < model_.images.size()) imagesUsed.insert(image);
+  }
+  return cost;
+}
+
+// Every mesh once per node that draws it, every image a drawn material uses at the size its
+// header declares: refused here, before any is expanded or decoded.
+void Importer::budgetMemory(const std::vector<NodeInstance>& instances) {
+  std::vector<std::optional<MeshCost>> costs(model_.meshes.size());
+  std::set<int> imagesUsed;
+  for (const NodeInstance& instance : instances) {
+    const int mesh = model_.nodes[size_t(instance.node)].mesh;
+    if (mesh < 0 || size_t(mesh) >= model_.meshes.size()) continue;  // expanding says why
+    std::optional<MeshCost>& cost = costs[size_t(mesh)];
+    if (!cost) cost = meshCost(mesh, imagesUsed);
+    budget_.addGeometry(cost->triangles, cost->bytes);
+  }
+  for (int image : imagesUsed) {
+    if (const std::optional<ImageSize> size = readImageSize(encodedImage(image))) {
+      budget_.addTexture(size->rgbaBytes());
+    }
+  }
+  budget_.check(name_);
+}
+
+std::span<const uint8_t> Importer::encodedImage(int image) const {
+  const auto found = images_.find(image);
+  if (found == images_.end()) return {};
+  const EncodedImage& encoded = found->second;
+  if (encoded.bufferView < 0) return encoded.bytes;
+  // Checked against its buffer when the file was parsed (loadImage).
+  const tinygltf::BufferView& view = model_.bufferViews[size_t(encoded.bufferView)];
+  return std::span<const uint8_t>(model_.buffers[size_t(view.buffer)].data)
+      .subspan(view.byteOffset, view.byteLength);
 }
 
 int Importer::sceneTexture(int texture, const std::string& where) {
@@ -425,24 +545,21 @@ int Importer::sceneTexture(int texture, const std::string& where) {
   }
   if (auto found = textureOfImage_.find(image); found != textureOfImage_.end())
     return found->second;
+  // Decoded once, however many materials use it.
   const tinygltf::Image& source = model_.images[size_t(image)];
+  const std::string name = source.uri.empty() ? "image " + std::to_string(image) : source.uri;
   int index = -1;
-  const size_t bytes = size_t(source.width) * size_t(source.height) * 4;
-  if (source.width > 0 && source.height > 0 && source.component == 4 && source.bits == 8 &&
-      source.image.size() == bytes) {
-    TextureImage t;
-    t.name = source.uri.empty() ? "image " + std::to_string(image) : source.uri;
-    t.width = source.width;
-    t.height = source.height;
-    t.rgba = source.image;
-    index = int(scene_.textures.size());
-    scene_.textures.push_back(std::move(t));
-  } else if (source.image.empty()) {
-    // loadImage warned already where decoding failed; a URI tinygltf could not read did not.
-    if (!source.uri.empty()) {
-      warn("image '" + source.uri + "' could not be read; its materials use their base-colour " +
-           "factor alone");
+  if (const std::span<const uint8_t> bytes = encodedImage(image); !bytes.empty()) {
+    std::string why;
+    if (std::optional<TextureImage> decoded = decodeImage(bytes, name, why)) {
+      index = int(scene_.textures.size());
+      scene_.textures.push_back(std::move(*decoded));
+    } else {
+      warn(name + " cannot be used: " + why + "; its materials use their base-colour factor alone");
     }
+  } else if (!source.uri.empty()) {
+    warn("image '" + source.uri + "' could not be read; its materials use their base-colour " +
+         "factor alone");
   }
   textureOfImage_[image] = index;
   return index;
@@ -634,8 +751,24 @@ Scene Importer::run(std::vector<std::string> warnings) {
          std::to_string(model_.scenes.size()) + ")");
   }
   if (model_.scenes[size_t(sceneIndex)].nodes.empty()) fail("the scene has no nodes");
-  std::vector<int> path;
-  for (int root : model_.scenes[size_t(sceneIndex)].nodes) visit(root, glm::mat4(1.0f), path);
+  const std::vector<NodeInstance> instances =
+      walkHierarchy(model_.scenes[size_t(sceneIndex)].nodes);
+  budgetMemory(instances);
+  for (const NodeInstance& instance : instances) {
+    const int node = instance.node;
+    const tinygltf::Node& n = model_.nodes[size_t(node)];
+    if (n.mesh >= 0) {
+      if (size_t(n.mesh) >= model_.meshes.size()) {
+        fail("node " + std::to_string(node) + " names mesh " + std::to_string(n.mesh) +
+             ", but the file has " + std::to_string(model_.meshes.size()) + " meshes");
+      }
+      for (size_t p = 0; p < model_.meshes[size_t(n.mesh)].primitives.size(); ++p)
+        addPrimitive(n.mesh, int(p), instance.worldFromNode);
+    }
+    if (n.skin >= 0) warn("node " + std::to_string(node) + " is skinned; drawn in its bind pose");
+    noteCamera(node, instance.worldFromNode);
+    noteLight(node, instance.worldFromNode);
+  }
   if (scene_.meshes.empty()) fail("the scene has no triangles to render");
 
   // The file's camera and light, placed once the bounds are known.
@@ -698,10 +831,11 @@ Scene Importer::run(std::vector<std::string> warnings) {
 }  // namespace
 
 Scene loadGltf(std::span<const uint8_t> bytes, const std::string& name,
-               const fs::path& baseDirectory, bool readFiles) {
+               const fs::path& baseDirectory, bool readFiles, MemoryBudget& budget) {
   LoadContext context;
   context.name = name;
   context.readFiles = readFiles;
+  context.budget = &budget;
   tinygltf::TinyGLTF parser;
   parser.SetFsCallbacks({fileExists, expandFilePath, readWholeFile, writeWholeFile, &context});
   parser.SetImageLoader(loadImage, &context);
@@ -728,6 +862,7 @@ Scene loadGltf(std::span<const uint8_t> bytes, const std::string& name,
     }
     return out;
   };
+  if (!context.refusal.empty()) throw Error(context.refusal);
   if (!ok) {
     std::string message;
     for (const std::string& line : lines(err)) message += (message.empty() ? "" : "; ") + line;
@@ -735,17 +870,14 @@ Scene loadGltf(std::span<const uint8_t> bytes, const std::string& name,
                 (message.empty() ? std::string("tinygltf gave no reason") : message));
   }
   for (const std::string& line : lines(warn)) context.warnings.push_back(name + ": " + line);
-  return Importer(model, name).run(std::move(context.warnings));
+  return Importer(model, name, context.images, budget).run(std::move(context.warnings));
 }
 
-Scene loadGltfFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open scene file " + path.string());
-  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)),
-                                   std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error("cannot read scene file " + path.string());
-  Scene scene = loadGltf(bytes, path.string(), path.parent_path(), true);
-  return scene;
+Scene loadGltfFile(const fs::path& path, MemoryBudget& budget) {
+  const std::optional<std::vector<uint8_t>> bytes =
+      readSceneFile(path, "the scene file", path.string(), budget);
+  if (!bytes) throw Error("cannot open scene file " + path.string());
+  return loadGltf(*bytes, path.string(), path.parent_path(), true, budget);
 }
 
 }  // namespace penumbra::scene

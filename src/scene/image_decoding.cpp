@@ -37,7 +37,22 @@ std::vector<uint8_t> withoutEmptyPngDataChunks(std::span<const uint8_t> bytes) {
   return out;
 }
 
+bool withinLimits(int width, int height) {
+  return width > 0 && height > 0 && width <= kMaxTextureSide && height <= kMaxTextureSide &&
+         int64_t(width) * int64_t(height) <= kMaxTextureTexels;
+}
+
 }  // namespace
+
+std::optional<ImageSize> readImageSize(std::span<const uint8_t> bytes) {
+  if (bytes.empty() || bytes.size() > size_t(INT_MAX)) return std::nullopt;
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels) ||
+      !withinLimits(width, height)) {
+    return std::nullopt;
+  }
+  return ImageSize{width, height};
+}
 
 std::optional<TextureImage> decodeImage(std::span<const uint8_t> original, const std::string& name,
                                         std::string& why) {
@@ -51,8 +66,7 @@ std::optional<TextureImage> decodeImage(std::span<const uint8_t> original, const
     why = std::string("it is not an image stb_image can read (") + stbi_failure_reason() + ")";
     return std::nullopt;
   }
-  if (width <= 0 || height <= 0 || width > kMaxTextureSide || height > kMaxTextureSide ||
-      int64_t(width) * int64_t(height) > kMaxTextureTexels) {
+  if (!withinLimits(width, height)) {
     why = "its size " + std::to_string(width) + "x" + std::to_string(height) +
           " is beyond the largest texture accepted (" + std::to_string(kMaxTextureSide) +
           " per side, " + std::to_string(kMaxTextureTexels) + " texels)";

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
@@ -16,19 +16,28 @@
 #include "file_scene.h"
 #include "image_decoding.h"
 #include "penumbra/error.h"
+#include "scene_file_reading.h"
 
 namespace penumbra::scene {
 namespace {
 
 namespace fs = std::filesystem;
 
-// Material libraries through the caller's file reader (tinyobjloader's own reads the disk).
+// Material libraries through the caller's file reader (tinyobjloader's own reads the disk). A
+// refusal (not a regular file, over the budget) is kept and thrown once tinyobjloader returns:
+// nothing is thrown through its code.
 class LibraryReader : public tinyobj::MaterialReader {
  public:
   explicit LibraryReader(const ObjFileReader& read) : read_(read) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* names, std::string* warn, std::string*) override {
-    const std::optional<std::vector<uint8_t>> bytes = read_(name);
+    std::optional<std::vector<uint8_t>> bytes;
+    try {
+      bytes = read_(name, "material library '" + name + "'");
+    } catch (const Error& e) {
+      if (refusal.empty()) refusal = e.what();
+      return false;
+    }
     if (!bytes) {
       if (warn) *warn += "material library '" + name + "' cannot be read\n";
       return false;
@@ -38,50 +47,140 @@ class LibraryReader : public tinyobj::MaterialReader {
     return true;
   }
 
+  std::string refusal;
+
  private:
   const ObjFileReader& read_;
 };
 
-std::optional<TextureImage> readTexture(const std::string& file, const ObjFileReader& read,
-                                        const std::string& source,
-                                        std::vector<std::string>& warnings) {
-  const std::optional<std::vector<uint8_t>> bytes = read(file);
-  std::string why = "it cannot be read";
-  std::optional<TextureImage> image;
-  if (bytes) image = decodeImage(*bytes, file, why);
-  if (!image) warnings.push_back(source + ": texture '" + file + "' cannot be used: " + why);
-  return image;
-}
-
-// The material's texture: map_Kd's colour with map_d's luminance as alpha (the .mtl convention
-// for cut-outs), map_d sampled at map_Kd's texel centres where their sizes differ.
-std::optional<TextureImage> materialTexture(const tinyobj::material_t& m, const ObjFileReader& read,
-                                            const std::string& source,
-                                            std::vector<std::string>& warnings) {
-  std::optional<TextureImage> colour, alpha;
-  if (!m.diffuse_texname.empty()) colour = readTexture(m.diffuse_texname, read, source, warnings);
-  if (!m.alpha_texname.empty()) alpha = readTexture(m.alpha_texname, read, source, warnings);
-  if (!alpha) return colour;
-  TextureImage out = colour ? *colour : *alpha;
+// map_Kd's colour with map_d's luminance as alpha (the .mtl convention for cut-outs), map_d
+// sampled at map_Kd's texel centres where their sizes differ; white where there is no colour.
+TextureImage withAlphaMask(const TextureImage* colour, const TextureImage& alpha,
+                           const std::string& name) {
+  TextureImage out = colour ? *colour : alpha;
   if (!colour) {
     for (size_t i = 0; i < out.rgba.size(); i += 4)
       out.rgba[i] = out.rgba[i + 1] = out.rgba[i + 2] = 255;
   }
   for (int y = 0; y < out.height; ++y) {
     for (int x = 0; x < out.width; ++x) {
-      const int ax = std::min(alpha->width - 1,
-                              int((float(x) + 0.5f) * float(alpha->width) / float(out.width)));
-      const int ay = std::min(alpha->height - 1,
-                              int((float(y) + 0.5f) * float(alpha->height) / float(out.height)));
-      const uint8_t* a = &alpha->rgba[(size_t(ay) * size_t(alpha->width) + size_t(ax)) * 4];
+      const int ax =
+          std::min(alpha.width - 1, int((float(x) + 0.5f) * float(alpha.width) / float(out.width)));
+      const int ay = std::min(alpha.height - 1,
+                              int((float(y) + 0.5f) * float(alpha.height) / float(out.height)));
+      const uint8_t* a = &alpha.rgba[(size_t(ay) * size_t(alpha.width) + size_t(ax)) * 4];
       // Rec. 709 luma of the (sRGB-encoded) mask: masks are black and white in practice.
       const float luma = 0.2126f * float(a[0]) + 0.7152f * float(a[1]) + 0.0722f * float(a[2]);
       out.rgba[(size_t(y) * size_t(out.width) + size_t(x)) * 4 + 3] = uint8_t(std::lround(luma));
     }
   }
-  out.name = m.alpha_texname;
+  out.name = name;
   return out;
 }
+
+// The textures of the materials the faces use. Each file is read once and decoded once however
+// many materials name it, and each (map_Kd, map_d) pair becomes one scene texture shared by its
+// materials. Every file is read, and what decoding will take is budgeted from the images'
+// headers, before any is decoded.
+class ObjTextures {
+ public:
+  ObjTextures(const ObjFileReader& read, const std::string& source,
+              std::vector<std::string>& warnings)
+      : read_(read), source_(source), warnings_(warnings) {}
+
+  // A material faces use (before budget()).
+  void use(const tinyobj::material_t& m) {
+    if (m.diffuse_texname.empty() && m.alpha_texname.empty()) return;
+    const Pair pair{m.diffuse_texname, m.alpha_texname};
+    if (!textureOfPair_.try_emplace(pair, kNotBuilt).second) return;
+    for (const std::string& file : {pair.first, pair.second}) {
+      if (!file.empty()) ++usesLeft_[file];
+    }
+  }
+
+  // Reads every file the used materials name and adds what decoding them will take.
+  void budget(MemoryBudget& budget) {
+    for (const auto& [file, uses] : usesLeft_) {
+      std::optional<std::vector<uint8_t>>& bytes = encoded_[file];
+      bytes = read_(file, "texture '" + file + "'");
+      if (bytes) {
+        if (const std::optional<ImageSize> size = readImageSize(*bytes)) {
+          sizes_[file] = *size;
+          budget.addTexture(size->rgbaBytes());
+        }
+      }
+    }
+    for (const auto& [pair, texture] : textureOfPair_) {
+      const auto colour = sizes_.find(pair.first);
+      const auto alpha = sizes_.find(pair.second);
+      if (!pair.second.empty()) {  // a new image, the colour's size (or the mask's)
+        if (colour != sizes_.end()) {
+          budget.addTexture(colour->second.rgbaBytes());
+        } else if (alpha != sizes_.end()) {
+          budget.addTexture(alpha->second.rgbaBytes());
+        }
+      } else if (colour != sizes_.end() && usesLeft_[pair.first] > 1) {
+        budget.addTexture(colour->second.rgbaBytes());  // a copy: other pairs use the image too
+      }
+    }
+  }
+
+  // The scene texture of a used material, made on first use; -1 where it has none usable.
+  int textureOf(const tinyobj::material_t& m, std::vector<TextureImage>& textures) {
+    if (m.diffuse_texname.empty() && m.alpha_texname.empty()) return -1;
+    int& texture = textureOfPair_.at({m.diffuse_texname, m.alpha_texname});
+    if (texture != kNotBuilt) return texture;
+    const TextureImage* colour = m.diffuse_texname.empty() ? nullptr : decoded(m.diffuse_texname);
+    const TextureImage* alpha = m.alpha_texname.empty() ? nullptr : decoded(m.alpha_texname);
+    texture = -1;
+    if (alpha) {
+      texture = int(textures.size());
+      textures.push_back(withAlphaMask(colour, *alpha, m.alpha_texname));
+    } else if (colour) {
+      texture = int(textures.size());
+      // The last pair to use an image takes it; earlier ones copy it.
+      textures.push_back(
+          usesLeft_.at(m.diffuse_texname) == 1 ? std::move(*decoded_[m.diffuse_texname]) : *colour);
+    }
+    release(m.diffuse_texname);
+    release(m.alpha_texname);
+    return texture;
+  }
+
+ private:
+  using Pair = std::pair<std::string, std::string>;  // map_Kd, map_d ("" where none)
+  static constexpr int kNotBuilt = -2;
+
+  // The file's image, decoded on first use (a warning, once, where it cannot be).
+  const TextureImage* decoded(const std::string& file) {
+    auto [it, first] = decoded_.try_emplace(file);
+    if (first) {
+      std::string why = "it cannot be read";
+      if (const std::optional<std::vector<uint8_t>>& bytes = encoded_[file]) {
+        it->second = decodeImage(*bytes, file, why);
+      }
+      encoded_.erase(file);
+      if (!it->second)
+        warnings_.push_back(source_ + ": texture '" + file + "' cannot be used: " + why);
+    }
+    return it->second ? &*it->second : nullptr;
+  }
+
+  // One pair fewer needs the file's image: the last frees it.
+  void release(const std::string& file) {
+    if (file.empty()) return;
+    if (--usesLeft_.at(file) == 0) decoded_.erase(file);
+  }
+
+  const ObjFileReader& read_;
+  const std::string& source_;
+  std::vector<std::string>& warnings_;
+  std::map<Pair, int> textureOfPair_;    // scene texture, -1 (none usable) or kNotBuilt
+  std::map<std::string, int> usesLeft_;  // pairs that still need the file's image
+  std::map<std::string, std::optional<std::vector<uint8_t>>> encoded_;
+  std::map<std::string, ImageSize> sizes_;
+  std::map<std::string, std::optional<TextureImage>> decoded_;
+};
 
 // tinyobjloader (Debian's 2.0.0~rc) converts a skin-weight line's joint ids (`vw VERTEX JOINT
 // WEIGHT ...`, its extension) to int unchecked (tiny_obj_loader.h:2669): a joint beyond int's
@@ -131,9 +230,40 @@ struct VertexKeyHash {
   }
 };
 
+// A face's material as the meshes are grouped: -1 for none or one the file does not define.
+int faceMaterial(const tinyobj::shape_t& shape, size_t face, size_t materials) {
+  const int material = face < shape.mesh.material_ids.size() ? shape.mesh.material_ids[face] : -1;
+  return material >= 0 && size_t(material) < materials ? material : -1;
+}
+
+// The triangles, vertices and meshes loadObj will make, at most: three vertices per triangle (a
+// face without normals has its own three; shared corners only make fewer), a mesh per material.
+// Adds them and the used materials' textures to the budget and checks it.
+void budgetObj(const std::vector<tinyobj::shape_t>& shapes,
+               const std::vector<tinyobj::material_t>& materials, ObjTextures& textures,
+               MemoryBudget& budget, const std::string& name) {
+  uint64_t triangles = 0;
+  std::set<int> used;
+  for (const tinyobj::shape_t& shape : shapes) {
+    for (size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {
+      if (shape.mesh.num_face_vertices[f] != 3) continue;
+      ++triangles;
+      used.insert(faceMaterial(shape, f, materials.size()));
+    }
+  }
+  budget.addGeometry(
+      triangles, used.size() * sizeof(Mesh) + 3 * triangles * (sizeof(Vertex) + sizeof(uint32_t)));
+  for (int material : used) {
+    if (material >= 0) textures.use(materials[size_t(material)]);
+  }
+  textures.budget(budget);
+  budget.check(name);
+}
+
 }  // namespace
 
-Scene loadObj(const std::string& objText, const std::string& name, const ObjFileReader& readFile) {
+Scene loadObj(const std::string& objText, const std::string& name, const ObjFileReader& readFile,
+              MemoryBudget& budget) {
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
@@ -141,7 +271,10 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
   refuseSkinJointsBeyondInt(objText, name);
   std::istringstream in(objText);
   LibraryReader libraries(readFile);
-  if (!tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &libraries, true, false)) {
+  const bool parsed =
+      tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &libraries, true, false);
+  if (!libraries.refusal.empty()) throw Error(libraries.refusal);
+  if (!parsed) {
     throw Error(name +
                 ": not a valid OBJ file: " + (err.empty() ? "tinyobjloader gave no reason" : err));
   }
@@ -151,7 +284,10 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
     if (!line.empty()) scene.warnings.push_back(name + ": " + line);
   }
 
-  // One mesh per material (-1: none), its texture loaded once.
+  ObjTextures textures(readFile, name, scene.warnings);
+  budgetObj(shapes, materials, textures, budget, name);
+
+  // One mesh per material (-1: none).
   std::map<int, size_t> meshOfMaterial;
   std::vector<std::unordered_map<VertexKey, uint32_t, VertexKeyHash>> vertexMaps;
   const auto meshFor = [&](int material) -> size_t {
@@ -167,10 +303,7 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
                     "' has a diffuse colour Kd that is not finite");
       }
       mesh.opacity = std::isfinite(m.dissolve) ? std::clamp(float(m.dissolve), 0.0f, 1.0f) : 1.0f;
-      if (std::optional<TextureImage> t = materialTexture(m, readFile, name, scene.warnings)) {
-        mesh.baseColorTexture = int(scene.textures.size());
-        scene.textures.push_back(std::move(*t));
-      }
+      mesh.baseColorTexture = textures.textureOf(m, scene.textures);
       if (!m.alpha_texname.empty()) {
         mesh.alphaMode = AlphaMode::Mask;
       } else if (mesh.opacity < 1.0f) {
@@ -200,8 +333,7 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
       const tinyobj::index_t* face = &shape.mesh.indices[offset];
       offset += corners;
       if (corners != 3) continue;  // fewer than three corners: nothing to draw
-      int material = f < shape.mesh.material_ids.size() ? shape.mesh.material_ids[f] : -1;
-      if (material >= int(materials.size())) material = -1;
+      const int material = faceMaterial(shape, f, materials.size());
       bool hasNormals = true;
       for (size_t k = 0; k < 3; ++k) {
         const tinyobj::index_t& i = face[k];
@@ -263,23 +395,19 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
   return scene;
 }
 
-Scene loadObjFile(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error("cannot open scene file " + path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw Error("cannot read scene file " + path.string());
+Scene loadObjFile(const fs::path& path, MemoryBudget& budget) {
+  const std::string source = path.string();
+  const std::optional<std::vector<uint8_t>> text =
+      readSceneFile(path, "the scene file", source, budget);
+  if (!text) throw Error("cannot open scene file " + source);
   const fs::path folder = path.parent_path();
-  const ObjFileReader read = [&](const std::string& name) -> std::optional<std::vector<uint8_t>> {
+  const ObjFileReader read = [&](const std::string& name, const std::string& what) {
     // Files written on Windows name textures with backslashes (".\\bark.jpg").
     std::string portable = name;
     std::replace(portable.begin(), portable.end(), '\\', '/');
-    std::ifstream file(folder / portable, std::ios::binary);
-    if (!file) return std::nullopt;
-    return std::vector<uint8_t>((std::istreambuf_iterator<char>(file)),
-                                std::istreambuf_iterator<char>());
+    return readSceneFile(folder / portable, what, source, budget);
   };
-  return loadObj(text.str(), path.string(), read);
+  return loadObj(std::string(text->begin(), text->end()), source, read, budget);
 }
 
 }  // namespace penumbra::scene

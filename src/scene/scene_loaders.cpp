@@ -1,8 +1,11 @@
 // loadScene: a built-in scene by name, or a scene file chosen by its extension.
 #include <algorithm>
 #include <filesystem>
+#include <new>
+#include <stdexcept>
 
 #include "gltf_loader.h"
+#include "memory_budget.h"
 #include "obj_loader.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -44,16 +47,39 @@ void checkSceneSource(std::string_view nameOrPath) {
   }
 }
 
-Scene loadScene(std::string_view nameOrPath) {
+Scene loadScene(std::string_view nameOrPath, const SceneLoadOptions& options) {
   if (isBuiltin(nameOrPath)) return makeBuiltinScene(nameOrPath);
   checkSceneSource(nameOrPath);
+  if (options.maxMemoryBytes < kMinSceneMemoryBytes ||
+      options.maxMemoryBytes > kMaxSceneMemoryBytes) {
+    throw Error("the scene memory limit " + memorySizeText(options.maxMemoryBytes) +
+                " is out of range [" + memorySizeText(kMinSceneMemoryBytes) + ", " +
+                memorySizeText(kMaxSceneMemoryBytes) + "]");
+  }
   const fs::path path{std::string(nameOrPath)};
   const FileKind kind = fileKind(path);
-  Scene scene = kind == FileKind::Gltf ? scene::loadGltfFile(path) : scene::loadObjFile(path);
-  scene.name = path.stem().string();
-  scene.description = (kind == FileKind::Gltf ? "glTF 2.0 file " : "OBJ file ") + path.string() +
-                      ", " + std::to_string(scene.triangleCount()) + " triangles";
-  return scene;
+  scene::MemoryBudget budget(options.maxMemoryBytes);
+  // The one place a failure the loaders did not foresee becomes a line naming the file: the
+  // budget is an estimate, and the machine may hold less than it allows.
+  try {
+    Scene scene = kind == FileKind::Gltf ? scene::loadGltfFile(path, budget)
+                                         : scene::loadObjFile(path, budget);
+    scene.name = path.stem().string();
+    scene.description = (kind == FileKind::Gltf ? "glTF 2.0 file " : "OBJ file ") + path.string() +
+                        ", " + std::to_string(scene.triangleCount()) + " triangles";
+    return scene;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::length_error& e) {
+    throw Error(path.string() + ": out of memory while loading the scene: an allocation beyond " +
+                "what can be addressed (" + e.what() + ")");
+  } catch (const std::bad_alloc&) {
+    throw Error(path.string() + ": out of memory while loading the scene (within the " +
+                memorySizeText(options.maxMemoryBytes) +
+                " limit, --max-memory, but more than this machine could give)");
+  } catch (const std::exception& e) {
+    throw Error(path.string() + ": cannot be loaded: " + e.what());
+  }
 }
 
 }  // namespace penumbra

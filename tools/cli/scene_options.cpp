@@ -50,6 +50,17 @@ void addSceneOptions(CLI::App& app, SceneOptions& o) {
   app.add_option("--camera-pos", o.cameraPosition, "X,Y,Z: the camera's position");
   app.add_option("--camera-target", o.cameraTarget, "X,Y,Z: the point the camera looks at");
   app.add_option("--camera-fov", o.cameraFov, "vertical field of view in degrees, (0, 170]");
+  app.add_option("--max-memory", o.maxMemory,
+                 "host memory a scene file may take (its files, geometry with every instance "
+                 "expanded, decoded textures): MiB, or with a unit K, M, G or T; default half "
+                 "this machine's memory, " +
+                     memorySizeText(defaultSceneMemoryLimit()) + " (docs/untrusted-input.md)");
+}
+
+SceneLoadOptions sceneLoadOptions(const SceneOptions& o) {
+  SceneLoadOptions options;
+  if (!o.maxMemory.empty()) options.maxMemoryBytes = parseMemorySize(o.maxMemory, "--max-memory");
+  return options;
 }
 
 SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {

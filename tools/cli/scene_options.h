@@ -1,7 +1,8 @@
 // Command-line options that choose the scene and set its camera and light (render, compare):
 // --scene NAME|PATH, --light KIND, --light-dir, --light-pos, --light-target, --spot-angle,
 // --camera-pos,
-// --camera-target, --camera-fov, --light-size and --view FILE.json holding the same settings.
+// --camera-target, --camera-fov, --light-size and --view FILE.json holding the same settings;
+// --max-memory bounds what loading a scene file may take.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -20,6 +21,7 @@ struct SceneOptions {
   float spotAngle = 0.0f;  // 0: not given
   float cameraFov = 0.0f;
   std::optional<float> lightSize;  // Light::size
+  std::string maxMemory;           // --max-memory as given; empty: defaultSceneMemoryLimit()
 };
 
 void addSceneOptions(CLI::App& app, SceneOptions& options);
@@ -27,6 +29,10 @@ void addSceneOptions(CLI::App& app, SceneOptions& options);
 // `base` (a settings file's), then the view file, then the command line; throws Error naming the
 // option or the file's key that is malformed.
 SceneOverrides sceneOverrides(const SceneOptions& options, SceneOverrides base = {});
+
+// What loading a scene file may take (--max-memory); throws Error for a size that is malformed or
+// out of range.
+SceneLoadOptions sceneLoadOptions(const SceneOptions& options);
 
 // Prints the scene's warnings to stderr, one line each.
 void printSceneWarnings(const Scene& scene);

@@ -18,6 +18,7 @@ namespace penumbra::compare {
 
 struct ComparisonRequest {
   std::string scene = "backyard";  // a built-in scene's name or a scene file (loadScene)
+  SceneLoadOptions sceneLoad;      // what loading a scene file may take
   SceneOverrides view;             // camera and light set from outside the scene
   std::vector<Technique> techniques;
   gl::RenderSettings settings;  // shared by every technique (its `technique` field is ignored)
