@@ -1,4 +1,4 @@
-// The built-in scenes of DESIGN.md, each a papers' test case (figure numbers in the comments).
+// The built-in scenes, each a papers' test case (figure numbers in the comments; docs/scenes.md).
 #include <array>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>

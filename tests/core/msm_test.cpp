@@ -1,4 +1,4 @@
-// Moment shadow maps (Peters & Klein 2015, shared/papers/msm-notes.md): the quantisation
+// Moment shadow maps (Peters & Klein 2015, docs/papers.md): the quantisation
 // matrices, the Hamburger reconstruction on hand-computed cases, bounds and degenerate moments.
 #include <gtest/gtest.h>
 

@@ -1,5 +1,5 @@
 // Moment shadow maps, four-moment Hamburger variant (Peters & Klein, I3D 2015; see
-// shared/papers/msm-notes.md): store (z, z^2, z^3, z^4), filter linearly, and reconstruct the
+// docs/papers.md): store (z, z^2, z^3, z^4), filter linearly, and reconstruct the
 // shadow intensity from a three-atom distribution consistent with the biased moments.
 #ifndef PENUMBRA_SHARED_MSM_H
 #define PENUMBRA_SHARED_MSM_H
