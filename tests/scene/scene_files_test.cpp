@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
@@ -144,10 +145,22 @@ TEST(GltfLoader, RefusesAnImageWhoseBufferViewRunsPastItsBuffer) {
 
 // Found by the fuzzer: a PNG whose first IDAT chunk is empty made stb_image copy zero bytes to a
 // null pointer (undefined behaviour: the sanitizer build aborts on it). Empty data chunks are
-// dropped before decoding. The images are decoded while the file is read; the file then fails
-// on a mesh index out of range, a clear error, which the loader must reach.
+// dropped before decoding. Images are decoded when a material uses them: the fuzzer's file
+// misspells its material's "pbrMetallicRoughness" and names texture 1 of 1, mended here in
+// place (the GLB's chunk sizes hold). The file then fails on a mesh index out of range, a clear
+// error, which the loader must reach.
 TEST(GltfLoader, APngWithAnEmptyFirstDataChunkIsDecodedWithoutUndefinedBehaviour) {
-  const fs::path file = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_png_empty_first_idat.glb";
+  std::ifstream in(fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_png_empty_first_idat.glb",
+                   std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  const size_t misspelt = bytes.find("pbrMe|allicRoughness");
+  ASSERT_NE(misspelt, std::string::npos);
+  bytes.replace(misspelt, 20, "pbrMetallicRoughness");
+  const size_t texture = bytes.find(R"("baseColorTexture":{"index":1})");
+  ASSERT_NE(texture, std::string::npos);
+  bytes[texture + 28] = '0';
+  const fs::path file =
+      testing::writeFile(fs::path(::testing::TempDir()) / "png_empty_first_idat.glb", bytes);
   try {
     loadScene(file.string());
     FAIL();
