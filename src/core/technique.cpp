@@ -37,9 +37,21 @@ constexpr std::array<TechniqueInfo, 10> kTechniques{{
      "Moment shadow maps, Hamburger 4MSM (Peters & Klein 2015)"},
 }};
 
-constexpr std::array<Technique, 10> kAll{
+constexpr std::array<Technique, shaders::kTechniqueCount> kAll{
     Technique::Hard,  Technique::Pcf, Technique::Vsm, Technique::Lvsm,     Technique::Evsm2,
     Technique::Evsm4, Technique::Esm, Technique::Csm, Technique::PowerCdf, Technique::Msm};
+
+// Every id in [0, kTechniqueCount) once: a technique left out of kAll (its missing entries would
+// read as Hard) would drop out of every "all techniques" test and of the accuracy gate.
+constexpr bool listsEveryTechniqueOnce(const std::array<Technique, shaders::kTechniqueCount>& all) {
+  for (int id = 0; id < shaders::kTechniqueCount; ++id) {
+    int seen = 0;
+    for (Technique t : all) seen += int(t) == id;
+    if (seen != 1) return false;
+  }
+  return true;
+}
+static_assert(listsEveryTechniqueOnce(kAll));
 
 const TechniqueInfo& info(Technique technique) {
   checkTechnique(technique);
@@ -53,6 +65,14 @@ int sharedId(Technique technique) {
 }
 
 static_assert(kTechniques.size() == size_t(shaders::kTechniqueCount));
+// info() indexes kTechniques by the enum's value, and the shaders by the shared id.
+constexpr bool indexedByTechnique() {
+  for (size_t i = 0; i < kTechniques.size(); ++i) {
+    if (size_t(kTechniques[i].technique) != i || kTechniques[i].sharedId != int(i)) return false;
+  }
+  return true;
+}
+static_assert(indexedByTechnique());
 static_assert(int(ChannelReduction::Mean) == shaders::kReduceMean);
 static_assert(int(ChannelReduction::Min) == shaders::kReduceMin);
 static_assert(int(ChannelReduction::Max) == shaders::kReduceMax);
