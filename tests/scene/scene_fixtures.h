@@ -1,13 +1,19 @@
-// Generated scene files for the loader and rendering tests: glTF 2.0 JSON with its buffer
-// embedded as a base64 data URI, written into the test's build folder.
+// Generated scene files for the loader, command-line and rendering tests: glTF 2.0 JSON with its
+// buffer embedded as a base64 data URI, grids, PNG headers; and a guard for FIFO tests.
 #pragma once
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace penumbra::testing {
@@ -91,6 +97,34 @@ inline std::string pngHeaderOnly(uint32_t width, uint32_t height) {
   return std::string("\x89PNG\r\n\x1a\n", 8) + bigEndian(13) + "IHDR" + bigEndian(width) +
          bigEndian(height) + std::string("\x08\x02\x00\x00\x00", 5) + bigEndian(0);
 }
+
+// Opens the FIFO's other end after five seconds, should a reader be blocked on it: a loader
+// that opens it blocking then reads an empty file and its test fails instead of hanging (ctest's
+// TIMEOUT is the last resort).
+class FifoUnblocker {
+ public:
+  explicit FifoUnblocker(std::filesystem::path fifo)
+      : thread_([this, fifo = std::move(fifo)] {
+          const auto start = std::chrono::steady_clock::now();
+          while (!done_) {
+            if (std::chrono::steady_clock::now() - start > std::chrono::seconds(5)) {
+              const int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
+              if (fd >= 0) close(fd);
+            }
+            std::this_thread::sleep_for(std::chrono::milliseconds(50));
+          }
+        }) {}
+  ~FifoUnblocker() {
+    done_ = true;
+    thread_.join();
+  }
+  FifoUnblocker(const FifoUnblocker&) = delete;
+  FifoUnblocker& operator=(const FifoUnblocker&) = delete;
+
+ private:
+  std::atomic<bool> done_{false};
+  std::thread thread_;
+};
 
 inline std::filesystem::path writeFile(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::create_directories(path.parent_path());

@@ -9,11 +9,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
-#include <atomic>
-#include <chrono>
 #include <cstdio>
 #include <fstream>
-#include <thread>
 
 #include "penumbra/error.h"
 #include "penumbra/image.h"
@@ -237,32 +234,6 @@ TEST(UntrustedGltf, BudgetsTheImagesItsMaterialsUseFromTheirHeadersBeforeDecodin
   EXPECT_TRUE(contains(s.warnings[0], "huge.png cannot be used: decoding failed")) << s.warnings[0];
 }
 
-// Writes to the FIFO's other end after a while, should a reader be blocked on it: a loader that
-// opened it blocking then reads an empty file and the test fails instead of hanging (ctest's
-// TIMEOUT is the last resort).
-class FifoUnblocker {
- public:
-  explicit FifoUnblocker(fs::path fifo)
-      : thread_([this, fifo = std::move(fifo)] {
-          const auto start = std::chrono::steady_clock::now();
-          while (!done_) {
-            if (std::chrono::steady_clock::now() - start > std::chrono::seconds(5)) {
-              const int fd = open(fifo.c_str(), O_WRONLY | O_NONBLOCK);
-              if (fd >= 0) close(fd);
-            }
-            std::this_thread::sleep_for(std::chrono::milliseconds(50));
-          }
-        }) {}
-  ~FifoUnblocker() {
-    done_ = true;
-    thread_.join();
-  }
-
- private:
-  std::atomic<bool> done_{false};
-  std::thread thread_;
-};
-
 struct SideFile {
   const char* name;     // the test's
   const char* obj;      // the OBJ's first line
@@ -282,7 +253,7 @@ TEST_P(NonRegularObjSideFile, IsRefusedInOneLine) {
       testing::writeFile(dir / "side.obj", std::string(GetParam().obj) +
                                                "\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\n"
                                                "vt 1 1\nusemtl a\nf 1/1 2/2 3/3\n");
-  const FifoUnblocker unblocker(dir / "pipe");
+  const testing::FifoUnblocker unblocker(dir / "pipe");
   std::string expected = GetParam().message;
   if (const size_t at = expected.find("%DIR%"); at != std::string::npos) {
     expected.replace(at, 5, dir.string());
@@ -325,7 +296,7 @@ TEST(UntrustedGltf, RefusesBuffersAndImagesThatAreNotRegularFiles) {
   ASSERT_EQ(mkfifo((dir / "pipe.png").c_str(), 0600), 0);
   fs::create_symlink("/dev/zero", dir / "zero.bin");
   fs::create_symlink("/dev/urandom", dir / "noise.png");
-  const FifoUnblocker unblocker(dir / "pipe.png");
+  const testing::FifoUnblocker unblocker(dir / "pipe.png");
   const auto withImage = [&](const std::string& uri) {
     return testing::writeFile(dir / (uri + ".gltf"),
                               testing::gltfWithMesh(kQuad, kQuadIndices, R"([{"mesh":0}])", "[0]",

@@ -9,6 +9,7 @@
 
 #include <regex>
 
+#include "../scene/scene_fixtures.h"
 #include "penumbra/diagnostic_images.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/settings_json.h"
@@ -542,6 +543,41 @@ TEST(Viewer, SavesAndLoadsBothSidesOfTheSplitView) {
   ASSERT_EQ(render.exitCode(), 0) << render.output;
   EXPECT_TRUE(fs::exists(out / "backyard_vsm.png"));
   EXPECT_FALSE(fs::exists(out / "backyard_pcf.png"));
+}
+
+// A hostile scene file (docs/untrusted-input.md) ends the viewer with one line naming it, as it
+// ends render and compare: the issue's 20,000-level node chain crashed it (SIGSEGV), and
+// --max-memory bounds what a file may expand to.
+TEST(Viewer, RefusesAHostileSceneFileInOneLine) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const std::vector<glm::vec3> quad{{0, 0, 0}, {1, 0, 0}, {1, 0, 1}};
+  std::string chain = "[";
+  for (int i = 0; i + 1 < 20000; ++i) chain += R"({"children":[)" + std::to_string(i + 1) + "]},";
+  const fs::path deep = penumbra::testing::writeFile(
+      scratch.path() / "deep.gltf",
+      penumbra::testing::gltfWithMesh(quad, {0, 1, 2}, chain + R"({"mesh":0}])", "[0]"));
+  const fs::path settings = scratch.path() / "deep.json";
+  writeFile(settings, "{\"scene\": \"" + deep.string() + "\", \"width\": 160, \"height\": 90}\n");
+  const RunResult run = runViewer(settings, scratch.path() / "deep.png", scratch.path());
+  EXPECT_EQ(run.exitCode(), 1) << run.output;
+  EXPECT_EQ(run.output, "penumbra-viewer: " + deep.string() +
+                            ": the node hierarchy is deeper than 1024 levels (node 1024 is at "
+                            "level 1025 below root 0); penumbra loads at most 1024 levels\n");
+
+  const penumbra::testing::Grid g = penumbra::testing::grid(64);
+  const fs::path instances = penumbra::testing::writeFile(
+      scratch.path() / "instances.gltf",
+      penumbra::testing::gltfWithMesh(g.positions, g.indices, R"([{"mesh":0},{"mesh":0}])",
+                                      "[0,1]"));
+  writeFile(settings,
+            "{\"scene\": \"" + instances.string() + "\", \"width\": 160, \"height\": 90}\n");
+  const RunResult budget =
+      runViewer(settings, scratch.path() / "instances.png", scratch.path(), {"--max-memory", "1M"});
+  EXPECT_EQ(budget.exitCode(), 1) << budget.output;
+  EXPECT_TRUE(budget.output.starts_with("penumbra-viewer: " + instances.string() + ": needs 1.") &&
+              budget.output.ends_with(" above the 1.00 MiB limit (--max-memory)\n"))
+      << budget.output;
 }
 
 }  // namespace
