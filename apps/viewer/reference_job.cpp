@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/cascaded_reference.h"
 #include "penumbra/metrics.h"
 #include "penumbra/shadow_lookup.h"
 
@@ -53,32 +54,22 @@ double ReferenceJob::seconds() const {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
 }
 
-// Per pixel what Renderer::renderReference gives (its CPU completion, Renderer::
-// completeReferenceOnCpu, runs the same twin for the pixels the GPU leaves): the cascade's twin,
-// blended with the next cascade's in the blend band.
+// Per pixel what Renderer::renderReference gives: gl::CascadedReference, which the renderer's
+// completion of the pixels the GPU leaves (Renderer::completeReferenceOnCpu) runs too.
 void ReferenceJob::compute(const std::stop_token& stop) {
   try {
     const gl::RenderResult& r = *result_;
     const std::vector<Image>& depthMaps = *depthMaps_;
-    const int size = settings_.shadowMapSize;
-    std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
-    auto twin = [&](int cascade) -> const CpuShadowLookup& {
-      std::unique_ptr<CpuShadowLookup>& found = twins[cascade];
-      if (!found) {
-        if (size_t(cascade) >= depthMaps.size() || size_t(cascade) >= r.cascadeBlurs.size()) {
-          throw Error("the render has no depth map for cascade " + std::to_string(cascade));
-        }
-        found = std::make_unique<CpuShadowLookup>(
-            depthMaps[size_t(cascade)],
-            LookupConfig{Technique::Hard, r.params, settings_.filter,
-                         r.cascadeBlurs[size_t(cascade)], settings_.anisotropy, halfRounding_,
-                         r.cascadeFrame.kernelScale(cascade, size)});
-      }
-      return *found;
-    };
+    gl::CascadedReference reference(
+        r, settings_.shadowMapSize, settings_.filter, settings_.anisotropy, halfRounding_,
+        [&depthMaps](int cascade) {
+          if (size_t(cascade) >= depthMaps.size()) {
+            throw Error("the render has no depth map for cascade " + std::to_string(cascade));
+          }
+          return depthMaps[size_t(cascade)];
+        });
     // Only where the shadow test decides the shading: the error view shows 0 elsewhere.
     const Image covered = litSurfaceMask(r.lookup);
-    const CascadeFrame& cascades = r.cascadeFrame;
     for (int y = 0; y < reference_.height(); ++y) {
       for (int x = 0; x < reference_.width(); ++x) {
         if (stop.stop_requested()) return;
@@ -87,14 +78,7 @@ void ReferenceJob::compute(const std::stop_token& stop) {
           reference_.at(x, y) = r.visibility.at(x, y);
           continue;
         }
-        const float blend = r.cascades.at(x, y, 1);
-        const LookupPixel pixel = gl::lookupPixelAt(r, x, y);
-        float v = twin(cascade).referenceVisibility(pixel);
-        if (blend > 0.0f && cascade + 1 < cascades.count) {
-          const LookupPixel other = gl::lookupPixelInNextCascade(pixel, cascades, cascade, size);
-          v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
-        }
-        reference_.at(x, y) = v;
+        reference_.at(x, y) = reference.visibilityAt(x, y);
       }
       rowsDone_.store(y + 1, std::memory_order_release);
     }

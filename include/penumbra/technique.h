@@ -49,5 +49,15 @@ float reconstructVisibility(Technique technique, const TechniqueParams& params,
                             std::span<const float> filteredChannels, float receiverDepth);
 // PCF filters the test results, not the channels.
 bool filtersAfterTest(Technique technique);
+// Whether the technique encodes depth into channels that are filtered before the test (blur,
+// mips, summed-area table): every technique but PCF (which filters after the test) and the hard
+// test (which does not filter). The one answer to "does it prefilter" for the GPU passes, the
+// CPU twin and the front ends.
+bool prefiltersChannels(Technique technique);
+// Throws Error when the summed-area filter cannot hold this technique's channels: it averages
+// (no min/max or log-space reductions) in fixed point relative to the channels' range
+// (exponential channels span too many orders of magnitude). Techniques that do not prefilter
+// pass.
+void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params);
 
 }  // namespace penumbra

@@ -112,17 +112,8 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   if (config.anisotropy < 1 || config.anisotropy > 16) {
     throw Error("anisotropy " + std::to_string(config.anisotropy) + " is out of range [1, 16]");
   }
-  if (config.filter == FilterMode::SummedArea && !filtersAfterTest(config.technique) &&
-      config.technique != Technique::Hard) {
-    for (int c = 0; c < channelCount(config.technique, config.params); ++c) {
-      if (channelReduction(config.technique, config.params, c) != ChannelReduction::Mean ||
-          config.technique == Technique::Esm || config.technique == Technique::Evsm2 ||
-          config.technique == Technique::Evsm4) {
-        throw Error("the summed-area filter holds only bounded mean channels; " +
-                    std::string(techniqueId(config.technique)) +
-                    " has min/max, log-space or exponential channels");
-      }
-    }
+  if (config.filter == FilterMode::SummedArea) {
+    checkSummedAreaFilterable(config.technique, config.params);
   }
   shaders::CpuLookupTextures& t = *textures_;
   const Technique technique = config.technique;
@@ -147,7 +138,7 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   }
   std::vector<ChannelReduction> reductions;
   for (int c = 0; c < count; ++c) reductions.push_back(channelReduction(technique, params, c));
-  const bool prefiltered = !filtersAfterTest(technique) && technique != Technique::Hard;
+  const bool prefiltered = prefiltersChannels(technique);
   const float logExponent = params.esm.exponent;
   if (prefiltered && config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
     channels = quantized(separableFilterPass(channels, config.blur, true, reductions, logExponent),
@@ -191,7 +182,7 @@ LookupSample CpuShadowLookup::lookup(const LookupPixel& p) const {
 }
 
 std::vector<float> CpuShadowLookup::filteredChannels(const LookupPixel& p) const {
-  if (filtersAfterTest(config_.technique) || config_.technique == Technique::Hard) return {};
+  if (!prefiltersChannels(config_.technique)) return {};
   const shaders::LookupSources sources{textures_.get()};
   const shaders::FilteredChannels f =
       shaders::filterChannels(sources, textures_->settings, int(config_.technique), config_.params,

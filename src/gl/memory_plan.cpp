@@ -32,9 +32,6 @@ constexpr FrameTarget kFrameTargets[] = {
 
 }  // namespace
 
-bool prefiltersChannels(Technique technique) {
-  return !filtersAfterTest(technique) && technique != Technique::Hard;
-}
 
 int channelLevelsFor(const RenderSettings& s) {
   return prefiltersChannels(s.technique) && usesMips(s.filter)

@@ -14,7 +14,6 @@
 namespace penumbra::gl {
 
 // Decisions of the passes.
-bool prefiltersChannels(Technique technique);  // not PCF or the hard test (raw depth)
 int channelLevelsFor(const RenderSettings& settings);
 bool blursIntoScratch(const RenderSettings& settings);
 // Whether this frame's prefilter runs fused: every cascade's kernel does.

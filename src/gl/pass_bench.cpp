@@ -90,7 +90,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   if (repeats < 1 || repeats > 100) {
     throw Error("bench repeats " + std::to_string(repeats) + " is out of range [1, 100]");
   }
-  if (settings.technique == Technique::Pcf || settings.technique == Technique::Hard) {
+  if (!prefiltersChannels(settings.technique)) {
     throw Error(std::string(techniqueId(settings.technique)) +
                 " has no prefilter passes to measure (it filters after the test)");
   }

@@ -10,6 +10,7 @@
 #include "box_downsample.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
+#include "penumbra/gl/cascaded_reference.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/point_light.h"
@@ -124,9 +125,7 @@ void Renderer::checkSoftShadows(const RenderSettings& settings, const Light& lig
     throw Error("soft shadows (light size " + std::to_string(light.size) +
                 ") are not supported with cascades: use one map (--cascades 1)");
   }
-  const bool filterable =
-      settings.technique != Technique::Pcf && settings.technique != Technique::Hard;
-  if (filterable &&
+  if (prefiltersChannels(settings.technique) &&
       (settings.filter == FilterMode::Point || settings.filter == FilterMode::Bilinear)) {
     throw Error(std::string("soft shadows for ") + std::string(techniqueId(settings.technique)) +
                 " widen the filter by mip level or summed-area box: use --filter trilinear, "
@@ -343,31 +342,13 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
 void Renderer::completeReferenceOnCpu(RenderResult& r) const {
   const State& s = *state_;
   const RenderSettings& settings = s.settings;
-  const int size = settings.shadowMapSize;
-  std::map<int, std::unique_ptr<CpuShadowLookup>> twins;
-  auto twin = [&](int cascade) -> const CpuShadowLookup& {
-    std::unique_ptr<CpuShadowLookup>& found = twins[cascade];
-    if (!found) {
-      found = std::make_unique<CpuShadowLookup>(
-          readDepthMap(cascade),
-          LookupConfig{Technique::Hard, settings.params, settings.filter,
-                       s.cascadeBlurs[size_t(cascade)], settings.anisotropy, s.limits.halfRounding,
-                       r.cascadeFrame.kernelScale(cascade, size)});
-    }
-    return *found;
-  };
-  const CascadeFrame& cascades = r.cascadeFrame;
+  CascadedReference reference(r, settings.shadowMapSize, settings.filter, settings.anisotropy,
+                              s.limits.halfRounding,
+                              [this](int cascade) { return readDepthMap(cascade); });
   for (int y = 0; y < r.visibility.height(); ++y) {
     for (int x = 0; x < r.visibility.width(); ++x) {
       if (r.visibility.at(x, y) >= 0.0f) continue;
-      const int cascade = int(r.cascades.at(x, y, 0));
-      const float blend = r.cascades.at(x, y, 1);
-      const LookupPixel pixel = lookupPixelAt(r, x, y);
-      float v = twin(cascade).referenceVisibility(pixel);
-      if (blend > 0.0f) {
-        const LookupPixel other = lookupPixelInNextCascade(pixel, cascades, cascade, size);
-        v = glm::mix(v, twin(cascade + 1).referenceVisibility(other), blend);
-      }
+      const float v = reference.visibilityAt(x, y);
       const glm::vec3 albedo(r.color.at(x, y, 0), r.color.at(x, y, 1), r.color.at(x, y, 2));
       const glm::vec3 shaded =
           shaders::shadeLambert(albedo, settings.ambient, r.diagnostic.at(x, y), v);

@@ -117,7 +117,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
                                 unsigned depthTexture, int samples, Technique technique,
                                 const TechniqueParams& params,
                                 std::span<const BlurSpec> cascadeBlurs, bool fused) {
-  const bool filtersAfterTest = technique == Technique::Pcf || technique == Technique::Hard;
+  const bool prefilters = prefiltersChannels(technique);
   std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
   for (ShaderDefine& d : reductionDefines(technique, params, shape_.layout)) {
     defines.push_back(std::move(d));
@@ -126,7 +126,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   if (!fused) encode(programs, parameters, depthTexture, samples);
   encodeTimer.end();
   prefilterTimer.begin();
-  const bool blurs = !filtersAfterTest && !shape_.summedArea &&
+  const bool blurs = prefilters && !shape_.summedArea &&
                      std::any_of(cascadeBlurs.begin(), cascadeBlurs.end(),
                                  [](const BlurSpec& b) { return b.radius > 0; });
   // The scratch texture is planned from the settings (blursIntoScratch), the fused path chosen
@@ -139,11 +139,11 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   }
   prefilterTimer.end();
   mipsTimer.begin();
-  if (!filtersAfterTest && shape_.levels > 1) {
+  if (prefilters && shape_.levels > 1) {
     mipChain_.reduce(mipReducePrograms(programs, defines, shape_.layout), parameters, channels_,
                      shape_.levels, shape_.layout.layers * shape_.cascades, shape_.size);
   }
-  if (!filtersAfterTest && shape_.summedArea) buildSummedAreaTable(programs);
+  if (prefilters && shape_.summedArea) buildSummedAreaTable(programs);
   mipsTimer.end();
   checkErrors("prefiltering the channels");
 }

@@ -106,9 +106,7 @@ void runBench(const BenchOptions& o) {
   settings.params = selectedParams(o.technique, techniques);
   // PCF and the hard test filter after the test: "all" means the techniques with a prefilter,
   // naming them is an error before anything runs.
-  const auto withoutPrefilter = [](Technique t) {
-    return t == Technique::Pcf || t == Technique::Hard;
-  };
+  const auto withoutPrefilter = [](Technique t) { return !prefiltersChannels(t); };
   if (o.technique.techniques == "all") {
     std::erase_if(techniques, withoutPrefilter);
   } else if (const auto t = std::find_if(techniques.begin(), techniques.end(), withoutPrefilter);
