@@ -33,6 +33,10 @@ struct ParamSpec {
 // The parameters of one technique.
 std::span<const ParamSpec> techniqueParamSpecs(Technique technique);
 
+// The layer count of LVSM and the power CDF: setting it places that many layers uniformly, and
+// setting their split list ("splits", ParamKind::SplitList) sets it to the list's length + 1.
+inline constexpr std::string_view kLayerCountParam = "layers";
+
 // Sets one parameter from text; throws Error for an unknown name (listing the valid ones), a
 // malformed value, or a value out of its range (stating the range).
 void setParam(Technique technique, TechniqueParams& params, std::string_view name,

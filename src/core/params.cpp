@@ -71,7 +71,8 @@ constexpr std::string_view kSlopeBiasDoc = "slope-scaled depth bias, times depth
 constexpr std::string_view kLayersDoc =
     "number of depth layers L; setting it places the L-1 splits uniformly";
 constexpr std::string_view kSplitsDoc =
-    "interior split depths s_1..s_{L-1}, comma-separated, increasing in (0,1); sets L";
+    "interior split depths s_1..s_{L-1}, comma-separated, increasing in (0,1); sets L (empty: "
+    "one layer)";
 
 std::vector<ParamBinding> bindingsFor(Technique technique) {
   switch (technique) {
@@ -112,7 +113,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
       };
     case Technique::Lvsm:
       return {
-          integer("layers", kLayersDoc, 1, shaders::kMaxLayers,
+          integer(kLayerCountParam, kLayersDoc, 1, shaders::kMaxLayers,
                   [](TechniqueParams& p) { return &p.lvsm.splits.layerCount; }),
           splitList(kSplitsDoc, [](TechniqueParams& p) { return &p.lvsm.splits; }),
           real("overlap", "layer overlap delta, depth units (thesis §4.1.1)", 0.0, 0.1,
@@ -193,7 +194,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
       };
     case Technique::PowerCdf:
       return {
-          integer("layers", kLayersDoc, 1, shaders::kMaxLayers,
+          integer(kLayerCountParam, kLayersDoc, 1, shaders::kMaxLayers,
                   [](TechniqueParams& p) { return &p.powerCdf.splits.layerCount; }),
           splitList(kSplitsDoc, [](TechniqueParams& p) { return &p.powerCdf.splits; }),
           real("depthBias", "subtracted from the receiver depth against storage rounding", 0.0, 0.1,
@@ -282,10 +283,11 @@ void checkRange(const ParamSpec& spec, Technique technique, double value) {
   }
 }
 
+// An empty list is one layer (no interior split), as formatSplits writes it.
 LayerSplits parseSplits(Technique technique, std::string_view text) {
   std::vector<float> values;
   size_t start = 0;
-  while (start <= text.size()) {
+  while (!text.empty() && start <= text.size()) {
     size_t comma = text.find(',', start);
     std::string_view item =
         text.substr(start, comma == std::string_view::npos ? text.npos : comma - start);
@@ -363,7 +365,7 @@ void setParam(Technique technique, TechniqueParams& params, std::string_view nam
       checkRange(b.spec, technique, v);
       *b.integer(params) = int(v);
       // Setting a layer count places that many layers uniformly.
-      if (name == "layers") {
+      if (name == kLayerCountParam) {
         LayerSplits* splits = findBinding(technique, "splits").splits(params);
         *splits = shaders::uniformLayerSplits(int(v));
       }

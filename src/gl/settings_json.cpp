@@ -143,21 +143,33 @@ void applyParams(const json& value, const std::string& source, TechniqueParams& 
     const At at{source, key + "." + id};
     const Technique technique = withLocation(at, [&] { return parseTechnique(id); });
     if (!values.is_object()) at.fail("must be an object of parameter values");
-    // Split lists first: setting LVSM's splits also fixes its placement, which a "placement" in
-    // the same file must be able to set back (JSON objects have no order to rely on).
-    const auto isSplitList = [technique](const std::string& name) {
+    // JSON objects have no order to rely on, and some parameters set others (setParam): the
+    // layer count first (it places the splits uniformly), then the split list (it sets the layer
+    // count, and LVSM's fixed placement, which a "placement" in the same file may set back), then
+    // the rest, so that every value the file gives is the value used.
+    const auto rank = [technique](const std::string& name) {
+      if (name == kLayerCountParam) return 0;
       for (const ParamSpec& spec : techniqueParamSpecs(technique)) {
-        if (spec.name == name) return spec.kind == ParamKind::SplitList;
+        if (spec.name == name && spec.kind == ParamKind::SplitList) return 1;
       }
-      return false;
+      return 2;
     };
-    for (bool splitLists : {true, false}) {
+    const auto valueText = [](const json& v) {
+      return v.is_string() ? v.get<std::string>() : v.dump();
+    };
+    const std::string layersKey(kLayerCountParam);
+    for (int pass = 0; pass <= 2; ++pass) {
       for (const auto& [name, v] : values.items()) {
-        if (isSplitList(name) != splitLists) continue;
+        if (rank(name) != pass) continue;
         const At param{source, key + "." + id + "." + name};
         if (!v.is_number() && !v.is_string()) param.fail("must be a number or a string");
-        const std::string valueText = v.is_string() ? v.get<std::string>() : v.dump();
-        withLocation(param, [&] { setParam(technique, params, name, valueText); });
+        withLocation(param, [&] { setParam(technique, params, name, valueText(v)); });
+        if (pass != 1 || !values.contains(layersKey)) continue;
+        const std::string layers = formatParam(technique, params, kLayerCountParam);
+        if (valueText(values[layersKey]) != layers) {
+          param.fail("places " + layers + " layers, but \"" + layersKey + "\" is " +
+                     values[layersKey].dump() + ": give one of them, or make them agree");
+        }
       }
     }
   }

@@ -12,9 +12,14 @@ namespace {
 Settings everyKeyAwayFromItsDefault() {
   Settings s;
   s.scene = "street";
-  s.techniques = {Technique::Lvsm, Technique::Esm};
+  s.techniques = {Technique::Lvsm, Technique::Esm, Technique::PowerCdf};
   RenderSettings& r = s.render;
   setParam(Technique::Lvsm, r.params, "minVariance", "0.002");
+  // Non-uniform splits (a file also carries the layer count they imply), and a placement other
+  // than the fixed one that setting splits selects.
+  setParam(Technique::Lvsm, r.params, "splits", "0.125,0.25,0.75");
+  setParam(Technique::Lvsm, r.params, "placement", "lloyd");
+  setParam(Technique::PowerCdf, r.params, "splits", "0.0625,0.5");
   setParam(Technique::Esm, r.params, "classifier", "zmax");
   r.shadowMapSize = 512;
   r.msaaSamples = 4;
@@ -76,6 +81,28 @@ TEST(SettingsJson, ReadsBackEverySettingItWrites) {
   EXPECT_EQ(read.view.cameraPosition, written.view.cameraPosition);
   EXPECT_EQ(read.view.cameraTarget, written.view.cameraTarget);
   EXPECT_EQ(read.view.cameraFovDegrees, written.view.cameraFovDegrees);
+}
+
+TEST(SettingsJson, ReadsBackASingleLayer) {
+  Settings written;
+  written.techniques = {Technique::PowerCdf};
+  setParam(Technique::PowerCdf, written.render.params, "layers", "1");
+  Settings read;
+  applySettingsJson(settingsJson(written), "test", read);
+  EXPECT_EQ(formatParam(Technique::PowerCdf, read.render.params, "layers"), "1");
+}
+
+TEST(SettingsJson, RefusesALayerCountItsSplitsDisagreeWith) {
+  Settings s;
+  try {
+    applySettingsJson(R"({"param": {"lvsm": {"layers": 3, "splits": "0.1,0.2,0.3"}}})", "f.json",
+                      s);
+    FAIL() << "accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("\"param.lvsm.splits\" places 4 layers, but \"layers\" is 3"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(SettingsJson, KeepsTheKeysTheCommandLineGave) {
