@@ -13,6 +13,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/filter_mode.h"
+#include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
 #include "shared/filter_weights.h"
 
@@ -211,12 +212,12 @@ void renderSection(ViewerState& state, Changes& changes) {
   changes.render |= comboOf("MSAA", r.msaaSamples, std::span<const int>(kMsaa), intLabel);
   changes.render |= comboOf("filter", r.filter, std::span<const FilterMode>(kFilters), filterLabel);
   if (r.filter == FilterMode::Anisotropic) {
-    changes.render |= ImGui::SliderInt("anisotropy", &r.anisotropy, 1, 16);
+    changes.render |= ImGui::SliderInt("anisotropy", &r.anisotropy, 1, gl::kMaxAnisotropy);
   }
   int taps = 2 * r.blur.radius + 1;
-  if (ImGui::SliderInt("blur taps", &taps, 1, 2 * shaders::kMaxBlurRadius + 1)) {
+  if (ImGui::SliderInt("blur taps", &taps, 1, gl::kMaxBlurTaps)) {
     r.blur.radius = std::max(0, (taps - 1) / 2);
-    r.blur.sigma = std::max(0.5f, 0.5f * float(r.blur.radius));
+    r.blur.sigma = gl::defaultBlurSigma(r.blur.radius);
     changes.render = true;
   }
   bool box = r.blur.kernel == BlurKernel::Box;
@@ -225,10 +226,12 @@ void renderSection(ViewerState& state, Changes& changes) {
     changes.render = true;
   }
   if (!box)
-    changes.render |= ImGui::SliderFloat("blur sigma", &r.blur.sigma, 0.01f, 64.0f, "%.2f",
+    changes.render |= ImGui::SliderFloat("blur sigma", &r.blur.sigma, gl::kMinBlurSigma,
+                                         gl::kMaxBlurSigma, "%.2f",
                                          ImGuiSliderFlags_Logarithmic);
   changes.render |=
-      ImGui::SliderFloat("normal offset", &r.normalOffsetTexels, 0.0f, 10.0f, "%.2f texels");
+      ImGui::SliderFloat("normal offset", &r.normalOffsetTexels, 0.0f,
+                         gl::kMaxNormalOffsetTexels, "%.2f texels");
   changes.render |= ImGui::SliderInt("frame width", &r.width, 16, 1920);
   changes.render |= ImGui::SliderInt("frame height", &r.height, 16, 1080);
   if (state.light.kind == LightKind::Directional) {

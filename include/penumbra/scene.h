@@ -91,6 +91,13 @@ inline constexpr float kMaxSpotLightSize = 10.0f;
 inline constexpr float kMaxDirectionalLightSize = 0.5f;
 inline constexpr float kMaxPointLightSize = 10.0f;
 
+// The largest coordinate a camera or light vector, a shadow distance or a cascade split may
+// have, in world units. Views and light matrices are built in float (24-bit significand): at 1e6
+// one float step is 1/16 of a unit, so farther positions snap by more than a scene's small
+// details, and squared lengths (up to 3e12) stay far inside float's range, where 1e30 squared
+// overflows to infinity and a direction normalises to zero (an empty frame).
+inline constexpr float kMaxWorldCoordinate = 1e6f;
+
 // Throws Error naming the valid range when the light's size is not finite or out of range.
 void checkLightSize(const Light& light);
 
@@ -225,9 +232,15 @@ struct SceneOverrides {
   bool empty() const;
 };
 
-// Applies the overrides; throws Error for non-finite values, a zero light direction, both a
-// light direction and a light position, a camera or spot light looking at its own position,
-// angles or a light size out of range.
+// Checks each given value on its own, without a scene, so that front ends refuse bad values
+// before any loading or GL work: vectors finite with every coordinate within
+// kMaxWorldCoordinate, a light direction of non-zero length, angles in (0, 170], a light size
+// within the widest kind's range. Throws Error naming the value and its range.
+void validateOverrides(const SceneOverrides& overrides);
+
+// Applies the overrides (validateOverrides first); throws Error as validateOverrides does and for
+// both a light direction and a light position, a camera or spot light looking at its own
+// position, a light size out of range for the final light's kind.
 void applyOverrides(Scene& scene, const SceneOverrides& overrides);
 
 }  // namespace penumbra

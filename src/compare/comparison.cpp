@@ -56,6 +56,7 @@ shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings) {
 
 void validateRequest(const ComparisonRequest& request, const gl::Renderer& renderer) {
   checkSceneSource(request.scene);  // throws for an unknown scene or a missing file
+  validateOverrides(request.view);
   if (request.techniques.empty()) throw Error("no technique selected for the comparison");
   if (request.supersample < 1 || request.supersample > 8) {
     throw Error("ground-truth supersampling " + std::to_string(request.supersample) +

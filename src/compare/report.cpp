@@ -435,9 +435,13 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), t.filtered.rmse});
     byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), t.filtered.rmse});
   }
-  const int tileWidth = 420;  // gnuplot scales each image into its tile
-  const int tileHeight =
-      tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width());
+  // gnuplot scales each image into its tile keeping its aspect (size ratio -1). A tile is at most
+  // twice as tall as wide whatever the frame's shape: cairo refuses surfaces beyond 32767 pixels,
+  // which a frame's height / width ratio would otherwise reach (1 x 270 gave 113400 per tile).
+  const int tileWidth = 420;
+  const int tileHeight = std::clamp(
+      tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width()), 1,
+      2 * tileWidth);
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
   plotParetoScatter(byMemory, "technique memory (MiB, log scale)",
                     "RMSE against the " + referenceName(r), r.scene.name + ": error against memory",

@@ -14,6 +14,7 @@
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
 #include "renderer_state.h"
 #include "shared/cascade_selection.h"
@@ -208,25 +209,17 @@ bool Renderer::timerQueriesMeasureExecution() const {
 
 void Renderer::validate(const RenderSettings& settings, LightKind light) const {
   const DeviceLimits& s = state_->limits;
-  checkRange("shadow-map size", settings.shadowMapSize, 16, s.maxTextureSize);
-  checkRange("frame width", settings.width, 1, s.maxTextureSize);
-  checkRange("frame height", settings.height, 1, s.maxTextureSize);
-  if (settings.msaaSamples != 1 && settings.msaaSamples != 2 && settings.msaaSamples != 4 &&
-      settings.msaaSamples != 8) {
-    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) +
-                ": valid values are 1 (off), 2, 4, 8");
-  }
+  validateRenderSettings(settings);  // the ranges on any GL; this GL's limits below
+  checkRange("shadow-map size", settings.shadowMapSize, kMinShadowMapSize, s.maxTextureSize);
+  checkRange("frame width", settings.width, kMinFrameSize, s.maxTextureSize);
+  checkRange("frame height", settings.height, kMinFrameSize, s.maxTextureSize);
   if (settings.msaaSamples > s.maxSamples) {
     throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": this GL (" + s.device +
                 ") supports at most " + std::to_string(s.maxSamples));
   }
-  checkRange("blur radius", settings.blur.radius, 0, shaders::kMaxBlurRadius);
-  checkRange("blur sigma", settings.blur.sigma, 0.01f, 64.0f);
-  checkRange("anisotropy", settings.anisotropy, 1, std::min(16, int(s.maxAnisotropy)));
-  checkRange("normal offset (texels)", settings.normalOffsetTexels, 0.0f, 10.0f);
-  checkRange("ambient", settings.ambient, 0.0f, 1.0f);
+  checkRange("anisotropy", settings.anisotropy, 1,
+             std::min(kMaxAnisotropy, int(s.maxAnisotropy)));
   validateParams(settings.technique, settings.params);
-  validateCascadeSettings(settings.cascades);
   if (settings.filter == FilterMode::SummedArea &&
       (settings.technique == Technique::Evsm2 || settings.technique == Technique::Evsm4 ||
        settings.technique == Technique::Esm)) {

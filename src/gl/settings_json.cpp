@@ -9,8 +9,8 @@
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
-#include "shared/filter_weights.h"
 
 namespace penumbra::gl {
 namespace {
@@ -130,6 +130,7 @@ void applyView(const std::string& key, const json& value, const std::string& sou
   if (key == "light" && o.lightDirection && o.lightPosition) {
     where.fail("gives both a direction (directional light) and a position (spot light); give one");
   }
+  withLocation(where, [&] { validateOverrides(o); });
 }
 
 // `key`: where the object sits, for messages ("param", "split.param").
@@ -215,7 +216,6 @@ std::vector<Technique> techniqueList(const json& v, const At& at) {
 void applyKey(const std::string& key, const json& v, const std::string& source, Settings& s) {
   const At at{source, key};
   RenderSettings& r = s.render;
-  constexpr int kMaxSize = 16384;  // the largest GL_MAX_TEXTURE_SIZE; the renderer checks its own
   if (key == "scene") {
     s.scene = text(v, at);
   } else if (key == "technique") {
@@ -225,36 +225,32 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
   } else if (key == kSplitKey) {
     s.split = splitSide(v, source);
   } else if (key == "shadow-size") {
-    r.shadowMapSize = integer(v, at, 16, kMaxSize);
+    r.shadowMapSize = integer(v, at, kMinShadowMapSize, kMaxTextureSizeAnyGl);
   } else if (key == "msaa") {
     r.msaaSamples = integer(v, at, 1, 8);
     if (r.msaaSamples != 1 && r.msaaSamples != 2 && r.msaaSamples != 4 && r.msaaSamples != 8) {
       at.fail("is " + v.dump() + "; valid values are 1 (off), 2, 4, 8");
     }
   } else if (key == "blur") {
-    const int taps = integer(v, at, 1, 2 * shaders::kMaxBlurRadius + 1);
-    if (taps % 2 == 0) at.fail("is " + v.dump() + "; give an odd kernel width (1 = no blur)");
-    r.blur.radius = (taps - 1) / 2;
-    r.blur.sigma = std::max(0.5f, 0.5f * float(r.blur.radius));  // "blur-sigma" may follow
+    const int taps = integer(v, at, 1, kMaxBlurTaps);
+    r.blur.radius = withLocation(at, [&] { return blurRadiusOfTaps(taps); });
+    r.blur.sigma = defaultBlurSigma(r.blur.radius);  // "blur-sigma" may follow
   } else if (key == "blur-kernel") {
-    const std::string kernel = text(v, at);
-    if (kernel != "gaussian" && kernel != "box") {
-      at.fail("is '" + kernel + "'; valid kernels: gaussian, box");
-    }
-    r.blur.kernel = kernel == "box" ? BlurKernel::Box : BlurKernel::Gaussian;
+    const std::string name = text(v, at);
+    r.blur.kernel = withLocation(at, [&] { return parseBlurKernel(name); });
   } else if (key == "blur-sigma") {
-    r.blur.sigma = float(number(v, at, 0.01, 64.0));
+    r.blur.sigma = float(number(v, at, kMinBlurSigma, kMaxBlurSigma));
   } else if (key == "filter") {
     const std::string name = text(v, at);
     r.filter = withLocation(at, [&] { return parseFilterMode(name); });
   } else if (key == "aniso") {
-    r.anisotropy = integer(v, at, 1, 16);
+    r.anisotropy = integer(v, at, 1, kMaxAnisotropy);
   } else if (key == "width") {
-    r.width = integer(v, at, 1, kMaxSize);
+    r.width = integer(v, at, kMinFrameSize, kMaxTextureSizeAnyGl);
   } else if (key == "height") {
-    r.height = integer(v, at, 1, kMaxSize);
+    r.height = integer(v, at, kMinFrameSize, kMaxTextureSizeAnyGl);
   } else if (key == "normal-offset") {
-    r.normalOffsetTexels = float(number(v, at, 0.0, 10.0));
+    r.normalOffsetTexels = float(number(v, at, 0.0, kMaxNormalOffsetTexels));
   } else if (key == "cascades") {
     r.cascades.count = integer(v, at, 1, kMaxCascadeCount);
   } else if (key == "cascade-lambda") {
@@ -262,24 +258,22 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
   } else if (key == "cascade-splits") {
     if (!v.is_array()) at.fail("must be an array of increasing view depths");
     r.cascades.distances.clear();
-    for (const json& d : v) r.cascades.distances.push_back(float(number(d, at, 0.0, 1e9)));
+    for (const json& d : v) {
+      r.cascades.distances.push_back(float(number(d, at, 0.0, kMaxWorldCoordinate)));
+    }
   } else if (key == "cascade-fit") {
     const std::string name = text(v, at);
     r.cascades.fit = withLocation(at, [&] { return parseCascadeFit(name); });
   } else if (key == "cascade-depth") {
     const std::string name = text(v, at);
-    if (name != "fixed" && name != "fitted") at.fail("is '" + name + "'; valid: fixed, fitted");
-    r.cascades.fitDepthBounds = name == "fitted";
+    r.cascades.fitDepthBounds = withLocation(at, [&] { return parseCascadeDepth(name); });
   } else if (key == "cascade-blend") {
     r.cascades.blendBand = float(number(v, at, 0.0, 0.5));
   } else if (key == "shadow-distance") {
-    r.cascades.maxDistance = float(number(v, at, 0.0, 1e9));
+    r.cascades.maxDistance = float(number(v, at, 0.0, kMaxWorldCoordinate));
   } else if (key == "overlay") {
     const std::string name = text(v, at);
-    if (name != "none" && name != "cascades") {
-      at.fail("is '" + name + "'; valid overlays: none, cascades");
-    }
-    r.overlay = name == "cascades" ? Overlay::Cascades : Overlay::None;
+    r.overlay = withLocation(at, [&] { return parseOverlay(name); });
   } else if (key == "light" || key == "camera") {
     // A light kind in the file replaces the light kind set before (as on the command line).
     if (key == "light") {
@@ -356,7 +350,7 @@ void applySettingsJson(std::string_view text, const std::string& source, Setting
     }
     applyKey(key, value, source, settings);
   }
-  withLocation(At{source, "cascade-*"}, [&] { validateCascadeSettings(settings.render.cascades); });
+  withLocation(At{source, "render settings"}, [&] { validateRenderSettings(settings.render); });
   for (Technique t : settings.techniques) {
     withLocation(At{source, "param"}, [&] { validateParams(t, settings.render.params); });
   }
@@ -382,7 +376,7 @@ std::string settingsJson(const Settings& s) {
   j["shadow-size"] = r.shadowMapSize;
   j["msaa"] = r.msaaSamples;
   j["blur"] = 2 * r.blur.radius + 1;
-  j["blur-kernel"] = r.blur.kernel == BlurKernel::Box ? "box" : "gaussian";
+  j["blur-kernel"] = std::string(blurKernelName(r.blur.kernel));
   j["blur-sigma"] = shortest(r.blur.sigma);
   j["filter"] = std::string(filterModeName(r.filter));
   j["aniso"] = r.anisotropy;
@@ -395,10 +389,10 @@ std::string settingsJson(const Settings& s) {
   for (float d : r.cascades.distances) splits.push_back(shortest(d));
   j["cascade-splits"] = splits;
   j["cascade-fit"] = std::string(cascadeFitName(r.cascades.fit));
-  j["cascade-depth"] = r.cascades.fitDepthBounds ? "fitted" : "fixed";
+  j["cascade-depth"] = std::string(cascadeDepthName(r.cascades.fitDepthBounds));
   j["cascade-blend"] = shortest(r.cascades.blendBand);
   j["shadow-distance"] = shortest(r.cascades.maxDistance);
-  j["overlay"] = r.overlay == Overlay::Cascades ? "cascades" : "none";
+  j["overlay"] = std::string(overlayName(r.overlay));
   const SceneOverrides& v = s.view;
   json light = json::object(), camera = json::object();
   if (v.lightKind) light["kind"] = std::string(lightKindName(*v.lightKind));

@@ -99,9 +99,10 @@ void validateCascadeSettings(const CascadeSettings& s) {
   if (!(s.blendBand >= 0.0f && s.blendBand <= 0.5f)) {
     throw Error("cascade blend band (--cascade-blend) " + str(s.blendBand) + " is out of range [0, 0.5]");
   }
-  if (!(s.maxDistance >= 0.0f && std::isfinite(s.maxDistance))) {
+  if (!(s.maxDistance >= 0.0f && s.maxDistance <= kMaxWorldCoordinate)) {
     throw Error("shadow distance (--shadow-distance) " + str(s.maxDistance) +
-                " must be finite and >= 0 (0: the far side of the scene, in whole diameters)");
+                " is out of range [0, 1e6] world units (0: the far side of the scene, in whole "
+                "diameters)");
   }
   if (!s.distances.empty()) {
     if (int(s.distances.size()) != s.count - 1) {
@@ -111,8 +112,8 @@ void validateCascadeSettings(const CascadeSettings& s) {
     }
     for (size_t i = 0; i < s.distances.size(); ++i) {
       const float d = s.distances[i];
-      if (!(std::isfinite(d) && d > 0.0f) || (i > 0 && !(d > s.distances[i - 1]))) {
-        throw Error("cascade split distances (--cascade-splits) must be finite, positive and increasing; distance " +
+      if (!(d > 0.0f && d <= kMaxWorldCoordinate) || (i > 0 && !(d > s.distances[i - 1]))) {
+        throw Error("cascade split distances (--cascade-splits) must be positive, increasing and at most 1e6 world units; distance " +
                     std::to_string(i + 1) + " is " + str(d));
       }
     }

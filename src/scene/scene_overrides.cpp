@@ -1,5 +1,7 @@
 // Camera and light overrides from the command line or a settings file, checked before use.
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
@@ -7,13 +9,21 @@
 namespace penumbra {
 namespace {
 
+// Six significant digits: 1e+30 rather than thirty-one digits of it.
 std::string text(glm::vec3 v) {
-  return std::to_string(v.x) + "," + std::to_string(v.y) + "," + std::to_string(v.z);
+  std::ostringstream out;
+  out << v.x << "," << v.y << "," << v.z;
+  return out.str();
 }
 
 glm::vec3 checked(const std::optional<glm::vec3>& v, const char* what) {
   if (!std::isfinite(v->x) || !std::isfinite(v->y) || !std::isfinite(v->z)) {
     throw Error(std::string(what) + " " + text(*v) + " is not finite");
+  }
+  const float largest = std::max({std::abs(v->x), std::abs(v->y), std::abs(v->z)});
+  if (largest > kMaxWorldCoordinate) {
+    throw Error(std::string(what) + " " + text(*v) + " is out of range: each coordinate within " +
+                "+-1e6 world units (float positions beyond it lose the scene's detail)");
   }
   return *v;
 }
@@ -69,7 +79,29 @@ bool SceneOverrides::empty() const {
          !cameraPosition && !cameraTarget && !cameraFovDegrees && !lightSize;
 }
 
+void validateOverrides(const SceneOverrides& o) {
+  if (o.lightDirection) {
+    const glm::vec3 d = checked(o.lightDirection, "light direction");
+    if (!(glm::length(d) > 1e-6f)) throw Error("light direction " + text(d) + " has no direction");
+  }
+  if (o.lightPosition) checked(o.lightPosition, "light position");
+  if (o.lightTarget) checked(o.lightTarget, "light target");
+  if (o.spotAngleDegrees) checkedAngle(*o.spotAngleDegrees, "spot angle");
+  if (o.cameraPosition) checked(o.cameraPosition, "camera position");
+  if (o.cameraTarget) checked(o.cameraTarget, "camera target");
+  if (o.cameraFovDegrees) checkedAngle(*o.cameraFovDegrees, "camera field of view");
+  if (o.lightSize) {
+    const float widest =
+        std::max({kMaxSpotLightSize, kMaxDirectionalLightSize, kMaxPointLightSize});
+    if (!(*o.lightSize >= 0.0f && *o.lightSize <= widest)) {
+      throw Error("light size " + std::to_string(*o.lightSize) + " is out of range [0, " +
+                  std::to_string(widest) + "]");
+    }
+  }
+}
+
 void applyOverrides(Scene& scene, const SceneOverrides& o) {
+  validateOverrides(o);
   if (o.lightDirection && o.lightPosition) {
     throw Error(
         "give a light direction (directional light) or a light position (spot or point light), "

@@ -105,6 +105,17 @@ TEST(SettingsJson, RefusesALayerCountItsSplitsDisagreeWith) {
   }
 }
 
+TEST(SettingsJson, RefusesCameraAndLightVectorsBeyondTheWorldRange) {
+  for (const char* json : {R"({"light": {"direction": [1e30, 1e30, 1e30]}})",
+                           R"({"camera": {"position": [2e6, 0, 0]}})"}) {
+    Settings s;
+    EXPECT_THROW(applySettingsJson(json, "f.json", s), Error) << json;
+  }
+  Settings s;  // the bound itself is a position like any other
+  applySettingsJson(R"({"camera": {"position": [1e6, 0, 0]}})", "f.json", s);
+  EXPECT_EQ(s.view.cameraPosition, glm::vec3(1e6f, 0.0f, 0.0f));
+}
+
 TEST(SettingsJson, KeepsTheKeysTheCommandLineGave) {
   Settings s;
   s.render.shadowMapSize = 64;

@@ -4,7 +4,7 @@
 #include <algorithm>
 
 #include "penumbra/error.h"
-#include "shared/filter_weights.h"
+#include "penumbra/gl/render_setting_values.h"
 
 namespace penumbra::cli {
 
@@ -16,7 +16,8 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
                  "prefilter width in taps (odd; 1 = none); the summed-area filter's smallest box")
       ->capture_default_str();
   app.add_option("--blur-kernel", o.blurKernel, "gaussian or box")->capture_default_str();
-  app.add_option("--blur-sigma", o.blurSigma, "Gaussian sigma in texels (default: radius/2)");
+  app.add_option("--blur-sigma", o.blurSigma,
+                 "Gaussian sigma in texels, [0.01, 64] (default: half the radius, at least 0.5)");
   app.add_option("--filter", o.filter, "point, bilinear, trilinear, anisotropic or sat")
       ->capture_default_str();
   app.add_option("--aniso", o.aniso, "anisotropy for the anisotropic filter, 1..16")
@@ -25,13 +26,13 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--height", o.height, "frame height in pixels")->capture_default_str();
   app.add_option("--normal-offset", o.normalOffset, "normal-offset bias in shadow-map texels")
       ->capture_default_str();
-  CLI::Option* cascades =
-      app.add_option("--cascades", o.cascades,
-                     "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
-          ->capture_default_str();
-  // The options that tune cascades need more than one: never silently ignored.
-  auto tunesCascades = [&o, cascades](CLI::Option* option) {
-    option->needs(cascades)->each([&o](const std::string&) { o.cascadesTuned = true; });
+  app.add_option("--cascades", o.cascades,
+                 "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
+      ->capture_default_str();
+  // The options that tune cascades need more than one (from --cascades or a settings file):
+  // checked once the count is known (requireCascadesForTuning), never silently ignored.
+  auto tunesCascades = [&o](CLI::Option* option) {
+    option->each([&o](const std::string&) { o.cascadesTuned = true; });
     return option;
   };
   CLI::Option* lambda = tunesCascades(
@@ -54,52 +55,47 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
                                "share of each cascade blended into the next, 0..0.5")
                     ->capture_default_str());
   tunesCascades(app.add_option("--shadow-distance", o.shadowDistance,
-                               "where cascaded shadows end (world units; 0: the far side of the scene, in whole "
-                               "diameters)")
+                               "where cascaded shadows end, [0, 1e6] world units (0: the far side of the "
+                               "scene, in whole diameters)")
                     ->capture_default_str());
   app.add_option("--overlay", o.overlay, "none or cascades (tint pixels by cascade)")
       ->capture_default_str();
 }
 
-gl::RenderSettings toRenderSettings(const RenderOptions& o) {
+gl::RenderSettings renderSettingsOf(const RenderOptions& o) {
   gl::RenderSettings s;
   s.shadowMapSize = o.shadowSize;
   s.msaaSamples = o.msaa;
-  if (o.blurTaps < 1 || o.blurTaps % 2 == 0) {
-    throw Error("blur taps " + std::to_string(o.blurTaps) +
-                ": give an odd kernel width (1 = no blur, 3, 5, 7, ... " +
-                std::to_string(2 * shaders::kMaxBlurRadius + 1) + ")");
-  }
-  s.blur.radius = (o.blurTaps - 1) / 2;
-  if (o.blurKernel != "gaussian" && o.blurKernel != "box") {
-    throw Error("unknown blur kernel '" + o.blurKernel + "'; valid kernels: gaussian, box");
-  }
-  s.blur.kernel = o.blurKernel == "box" ? BlurKernel::Box : BlurKernel::Gaussian;
-  s.blur.sigma = o.blurSigma > 0.0f ? o.blurSigma : std::max(0.5f, 0.5f * float(s.blur.radius));
+  s.blur.radius = gl::blurRadiusOfTaps(o.blurTaps);
+  s.blur.kernel = gl::parseBlurKernel(o.blurKernel);
+  s.blur.sigma = o.blurSigma ? gl::checkedBlurSigma(*o.blurSigma) : gl::defaultBlurSigma(s.blur.radius);
   s.filter = parseFilterMode(o.filter);
   s.anisotropy = o.aniso;
   s.width = o.width;
   s.height = o.height;
   s.normalOffsetTexels = o.normalOffset;
   s.cascades.count = o.cascades;
-  if (o.cascadesTuned && o.cascades == 1) {
-    throw Error("the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
-                "--cascades 2..8 (1 is one map of the whole scene)");
-  }
   s.cascades.lambda = o.cascadeLambda;
   s.cascades.distances = o.cascadeSplits;
   s.cascades.fit = parseCascadeFit(o.cascadeFit);
-  if (o.cascadeDepth != "fixed" && o.cascadeDepth != "fitted") {
-    throw Error("unknown cascade depth '" + o.cascadeDepth + "'; valid: fixed, fitted");
-  }
-  s.cascades.fitDepthBounds = o.cascadeDepth == "fitted";
+  s.cascades.fitDepthBounds = gl::parseCascadeDepth(o.cascadeDepth);
   s.cascades.blendBand = o.cascadeBlend;
   s.cascades.maxDistance = o.shadowDistance;
-  if (o.overlay != "none" && o.overlay != "cascades") {
-    throw Error("unknown overlay '" + o.overlay + "'; valid overlays: none, cascades");
+  s.overlay = gl::parseOverlay(o.overlay);
+  return s;
+}
+
+void requireCascadesForTuning(const RenderOptions& o, int cascadeCount) {
+  if (o.cascadesTuned && cascadeCount == 1) {
+    throw Error("the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
+                "--cascades 2..8 (1 is one map of the whole scene)");
   }
-  s.overlay = o.overlay == "cascades" ? gl::Overlay::Cascades : gl::Overlay::None;
-  validateCascadeSettings(s.cascades);
+}
+
+gl::RenderSettings toRenderSettings(const RenderOptions& o) {
+  gl::RenderSettings s = renderSettingsOf(o);
+  requireCascadesForTuning(o, s.cascades.count);
+  gl::validateRenderSettings(s);
   return s;
 }
 

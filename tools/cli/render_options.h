@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -15,7 +16,7 @@ struct RenderOptions {
   int msaa = 1;
   int blurTaps = 5;
   std::string blurKernel = "gaussian";
-  float blurSigma = 0.0f;  // 0: half the radius, at least 0.5
+  std::optional<float> blurSigma;  // unset: gl::defaultBlurSigma of the radius
   std::string filter = "trilinear";
   int aniso = 16;
   int width = 960;
@@ -35,8 +36,16 @@ struct RenderOptions {
 // Adds the options with `defaults` as their defaults.
 void addRenderOptions(CLI::App& app, RenderOptions& options);
 
-// Renderer settings from the options (technique and parameters left at their defaults);
-// throws Error for an even blur width or an unknown kernel or filter.
+// Renderer settings from the options (technique and parameters left at their defaults), names
+// and widths turned into values (penumbra/gl/render_setting_values.h) but ranges not checked yet:
+// a settings file merged in later may supply what they need (the cascade count). Throws Error for
+// an unknown name or an even blur width.
+gl::RenderSettings renderSettingsOf(const RenderOptions& options);
+// Throws Error when a --cascade-* or --shadow-distance option was given and `cascadeCount`, the
+// count the command renders with, is 1: they would be ignored.
+void requireCascadesForTuning(const RenderOptions& options, int cascadeCount);
+// renderSettingsOf, checked (requireCascadesForTuning, gl::validateRenderSettings): for commands
+// without a settings file.
 gl::RenderSettings toRenderSettings(const RenderOptions& options);
 
 }  // namespace penumbra::cli

@@ -91,14 +91,14 @@ SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
     overrides.lightPosition = parseVector(o.lightPosition, "--light-pos");
   }
   if (!o.lightTarget.empty()) overrides.lightTarget = parseVector(o.lightTarget, "--light-target");
-  if (o.spotAngle != 0.0f) overrides.spotAngleDegrees = o.spotAngle;
+  if (o.spotAngle) overrides.spotAngleDegrees = o.spotAngle;
   if (!o.cameraPosition.empty()) {
     overrides.cameraPosition = parseVector(o.cameraPosition, "--camera-pos");
   }
   if (!o.cameraTarget.empty()) {
     overrides.cameraTarget = parseVector(o.cameraTarget, "--camera-target");
   }
-  if (o.cameraFov != 0.0f) overrides.cameraFovDegrees = o.cameraFov;
+  if (o.cameraFov) overrides.cameraFovDegrees = o.cameraFov;
   if (o.lightSize) overrides.lightSize = o.lightSize;
   return overrides;
 }

@@ -18,8 +18,8 @@ struct SceneOptions {
   std::string viewFile;   // JSON; the command-line options take precedence over it
   std::string lightKind;  // directional, spot, point; empty: implied by --light-dir/--light-pos
   std::string lightDirection, lightPosition, lightTarget, cameraPosition, cameraTarget;  // "x,y,z"
-  float spotAngle = 0.0f;  // 0: not given
-  float cameraFov = 0.0f;
+  std::optional<float> spotAngle;  // degrees; unset: the scene's
+  std::optional<float> cameraFov;
   std::optional<float> lightSize;  // Light::size
   std::string maxMemory;           // --max-memory as given; empty: defaultSceneMemoryLimit()
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
 
 namespace penumbra::cli {
@@ -20,10 +21,9 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
   gl::Settings s;
   s.scene = scene.scene;
   s.techniques = selectedTechniques(technique);
-  RenderOptions options = render;
-  // A file may set the cascade count the tuning options need: checked after merging.
-  options.cascadesTuned = false;
-  s.render = toRenderSettings(options);
+  // Ranges and the cascade count the tuning options need are checked once the file is merged:
+  // the file may supply the count.
+  s.render = renderSettingsOf(render);
   s.render.params = defaultTechniqueParams();
   if (!path.empty()) {
     std::vector<std::string> given;
@@ -37,12 +37,10 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
     }
     gl::applySettingsFile(path, s, given);
   }
-  if (render.cascadesTuned && s.render.cascades.count == 1) {
-    throw Error(
-        "the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
-        "--cascades 2..8 (1 is one map of the whole scene)");
-  }
+  requireCascadesForTuning(render, s.render.cascades.count);
+  gl::validateRenderSettings(s.render);
   s.view = sceneOverrides(scene, s.view);
+  validateOverrides(s.view);
   for (const std::string& assignment : technique.params) {
     applyParamAssignment(s.techniques, s.render.params, assignment);
   }
