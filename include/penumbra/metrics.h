@@ -11,6 +11,10 @@ namespace penumbra {
 
 struct VisibilityErrors {
   int pixels = 0;             // covered pixels compared
+  // Covered pixels where v or r is not a finite number. Any makes rmse, meanAbsolute,
+  // maxAbsolute and psnr NaN (an error that cannot be measured is not a small one), and the worst
+  // pixel is the first of them.
+  int nonFinitePixels = 0;
   double rmse = 0.0;          // sqrt(mean (v - r)^2)
   double meanAbsolute = 0.0;  // mean |v - r|
   double maxAbsolute = 0.0;   // max |v - r|

@@ -15,17 +15,19 @@
 namespace penumbra::compare {
 namespace {
 
-// PCF matched to the prefilter is the filtered reference; under an area light PCF is PCSS with
-// its own parameters, measured like any other technique.
-bool pcfIsReference(const ComparisonRequest& request, Technique technique, bool areaLight) {
-  return technique == Technique::Pcf && request.matchPcfKernel && !areaLight;
+// A technique whose error is the reference's own rounding: left out of the worst pixel and the
+// trouble spots.
+bool isTheReference(const ComparisonRequest& request, Technique technique, bool areaLight) {
+  return technique == Technique::Pcf && matchedPcfIsReference(request, areaLight);
 }
 
 gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique technique,
                                bool areaLight = false) {
   gl::RenderSettings s = request.settings;
   s.technique = technique;
-  if (pcfIsReference(request, technique, areaLight)) s.params.pcf = pcfMatchingPrefilter(s);
+  if (technique == Technique::Pcf && matchesPcfKernel(request, areaLight)) {
+    s.params.pcf = pcfMatchingPrefilter(s);
+  }
   return s;
 }
 
@@ -40,6 +42,16 @@ gl::RenderResult referenceFor(const ComparisonRequest& request, gl::Renderer& re
 }
 
 }  // namespace
+
+bool matchesPcfKernel(const ComparisonRequest& request, bool areaLight) {
+  return request.matchPcfKernel && !areaLight;
+}
+
+bool matchedPcfIsReference(const ComparisonRequest& request, bool areaLight) {
+  const FilterMode f = request.settings.filter;
+  return matchesPcfKernel(request, areaLight) && request.settings.msaaSamples <= 1 &&
+         (f == FilterMode::Point || f == FilterMode::Bilinear);
+}
 
 shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings) {
   // The prefilter's own kernel, the receiver plane and the reference's tie
@@ -176,7 +188,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         out.error = signedVisibilityError(r.visibility, reference.visibility, result.coverage);
         visibilities[k].push_back(r.visibility);
         masks[k].push_back(litSurfaceMask(r.lookup));
-        if (!pcfIsReference(request, t, areaLight) && out.filtered.maxAbsolute > worst &&
+        // A NaN error (a visibility that is not a number) is the worst there is.
+        if (!isTheReference(request, t, areaLight) && !(out.filtered.maxAbsolute <= worst) &&
             out.filtered.worstX >= 0) {
           worst = out.filtered.maxAbsolute;
           result.worstTechnique = std::string(techniqueId(t));
@@ -248,7 +261,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   if (result.scene.troubleSpots.empty()) {
     std::vector<Image> errors;
     for (const TechniqueResult& t : result.techniques) {
-      if (!pcfIsReference(request, t.technique, areaLight)) errors.push_back(t.error);
+      if (!isTheReference(request, t.technique, areaLight)) errors.push_back(t.error);
     }
     result.scene.troubleSpots = largestErrorRegions(errors, 3);
   }

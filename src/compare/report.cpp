@@ -60,6 +60,7 @@ Image crop(const Image& image, glm::vec4 rect, int zoom) {
 
 ordered_json errorsJson(const VisibilityErrors& e) {
   return {{"pixels", e.pixels},
+          {"non_finite_pixels", e.nonFinitePixels},  // > 0: the errors below are NaN (null)
           {"rmse", e.rmse},
           {"mean_absolute", e.meanAbsolute},
           {"max_absolute", e.maxAbsolute},
@@ -111,6 +112,17 @@ void writeText(const fs::path& path, const std::string& text) {
   writeTextFile(path, text);
 }
 
+// What MSAA changes in the measurement: the techniques' light pass is multisampled, the
+// references' is not (docs/reference.md).
+std::string msaaNote(const ComparisonResult& r) {
+  const int samples = r.request.settings.msaaSamples;
+  if (samples <= 1) return "off: every light pass is single-sampled";
+  return std::to_string(samples) +
+         "x MSAA in the techniques' light pass (moments averaged over each texel's samples after "
+         "encoding, hard and PCF testing the nearest sample's depth); both references render a "
+         "single-sampled light pass, so the sub-texel depths MSAA adds count as error";
+}
+
 void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   ordered_json techniques = ordered_json::array();
   for (const TechniqueResult& t : r.techniques) {
@@ -143,7 +155,9 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
                            "from " +
                            std::to_string(r.request.areaLightSamples) +
                            " stratified points on the light's disk) in place of the filtered one"
-                     : std::string("none: a point light")},
+                     : std::string("none: the light has no size, so the references are the "
+                                   "filtered reference and its supersampled ground truth")},
+        {"msaa", msaaNote(r)},
         {"columns",
          "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
          "including minification aliasing; temporal_flicker: along the camera path against the "
@@ -211,12 +225,29 @@ std::string pcfNote(const ComparisonResult& r) {
            "variable kernel (docs/techniques.md), with its own bias.</p>\n";
   }
   if (r.request.matchPcfKernel) {
-    return "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
-           "receiver-plane test: it is the filtered reference itself for point and bilinear "
-           "lookups.</p>\n";
+    std::string note =
+        "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
+        "receiver-plane test: ";
+    if (matchedPcfIsReference(r.request, r.areaLight)) {
+      return note + "it is the filtered reference itself, so its error is the reference's own "
+                    "rounding.</p>\n";
+    }
+    if (r.request.settings.msaaSamples > 1) {
+      note += "under " + std::to_string(r.request.settings.msaaSamples) +
+              "× MSAA it tests the nearest of each texel's light-pass samples where the reference "
+              "tests its single-sampled depth, so it is not the reference: ";
+    }
+    const FilterMode f = r.request.settings.filter;
+    if (f != FilterMode::Point && f != FilterMode::Bilinear) {
+      note += std::string("the ") + std::string(filterModeName(f)) +
+              " lookup's kernel has no PCF equal, so it runs with the nearest PCF kernel, not "
+              "the reference's: ";
+    }
+    return note + "it is measured like any other technique.</p>\n";
   }
-  return "<p><b>PCF is not matched to the prefilter</b>: it runs with the parameters given on the "
-         "command line, so it is measured like any other technique, not as the reference.</p>\n";
+  return "<p><b>PCF is not matched to the prefilter</b>: it runs with its parameters as given "
+         "(<code>--param</code> or the settings file), so it is measured like any other "
+         "technique, not as the reference.</p>\n";
 }
 
 // Cascaded runs: each technique's shimmer with stabilised and tight fits, side by side.
@@ -286,8 +317,14 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << (cascades.fitDepthBounds ? "fitted" : "fixed") << " depth bounds, blend band "
       << cascades.blendBand << "; the reference is evaluated in each pixel's cascade)";
   }
+  if (r.request.settings.msaaSamples > 1) {
+    h << ", " << r.request.settings.msaaSamples << "× MSAA in the techniques' light pass";
+  }
   h << ".</p>\n"
     << areaLightNote(r)
+    << (r.request.settings.msaaSamples > 1
+            ? "<p><b>MSAA</b>: " + html(msaaNote(r)) + ".</p>\n"
+            : std::string())
     << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's "
        "effective kernel "
        "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the "
@@ -306,12 +343,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
        "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory "
        "MiB</th></tr></thead><tbody>\n";
-  std::vector<const TechniqueResult*> ranked;
-  for (const TechniqueResult& t : r.techniques) ranked.push_back(&t);
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const TechniqueResult* a, const TechniqueResult* b) {
-                     return a->filtered.rmse < b->filtered.rmse;
-                   });
+  const std::vector<const TechniqueResult*> ranked = rankTechniques(r);
   for (size_t rank = 0; rank < ranked.size(); ++rank) {
     const TechniqueResult& t = *ranked[rank];
     const VisibilityErrors& e = t.filtered;
@@ -474,6 +506,20 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
 }
 
 }  // namespace
+
+std::vector<const TechniqueResult*> rankTechniques(const ComparisonResult& result) {
+  std::vector<const TechniqueResult*> ranked;
+  for (const TechniqueResult& t : result.techniques) ranked.push_back(&t);
+  // NaN compares false with everything, which is no strict weak order: sort on (NaN, rmse).
+  std::stable_sort(ranked.begin(), ranked.end(),
+                   [](const TechniqueResult* a, const TechniqueResult* b) {
+                     const bool aNaN = std::isnan(a->filtered.rmse);
+                     const bool bNaN = std::isnan(b->filtered.rmse);
+                     if (aNaN != bNaN) return bNaN;
+                     return !aNaN && a->filtered.rmse < b->filtered.rmse;
+                   });
+  return ranked;
+}
 
 void writeReportFiles(const ComparisonResult& result, const fs::path& dir) {
   writeContents(result, dir);

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "penumbra/error.h"
@@ -33,9 +34,16 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
       if (mask.at(x, y) <= 0.5f) continue;
       const double difference = double(estimate.at(x, y)) - double(reference.at(x, y));
       ++e.pixels;
+      if (!std::isfinite(difference)) {
+        if (e.nonFinitePixels++ == 0) {
+          e.worstX = x;
+          e.worstY = y;
+        }
+        continue;
+      }
       squares += difference * difference;
       absolutes += std::abs(difference);
-      if (std::abs(difference) > e.maxAbsolute) {
+      if (std::abs(difference) > e.maxAbsolute && e.nonFinitePixels == 0) {
         e.maxAbsolute = std::abs(difference);
         e.worstX = x;
         e.worstY = y;
@@ -53,7 +61,12 @@ VisibilityErrors measureVisibilityErrors(const Image& estimate, const Image& ref
   const double n = double(e.pixels);
   e.rmse = std::sqrt(squares / n);
   e.meanAbsolute = absolutes / n;
-  e.psnr = e.rmse > 0.0 ? std::min(100.0, 20.0 * std::log10(1.0 / e.rmse)) : 100.0;
+  if (e.nonFinitePixels > 0) {
+    e.rmse = e.meanAbsolute = e.maxAbsolute = std::numeric_limits<double>::quiet_NaN();
+  }
+  e.psnr = std::isnan(e.rmse) ? e.rmse
+           : e.rmse > 0.0     ? std::min(100.0, 20.0 * std::log10(1.0 / e.rmse))
+                              : 100.0;
   e.leakShare = leaks / n;
   e.leakMeanExcess = leaks > 0 ? leakSum / leaks : 0.0;
   e.darkShare = darks / n;

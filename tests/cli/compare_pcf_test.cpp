@@ -83,5 +83,47 @@ TEST(ComparePcf, ParametersOfOtherTechniquesKeepPcfMatched) {
   EXPECT_EQ(technique(r, "pcf")["params"]["radius"], "3");
 }
 
+TEST(ComparePcf, PcfParametersFromASettingsFileAreKeptAsGiven) {
+  // The viewer saves every parameter of each technique it lists; compare once replaced the file's
+  // PCF parameters with the matched kernel and said nothing.
+  ScratchFolder files;
+  const fs::path settings = files.path() / "settings.json";
+  writeFile(settings, R"({"technique": "vsm,pcf", "blur": 7, "param": {"pcf": {"kernel": "box",
+            "radius": 1, "constantBias": 0.002}}})");
+  const Report r = compare({"--settings", settings.string()});
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  const nlohmann::json& pcf = technique(r, "pcf")["params"];
+  EXPECT_EQ(pcf["kernel"], "box");  // matched: "bilinear", the blur's radius 3, bias 2e-5
+  EXPECT_EQ(pcf["radius"], "1");
+  EXPECT_EQ(pcf["constantBias"], "0.002");
+  EXPECT_EQ(r.metrics["settings"]["pcf_kernel_matched_to_prefilter"], false);
+  EXPECT_NE(r.html.find("PCF is not matched to the prefilter"), std::string::npos);
+}
+
+TEST(ComparePcf, UnderMsaaTheReportSaysSoAndMatchedPcfIsNotCalledTheReference) {
+  // The techniques' light pass is multisampled, the references' is not: matched PCF tests the
+  // nearest sample and so differs from the reference on silhouettes.
+  const Report r = compare({"--technique", "vsm,pcf", "--msaa", "4", "--filter", "bilinear"});
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_EQ(r.metrics["settings"]["msaa_samples"], 4);
+  const std::string msaa = r.metrics["references"]["msaa"];
+  EXPECT_NE(msaa.find("4x MSAA"), std::string::npos) << msaa;
+  EXPECT_NE(msaa.find("single-sampled"), std::string::npos) << msaa;
+  EXPECT_NE(r.html.find("4× MSAA"), std::string::npos);
+  EXPECT_EQ(r.html.find("filtered reference itself"), std::string::npos);
+  EXPECT_NE(r.html.find("it is not the reference"), std::string::npos);
+}
+
+TEST(ComparePcf, WithoutMsaaMatchedPcfIsTheReferenceAndTheLightIsNotCalledAPointLight) {
+  const Report r = compare({"--technique", "vsm,pcf", "--filter", "bilinear"});
+  ASSERT_EQ(r.exitCode, 0) << r.output;
+  EXPECT_NE(r.html.find("filtered reference itself"), std::string::npos);
+  EXPECT_EQ(r.html.find("MSAA"), std::string::npos);
+  // planar's light is directional and has no size.
+  const std::string areaLight = r.metrics["references"]["area_light"];
+  EXPECT_EQ(areaLight.find("point light"), std::string::npos) << areaLight;
+  EXPECT_NE(areaLight.find("no size"), std::string::npos) << areaLight;
+}
+
 }  // namespace
 }  // namespace penumbra::test

@@ -53,6 +53,24 @@ TEST(Metrics, ExactImagesScoreAPerfectPsnr) {
   EXPECT_EQ(e.psnr, 100.0);
 }
 
+// A NaN visibility is an error that cannot be measured: it must not score as exact (PSNR 100,
+// which sqrt(NaN) > 0 being false once gave) nor hide behind the finite pixels' maximum.
+TEST(Metrics, NonFiniteVisibilityMakesEveryErrorNaNAndIsTheWorstPixel) {
+  Image estimate = filled(4, 1, 0.5f);
+  const Image reference = filled(4, 1, 0.5f), mask = filled(4, 1, 1.0f);
+  estimate.at(0, 0) = 0.9f;  // a finite error of 0.4, seen before the NaN
+  estimate.at(2, 0) = std::nanf("");
+  estimate.at(3, 0) = INFINITY;
+  const VisibilityErrors e = measureVisibilityErrors(estimate, reference, mask, 0.05);
+  EXPECT_EQ(e.pixels, 4);
+  EXPECT_EQ(e.nonFinitePixels, 2);
+  EXPECT_TRUE(std::isnan(e.rmse));
+  EXPECT_TRUE(std::isnan(e.meanAbsolute));
+  EXPECT_TRUE(std::isnan(e.maxAbsolute));
+  EXPECT_TRUE(std::isnan(e.psnr)) << "PSNR " << e.psnr << " for a NaN visibility";
+  EXPECT_EQ(e.worstX, 2);
+}
+
 TEST(Metrics, FlickerIsTheChangeBeyondTheReferencesOwn) {
   const Image mask = filled(2, 2, 1.0f);
   const std::vector<Image> reference{filled(2, 2, 0.5f), filled(2, 2, 0.6f), filled(2, 2, 0.5f)};

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
@@ -162,6 +163,36 @@ TEST_F(ComparisonTest, ReportVisibilityImagesHoldTheVisibilityItself) {
     worst = std::max(worst, double(std::abs(reference.data()[i] - r.referenceVisibility.data()[i])));
   }
   EXPECT_LE(worst, 0.5 / 65535.0 + 1e-7);  // 16-bit rounding
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// The ranking once sorted with `rmse <` alone: a NaN RMSE (a visibility that is not a number) is
+// no strict weak order, and it landed between finite ones.
+TEST(ComparisonRanking, SortsByRmseAndPutsANaNErrorLast) {
+  compare::ComparisonResult r;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<std::pair<Technique, double>> rows{{Technique::Vsm, 0.2},
+                                                       {Technique::Esm, nan},
+                                                       {Technique::Csm, 0.1},
+                                                       {Technique::Msm, 0.05},
+                                                       {Technique::Lvsm, 0.1}};
+  for (const auto& [t, rmse] : rows) {
+    compare::TechniqueResult k;
+    k.technique = t;
+    k.params = defaultTechniqueParams();
+    k.filtered.rmse = rmse;
+    r.techniques.push_back(k);
+  }
+  std::vector<Technique> order;
+  for (const compare::TechniqueResult* t : compare::rankTechniques(r)) order.push_back(t->technique);
+  // Ties keep the request's order (csm before lvsm).
+  EXPECT_EQ(order, (std::vector<Technique>{Technique::Msm, Technique::Csm, Technique::Lvsm,
+                                           Technique::Vsm, Technique::Esm}));
 }
 
 }  // namespace

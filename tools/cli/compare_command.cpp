@@ -2,8 +2,10 @@
 #include "compare_command.h"
 
 #include <algorithm>
+#include <fstream>
 #include <iostream>
 #include <memory>
+#include <nlohmann/json.hpp>
 
 #include "interrupt_cleanup.h"
 #include "output_folder.h"
@@ -48,6 +50,18 @@ struct CompareOptions {
   const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
 };
 
+// Whether the settings file (already checked by resolveSettings) gives PCF parameters: the
+// viewer writes every parameter of each technique it lists.
+bool settingsFileSetsPcfParams(const std::string& path) {
+  if (path.empty()) return false;
+  std::ifstream in(path, std::ios::binary);
+  const nlohmann::json file = nlohmann::json::parse(in);
+  const auto params = file.find("param");
+  if (params == file.end() || !params->is_object()) return false;
+  const auto pcf = params->find(std::string(techniqueId(Technique::Pcf)));
+  return pcf != params->end() && pcf->is_object() && !pcf->empty();
+}
+
 void runCompare(const CompareOptions& o) {
   if (printTechniqueListIfAsked(o.technique)) return;
   compare::ComparisonRequest request;
@@ -58,8 +72,9 @@ void runCompare(const CompareOptions& o) {
   request.sceneLoad = sceneLoadOptions(o.scene);
   request.view = resolved.view;
   request.techniques = resolved.techniques;
-  // A PCF parameter the user set is used as given: PCF then keeps all of its own settings and is
-  // no longer matched to the prefilter (the report says so).
+  // A PCF parameter the user set (--param or the settings file) is used as given: PCF then keeps
+  // all of its own settings and is no longer matched to the prefilter (the report says so).
+  if (settingsFileSetsPcfParams(o.settingsFile)) request.matchPcfKernel = false;
   for (const std::string& assignment : o.technique.params) {
     const std::vector<Technique> targets = assignmentTargets(request.techniques, assignment);
     if (std::find(targets.begin(), targets.end(), Technique::Pcf) != targets.end()) {

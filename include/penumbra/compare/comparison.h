@@ -89,6 +89,15 @@ struct ComparisonResult {
   std::vector<DepthSample> worstRegion;
 };
 
+// Whether compare's PCF runs with the prefilter's kernel (pcfMatchingPrefilter): matching asked
+// for and a light without size (under an area light PCF is PCSS with its own parameters).
+bool matchesPcfKernel(const ComparisonRequest& request, bool areaLight);
+// Whether that matched PCF is the filtered reference itself, so that its error is the
+// reference's rounding and not a technique's: point or bilinear lookups (mip-mapped ones get the
+// nearest PCF kernel) and a single-sampled light pass (under MSAA PCF tests the nearest of each
+// texel's samples, the reference its single-sampled depth).
+bool matchedPcfIsReference(const ComparisonRequest& request, bool areaLight);
+
 // PCF parameters that make PCF the filtered reference of these settings' prefilter (box or
 // Gaussian blur x the lookup) where the lookup allows: compare's matched PCF.
 shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings);

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <filesystem>
+#include <vector>
 
 #include "penumbra/compare/comparison.h"
 
@@ -10,6 +11,11 @@ namespace penumbra::compare {
 
 // Writes the report's files into the existing folder `dir` (a ReportFolder's staging folder,
 // report_folder.h); throws Error when a file cannot be written.
+// The report's ranking: the techniques by RMSE against the filtered (or area-light) reference,
+// best first, ties in the request's order; a technique whose error is NaN (a visibility that is
+// not a number, VisibilityErrors::nonFinitePixels) ranks last.
+std::vector<const TechniqueResult*> rankTechniques(const ComparisonResult& result);
+
 void writeReportFiles(const ComparisonResult& result, const std::filesystem::path& dir);
 
 }  // namespace penumbra::compare
