@@ -185,6 +185,12 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
   s.settings = settings;
   s.params = settings.params;
+  // EVSM's exponents as its storage holds them (the shaders clamp them the same way), so the
+  // result reports what was used.
+  s.params.evsm.positiveExponent =
+      shaders::evsmClampExponent(s.params.evsm.positiveExponent, s.params.evsm.storage);
+  s.params.evsm.negativeExponent =
+      shaders::evsmClampExponent(s.params.evsm.negativeExponent, s.params.evsm.storage);
   if (settings.technique == Technique::Lvsm &&
       s.params.lvsm.placement == shaders::kLayerPlacementUniform) {
     s.params.lvsm.splits = shaders::uniformLayerSplits(s.params.lvsm.splits.layerCount);

@@ -373,6 +373,24 @@ TEST_F(RendererTest, GroundColourIsAlbedoTimesAmbientPlusLambertTimesVisibility)
   EXPECT_GT(penumbra, 50);
 }
 
+// The result's parameters are the ones used: fp16 storage clamps EVSM's exponents to what it
+// holds (5.54), and the report and render record must not show the 40 that was asked for.
+TEST_F(RendererTest, ReportedEvsmExponentsAreTheClampedOnesTheShadersUse) {
+  const Scene scene = makeBuiltinScene("planar");
+  gl::RenderSettings s = small(Technique::Evsm4);
+  s.shadowMapSize = 128;
+  s.width = 64;
+  s.height = 36;
+  s.params.evsm.positiveExponent = 40.0f;
+  s.params.evsm.negativeExponent = 5.0f;
+  s.params.evsm.storage = shaders::kStorageFloat16;
+  const TechniqueParams used = renderer->render(scene, s).params;
+  EXPECT_EQ(used.evsm.positiveExponent, shaders::kEvsmMaxExponentFloat16);
+  EXPECT_EQ(used.evsm.negativeExponent, 5.0f);  // within fp16's range: as given
+  s.params.evsm.storage = shaders::kStorageFloat32;
+  EXPECT_EQ(renderer->render(scene, s).params.evsm.positiveExponent, 40.0f);
+}
+
 TEST_F(RendererTest, PlanarVsmEqualsPcfWithTheSameKernel) {
   const Scene scene = makeBuiltinScene("planar");
   // VSM box-blurred over 5 taps and fetched bilinearly covers exactly the bilinear-weighted 5x5
