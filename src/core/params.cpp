@@ -63,7 +63,16 @@ const ParamChoice kUnorm16{"unorm16", shaders::kStorageUnorm16};
 const ParamChoice kUnorm8{"unorm8", shaders::kStorageUnorm8};
 
 constexpr std::string_view kMinVarianceDoc =
-    "variance floor against numerical trouble, depth^2 units (thesis §3.3)";
+    "variance floor against numerical trouble, linear depth^2 units (thesis §3.3)";
+constexpr std::string_view kEvsmMinVarianceDoc =
+    "variance floor against numerical trouble, linear depth^2 units, scaled by each warp's slope "
+    "(thesis §3.3)";
+// LVSM's Chebyshev test runs on the layer's warped depth (thesis eq. 4.2), stretched by
+// 1 / (layer width): a floor f there is f * width^2 in linear depth (1/13.7 of it for an inner
+// layer of 4 uniform ones with the default overlap, width 0.27).
+constexpr std::string_view kLvsmMinVarianceDoc =
+    "variance floor against numerical trouble, in the layer's warped depth^2 (thesis eq. 4.2: "
+    "depth stretched by 1/layer width), i.e. value * width^2 in linear depth^2";
 constexpr std::string_view kBleedDoc =
     "light-bleeding reduction: clamp the tail below this and rescale (thesis §3.4); 0 = off";
 constexpr std::string_view kConstantBiasDoc = "constant depth bias, linear depth units";
@@ -120,7 +129,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                [](TechniqueParams& p) { return &p.lvsm.overlap; }),
           real("transition", "blend width below each split, depth units; at most overlap", 0.0, 0.1,
                [](TechniqueParams& p) { return &p.lvsm.transition; }),
-          real("minVariance", kMinVarianceDoc, 0.0, 0.01,
+          real("minVariance", kLvsmMinVarianceDoc, 0.0, 0.01,
                [](TechniqueParams& p) { return &p.lvsm.minVariance; }),
           real("bleedReduction", kBleedDoc, 0.0, 0.99,
                [](TechniqueParams& p) { return &p.lvsm.bleedReduction; }),
@@ -147,7 +156,7 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
                          "negative warp exponent c-, clamped to 42 (fp32) or 5.54 (fp16)", 0.5,
                          42.0, [](TechniqueParams& p) { return &p.evsm.negativeExponent; }));
       }
-      b.push_back(real("minVariance", kMinVarianceDoc, 0.0, 0.01,
+      b.push_back(real("minVariance", kEvsmMinVarianceDoc, 0.0, 0.01,
                        [](TechniqueParams& p) { return &p.evsm.minVariance; }));
       b.push_back(real("bleedReduction", kBleedDoc, 0.0, 0.99,
                        [](TechniqueParams& p) { return &p.evsm.bleedReduction; }));
@@ -165,8 +174,8 @@ std::vector<ParamBinding> bindingsFor(Technique technique) {
           real("threshold", "epsilon of threshold failure classification (ESM paper §3.3)", 0.0,
                10.0, [](TechniqueParams& p) { return &p.esm.threshold; }),
           choice("classifier",
-                 "failure classification with 2x2 PCF fallback (ESM paper §3.3): threshold "
-                 "(the paper's choice), zmax (max-depth pyramid), or none",
+                 "failure classification (ESM paper §3.3), failing pixels shaded by the "
+                 "fallback: threshold (the paper's choice), zmax (max-depth pyramid), or none",
                  {{"threshold", shaders::kEsmClassifyThreshold},
                   {"zmax", shaders::kEsmClassifyZmax},
                   {"none", shaders::kEsmClassifyNone}},

@@ -35,6 +35,39 @@ TEST(Lvsm, LayersOverlapByDelta) {
   EXPECT_FLOAT_EQ(last.y, 1.0f);
 }
 
+// minVariance is a floor on the variance of the layer's warped depth, as its documentation says
+// (unlike VSM's and EVSM's, in linear depth^2): a flat occluder (variance 0) gives
+// f / (f + (t_r - t_o)^2) in warped depth t, stretched by 1 / (layer width).
+TEST(Lvsm, MinVarianceFloorsTheLayersWarpedDepthAsDocumented) {
+  TechniqueParams params = float32Params();
+  setParam(Technique::Lvsm, params, "splits", "0.25,0.5,0.75");
+  params.lvsm.overlap = 0.01f;  // layer 1 spans [0.24, 0.51]: width 0.27
+  params.lvsm.minVariance = 1e-4f;
+  const glm::vec2 range = shaders::lvsmLayerRange(1, params.lvsm);
+  const float occluder = 0.3f, receiver = 0.31f;
+  const float t = shaders::lvsmWarp(occluder, range);
+  const float dt = shaders::lvsmWarp(receiver, range) - t;  // 0.01 / 0.27
+  const float v = shaders::lvsmLayerVisibility(glm::vec2(t, t * t), receiver, 1, params.lvsm);
+  EXPECT_NEAR(v, 1e-4f / (1e-4f + dt * dt), 1e-4f);  // fp32 of t^2 - t^2 against the floor
+  // In linear depth^2 the same floor would give 1e-4 / (1e-4 + 0.01^2) = 0.5.
+  EXPECT_LT(v, 0.2f);
+  bool documented = false;
+  for (const ParamSpec& spec : techniqueParamSpecs(Technique::Lvsm)) {
+    if (spec.name == "minVariance") {
+      documented = spec.description.find("warped depth^2") != std::string_view::npos;
+    }
+  }
+  EXPECT_TRUE(documented) << "LVSM's minVariance must say it is in warped depth^2";
+  for (Technique linear : {Technique::Vsm, Technique::Evsm4}) {
+    for (const ParamSpec& spec : techniqueParamSpecs(linear)) {
+      if (spec.name == "minVariance") {
+        EXPECT_NE(spec.description.find("linear depth^2"), std::string_view::npos)
+            << techniqueId(linear);
+      }
+    }
+  }
+}
+
 TEST(Lvsm, SplitBetweenSecondAndThirdObjectGivesZeroVisibilityForTheThird) {
   TechniqueParams params = float32Params();
   params.lvsm.minVariance = 0.0f;

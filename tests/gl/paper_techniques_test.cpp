@@ -101,7 +101,7 @@ TEST_F(PaperTechniques, EsmFailureRateGrowsWithTheBlurAsInTheEsmPapersTable3) {
   }
 }
 
-TEST_F(PaperTechniques, EsmFallbackShadesFailingPixelsWithTheTwoByTwoPcf) {
+TEST_F(PaperTechniques, EsmFallbackShadesFailingPixelsDifferently) {
   const gl::RenderResult none = render("contact", settings(Technique::Esm, {"classifier=none"}));
   const gl::RenderResult classified = render("contact", settings(Technique::Esm));
   int failing = 0, changed = 0, passingButChanged = 0;

@@ -110,8 +110,8 @@ struct RenderResult {
   Image color;
   Image visibility;  // one float channel in [0,1], row 0 at the top
   // Per pixel, row 0 at the top: -1 where nothing is drawn; ESM: 1 where classification failed
-  // (and the 2x2 PCF fallback shaded it), else 0; LVSM and the power CDF: the receiver's layer
-  // index; else 0.
+  // (and its `fallback` parameter's PCF shaded it), else 0; LVSM and the power CDF: the
+  // receiver's layer index; else 0.
   Image diagnostic;
   // ESM with a classifier: failing pixels as a share of drawn pixels, in percent; else 0.
   double failureRatePercent = 0.0;

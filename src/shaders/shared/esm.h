@@ -12,7 +12,7 @@ const int kEsmFilterLinear = 0;
 const int kEsmFilterLog = 1;
 
 // Failure classification (ESM paper §3.3): where the planar-receiver assumption fails, the
-// renderer falls back to a 2x2 custom PCF on the ESM texels.
+// renderer shades the pixel with PCF instead (the fallback below).
 const int kEsmClassifyNone = 0;
 const int kEsmClassifyThreshold = 1;  // the filtered ESM value exceeds 1 + epsilon
 const int kEsmClassifyZmax = 2;       // the max depth under the filter lies behind the receiver

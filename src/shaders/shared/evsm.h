@@ -15,7 +15,7 @@ const float kEvsmMaxExponentFloat16 = 5.54f;
 struct EvsmParams {
   float positiveExponent;  // c+, [0.5, 42]; clamped further for fp16 storage
   float negativeExponent;  // c-, [0.5, 42]; EVSM4 only
-  float minVariance;       // variance floor in depth^2 units, scaled by the warp's slope
+  float minVariance;       // variance floor in linear depth^2 units, scaled by the warp's slope
   float bleedReduction;    // thesis §3.4 clamp, [0, 0.99]
   int storage;             // kStorageFloat32 or kStorageFloat16
   int pad0;

@@ -11,7 +11,8 @@ PENUMBRA_BEGIN_SHARED
 struct LvsmParams {
   float overlap;         // delta of thesis §4.1.1 in depth units, [0, 0.1]
   float transition;      // blend width below each split in depth units, [0, overlap]; 0 disables
-  float minVariance;     // variance floor in warped-depth^2 units, [0, 0.01]
+  float minVariance;     // variance floor in the layer's warped depth^2 (not scaled back to
+                         // linear depth: value * width^2 there), [0, 0.01]
   float bleedReduction;  // thesis §3.4 clamp, [0, 0.99]
   int storage;           // kStorageUnorm16 (thesis) or kStorageFloat32
   int placement;         // kLayerPlacementLloyd (thesis results), Uniform, or Fixed (`splits`)

@@ -7,7 +7,7 @@
 PENUMBRA_BEGIN_SHARED
 
 struct VsmParams {
-  float minVariance;     // variance floor in depth^2 units, [0, 0.01]
+  float minVariance;     // variance floor in linear depth^2 units, [0, 0.01]
   float bleedReduction;  // thesis §3.4 clamp, [0, 0.99]; 0 disables it
   int storage;           // kStorageFloat32 or kStorageUnorm16
   float pad0;
