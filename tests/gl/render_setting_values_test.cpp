@@ -66,8 +66,9 @@ TEST(RenderSettingValues, RefusesWhatNoGlCouldRenderWithTheRange) {
             "frame width 0 is out of range [1, 16384]");
   EXPECT_EQ(refused([](RenderSettings& s) { s.msaaSamples = 3; }),
             "MSAA samples 3: valid values are 1 (off), 2, 4, 8");
-  EXPECT_NE(refused([](RenderSettings& s) { s.cascades.maxDistance = 1e30f; })
-                .find("shadow distance (--shadow-distance) 1e+30 is out of range [0, 1e6]"),
+  EXPECT_NE(refused([](RenderSettings& s) {
+              s.cascades.maxDistance = 1e30f;
+            }).find("shadow distance (--shadow-distance) 1e+30 is out of range [0, 1e6]"),
             std::string::npos);
   EXPECT_NE(refused([](RenderSettings& s) { s.cascades.lambda = NAN; }), "accepted");
 }

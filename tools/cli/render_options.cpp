@@ -18,7 +18,9 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   app.add_option("--blur-kernel", o.blurKernel, "gaussian or box")->capture_default_str();
   app.add_option("--blur-sigma", o.blurSigma,
                  "Gaussian sigma in texels, [0.01, 64] (default: half the radius, at least 0.5)");
-  app.add_option("--filter", o.filter, "point, bilinear, trilinear, anisotropic or sat")
+  app.add_option("--filter", o.filter,
+                 "point, bilinear, trilinear, anisotropic (every channel through the probes the "
+                 "reference models), anisotropic-driver (the driver's own filter) or sat")
       ->capture_default_str();
   app.add_option("--aniso", o.aniso, "anisotropy for the anisotropic filter, 1..16")
       ->capture_default_str();
@@ -35,10 +37,10 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
     option->each([&o](const std::string&) { o.cascadesTuned = true; });
     return option;
   };
-  CLI::Option* lambda = tunesCascades(
-      app.add_option("--cascade-lambda", o.cascadeLambda,
-                     "practical split scheme: 0 uniform .. 1 logarithmic (PSSM)")
-          ->capture_default_str());
+  CLI::Option* lambda =
+      tunesCascades(app.add_option("--cascade-lambda", o.cascadeLambda,
+                                   "practical split scheme: 0 uniform .. 1 logarithmic (PSSM)")
+                        ->capture_default_str());
   tunesCascades(app.add_option("--cascade-splits", o.cascadeSplits,
                                "given split distances (view depth, world units): cascades-1 "
                                "increasing values")
@@ -54,10 +56,11 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
   tunesCascades(app.add_option("--cascade-blend", o.cascadeBlend,
                                "share of each cascade blended into the next, 0..0.5")
                     ->capture_default_str());
-  tunesCascades(app.add_option("--shadow-distance", o.shadowDistance,
-                               "where cascaded shadows end, [0, 1e6] world units (0: the far side of the "
-                               "scene, in whole diameters)")
-                    ->capture_default_str());
+  tunesCascades(
+      app.add_option("--shadow-distance", o.shadowDistance,
+                     "where cascaded shadows end, [0, 1e6] world units (0: the far side of the "
+                     "scene, in whole diameters)")
+          ->capture_default_str());
   app.add_option("--overlay", o.overlay, "none or cascades (tint pixels by cascade)")
       ->capture_default_str();
 }
@@ -68,7 +71,8 @@ gl::RenderSettings renderSettingsOf(const RenderOptions& o) {
   s.msaaSamples = o.msaa;
   s.blur.radius = gl::blurRadiusOfTaps(o.blurTaps);
   s.blur.kernel = gl::parseBlurKernel(o.blurKernel);
-  s.blur.sigma = o.blurSigma ? gl::checkedBlurSigma(*o.blurSigma) : gl::defaultBlurSigma(s.blur.radius);
+  s.blur.sigma =
+      o.blurSigma ? gl::checkedBlurSigma(*o.blurSigma) : gl::defaultBlurSigma(s.blur.radius);
   s.filter = parseFilterMode(o.filter);
   s.anisotropy = o.aniso;
   s.width = o.width;
@@ -87,8 +91,9 @@ gl::RenderSettings renderSettingsOf(const RenderOptions& o) {
 
 void requireCascadesForTuning(const RenderOptions& o, int cascadeCount) {
   if (o.cascadesTuned && cascadeCount == 1) {
-    throw Error("the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
-                "--cascades 2..8 (1 is one map of the whole scene)");
+    throw Error(
+        "the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
+        "--cascades 2..8 (1 is one map of the whole scene)");
   }
 }
 
