@@ -525,7 +525,8 @@ void expectSameMemory(const gl::MemoryReport& estimated, const gl::MemoryReport&
 
 TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
   // The up-front estimate that validate() checks is exact, for every technique, filter, MSAA,
-  // blur and auxiliary pass.
+  // blur and auxiliary pass: against what the render reports and, for the channel texture,
+  // against the GL object itself.
   const Scene scene = makeBuiltinScene("planar");
   std::vector<gl::RenderSettings> cases;
   for (Technique t : allTechniques()) {
@@ -561,7 +562,11 @@ TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
     } catch (const Error&) {
       continue;  // e.g. the summed-area filter with exponential channels
     }
-    expectSameMemory(gl::estimateMemory(c), renderer->render(scene, c).memory, where);
+    const gl::MemoryReport estimated = gl::estimateMemory(c);
+    expectSameMemory(estimated, renderer->render(scene, c).memory, where);
+    // The report is computed by the same formulas as the estimate; the channel texture, the
+    // largest allocation, is also measured on the GL object the render left.
+    EXPECT_EQ(renderer->measuredChannelTextureBytes(), estimated.technique) << where;
     ++rendered;
   }
   EXPECT_GT(rendered, 50);
@@ -857,7 +862,8 @@ TEST_F(ReferenceTest, SupersampledGroundTruthIsTheBoxAverageOfTheReferenceAtFour
   gl::RenderSettings big = s;
   big.width = s.width * kFactor;
   big.height = s.height * kFactor;
-  const Image fine = renderer->renderReference(scene, big, 1).visibility;
+  const gl::RenderResult fineLookups = renderer->renderReference(scene, big, 1);
+  const Image& fine = fineLookups.visibility;
   ASSERT_EQ(truth.width(), s.width);
   ASSERT_EQ(truth.height(), s.height);
   int bad = 0, mixed = 0;
@@ -883,6 +889,56 @@ TEST_F(ReferenceTest, SupersampledGroundTruthIsTheBoxAverageOfTheReferenceAtFour
   }
   EXPECT_EQ(bad, 0);
   EXPECT_GT(mixed, 20) << "the check must cover pixels whose sub-pixels see the posts differently";
+
+  // The average above is over the fine render's pixels; that they are the S x S sub-pixel
+  // positions of each pixel is checked on the geometry. Where a pixel's 16 sub-pixels lie on one
+  // plane (their uv an affine grid: every second difference under 1/16 of a grid step), the
+  // grid's centroid must be the uv the pixel's own centre looks up. A shift by half a sub-pixel
+  // moves it by half a step; perspective over one pixel bends it far less than the 1/16 step
+  // allowed, fp32 uv rounding (6e-8) less still. Surfaces the light sees edge-on (a sub-pixel
+  // step beyond a shadow-map texel) are left out: there uv is ill-conditioned in the screen
+  // position (3 of 900 such pixels sit half a step off).
+  const float texel = 1.0f / float(s.shadowMapSize);
+  const gl::RenderResult coarse = renderer->renderReference(scene, s, 1);
+  int planar = 0, misplaced = 0;
+  for (int y = 0; y < s.height; ++y) {
+    for (int x = 0; x < s.width; ++x) {
+      if (coarse.lookup.at(x, y, 3) < 1.0f) continue;
+      glm::vec2 grid[kFactor][kFactor];
+      bool valid = true;
+      for (int j = 0; j < kFactor; ++j) {
+        for (int i = 0; i < kFactor; ++i) {
+          valid &= fineLookups.lookup.at(x * kFactor + i, y * kFactor + j, 3) >= 1.0f;
+          grid[j][i] = gl::lookupPixelAt(fineLookups, x * kFactor + i, y * kFactor + j).uv;
+        }
+      }
+      if (!valid) continue;
+      const float step = std::max(glm::length(grid[0][1] - grid[0][0]),
+                                  glm::length(grid[1][0] - grid[0][0]));
+      float bend = 0.0f;
+      glm::vec2 centroid(0.0f);
+      for (int j = 0; j < kFactor; ++j) {
+        for (int i = 0; i < kFactor; ++i) {
+          centroid += grid[j][i] / float(kFactor * kFactor);
+          if (i > 0 && i + 1 < kFactor) {
+            bend = std::max(bend, glm::length(grid[j][i + 1] - 2.0f * grid[j][i] + grid[j][i - 1]));
+          }
+          if (j > 0 && j + 1 < kFactor) {
+            bend = std::max(bend, glm::length(grid[j + 1][i] - 2.0f * grid[j][i] + grid[j - 1][i]));
+          }
+        }
+      }
+      if (!(step > 0.0f) || step > texel || bend > step / 16.0f) continue;
+      ++planar;
+      const float offset = glm::length(centroid - gl::lookupPixelAt(coarse, x, y).uv);
+      if (offset > step / 16.0f + 1e-6f && ++misplaced <= 3) {
+        ADD_FAILURE() << "pixel " << x << "," << y << ": its sub-pixels' centroid lies "
+                      << offset / step << " sub-pixel steps from its centre";
+      }
+    }
+  }
+  EXPECT_EQ(misplaced, 0) << "of " << planar;
+  EXPECT_GT(planar, s.width * s.height / 5);
 }
 
 }  // namespace
