@@ -14,6 +14,9 @@
 namespace penumbra {
 
 inline constexpr int kMaxCascadeCount = 8;
+// At most half of a cascade blends into the next: beyond it a pixel would blend past the next
+// cascade's own blend band.
+inline constexpr float kMaxCascadeBlendBand = 0.5f;
 
 enum class CascadeFit {
   Tight,       // the light-view bounding box of the split's frustum corners: sharpest, shimmers
@@ -36,7 +39,8 @@ struct CascadeSettings {
   // GPU; sample-distribution shadow maps, Lauritzen et al. 2011) instead of [near, max distance].
   bool fitDepthBounds = false;
   CascadeFit fit = CascadeFit::Stabilized;
-  // Share of each cascade's depth range, at its far end, blended with the next cascade: [0, 0.5].
+  // Share of each cascade's depth range, at its far end, blended with the next cascade:
+  // [0, kMaxCascadeBlendBand].
   float blendBand = 0.1f;
   // Shadows end here (view depth, world units); 0: defaultShadowDistance.
   float maxDistance = 0.0f;

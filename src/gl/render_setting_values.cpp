@@ -30,6 +30,12 @@ constexpr bool kCascadeDepths[] = {false, true};
 
 }  // namespace
 
+void checkMsaaSamples(int samples) {
+  if (samples != 1 && samples != 2 && samples != 4 && samples != 8) {
+    throw Error("MSAA samples " + std::to_string(samples) + ": valid values are 1 (off), 2, 4, 8");
+  }
+}
+
 int blurRadiusOfTaps(int taps) {
   if (taps < 1 || taps > kMaxBlurTaps || taps % 2 == 0) {
     throw Error("blur taps " + std::to_string(taps) +
@@ -76,10 +82,7 @@ void validateRenderSettings(const RenderSettings& s) {
   checkRange("shadow-map size", s.shadowMapSize, kMinShadowMapSize, kMaxTextureSizeAnyGl);
   checkRange("frame width", s.width, kMinFrameSize, kMaxTextureSizeAnyGl);
   checkRange("frame height", s.height, kMinFrameSize, kMaxTextureSizeAnyGl);
-  if (s.msaaSamples != 1 && s.msaaSamples != 2 && s.msaaSamples != 4 && s.msaaSamples != 8) {
-    throw Error("MSAA samples " + std::to_string(s.msaaSamples) +
-                ": valid values are 1 (off), 2, 4, 8");
-  }
+  checkMsaaSamples(s.msaaSamples);
   checkRange("blur radius", s.blur.radius, 0, shaders::kMaxBlurRadius);
   checkedBlurSigma(s.blur.sigma);
   checkRange("anisotropy", s.anisotropy, 1, kMaxAnisotropy);

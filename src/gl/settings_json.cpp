@@ -5,6 +5,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -50,6 +51,12 @@ double number(const json& v, const At& at, double min, double max) {
   }
   return d;
 }
+
+// Values whose range validateOverrides or validateRenderSettings checks after reading.
+constexpr struct {
+  double min = -std::numeric_limits<float>::max();
+  double max = std::numeric_limits<float>::max();
+} kAnyFinite;
 
 int integer(const json& v, const At& at, int min, int max) {
   if (!v.is_number_integer()) at.fail("must be a whole number");
@@ -110,17 +117,16 @@ void applyView(const std::string& key, const json& value, const std::string& sou
     } else if (key == "light" && field == "target") {
       o.lightTarget = vector3(v, at);
     } else if (key == "light" && field == "spot_angle") {
-      o.spotAngleDegrees = float(number(v, at, 1e-3, 170.0));
+      o.spotAngleDegrees = float(number(v, at, kAnyFinite.min, kAnyFinite.max));  // checked below
     } else if (key == "light" && field == "size") {
-      // The widest any light takes; applyOverrides checks it against the light's kind.
-      o.lightSize = float(number(
-          v, at, 0.0, std::max({kMaxSpotLightSize, kMaxDirectionalLightSize, kMaxPointLightSize})));
+      // validateOverrides (below) and, against the light's kind, applyOverrides check it.
+      o.lightSize = float(number(v, at, kAnyFinite.min, kAnyFinite.max));
     } else if (key == "camera" && field == "position") {
       o.cameraPosition = vector3(v, at);
     } else if (key == "camera" && field == "target") {
       o.cameraTarget = vector3(v, at);
     } else if (key == "camera" && field == "fov") {
-      o.cameraFovDegrees = float(number(v, at, 1e-3, 170.0));
+      o.cameraFovDegrees = float(number(v, at, kAnyFinite.min, kAnyFinite.max));  // checked below
     } else {
       at.fail(std::string("is not a setting; ") + key + " takes " +
               (key == "light" ? "kind, direction, position, target, spot_angle, size"
@@ -228,9 +234,7 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
     r.shadowMapSize = integer(v, at, kMinShadowMapSize, kMaxTextureSizeAnyGl);
   } else if (key == "msaa") {
     r.msaaSamples = integer(v, at, 1, 8);
-    if (r.msaaSamples != 1 && r.msaaSamples != 2 && r.msaaSamples != 4 && r.msaaSamples != 8) {
-      at.fail("is " + v.dump() + "; valid values are 1 (off), 2, 4, 8");
-    }
+    withLocation(at, [&] { checkMsaaSamples(r.msaaSamples); });
   } else if (key == "blur") {
     const int taps = integer(v, at, 1, kMaxBlurTaps);
     r.blur.radius = withLocation(at, [&] { return blurRadiusOfTaps(taps); });
@@ -268,7 +272,7 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
     const std::string name = text(v, at);
     r.cascades.fitDepthBounds = withLocation(at, [&] { return parseCascadeDepth(name); });
   } else if (key == "cascade-blend") {
-    r.cascades.blendBand = float(number(v, at, 0.0, 0.5));
+    r.cascades.blendBand = float(number(v, at, 0.0, kMaxCascadeBlendBand));
   } else if (key == "shadow-distance") {
     r.cascades.maxDistance = float(number(v, at, 0.0, kMaxWorldCoordinate));
   } else if (key == "overlay") {

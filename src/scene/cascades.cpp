@@ -96,8 +96,9 @@ void validateCascadeSettings(const CascadeSettings& s) {
   if (!(s.lambda >= 0.0f && s.lambda <= 1.0f)) {
     throw Error("cascade lambda (--cascade-lambda) " + str(s.lambda) + " is out of range [0, 1]");
   }
-  if (!(s.blendBand >= 0.0f && s.blendBand <= 0.5f)) {
-    throw Error("cascade blend band (--cascade-blend) " + str(s.blendBand) + " is out of range [0, 0.5]");
+  if (!(s.blendBand >= 0.0f && s.blendBand <= kMaxCascadeBlendBand)) {
+    throw Error("cascade blend band (--cascade-blend) " + str(s.blendBand) + " is out of range [0, " +
+                str(kMaxCascadeBlendBand) + "]");
   }
   if (!(s.maxDistance >= 0.0f && s.maxDistance <= kMaxWorldCoordinate)) {
     throw Error("shadow distance (--shadow-distance) " + str(s.maxDistance) +

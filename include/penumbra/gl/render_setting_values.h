@@ -25,6 +25,10 @@ inline constexpr float kMaxBlurSigma = 64.0f;
 inline constexpr int kMaxAnisotropy = 16;
 inline constexpr float kMaxNormalOffsetTexels = 10.0f;
 
+// Light-pass samples: 1 (off), 2, 4 or 8 (Renderer::validate adds this GL's GL_MAX_SAMPLES);
+// throws Error listing them.
+void checkMsaaSamples(int samples);
+
 // The blur radius of a kernel `taps` wide; throws Error for an even width or one outside
 // [1, kMaxBlurTaps].
 int blurRadiusOfTaps(int taps);
