@@ -56,6 +56,7 @@ std::string experimentList() {
 void runPaperExperiments(const BenchOptions& o) {
   std::vector<std::string> ids = o.experiments;
   if (ids.size() == 1 && ids[0] == "all") ids = compare::paperExperimentIds();
+  toRenderSettings(o.render);  // the sizes given (the rest are defaults), checked before any work
   compare::BenchSizes sizes;
   sizes.shadowMapSize = o.render.shadowSize;
   sizes.scalingShadowMapSize = std::min(o.render.shadowSize, sizes.scalingShadowMapSize);
