@@ -13,6 +13,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "penumbra/shadow_lookup.h"
+#include "shared/shadow_lookup.h"
 
 namespace penumbra {
 namespace {
@@ -130,6 +131,36 @@ TEST(SoftShadows, FilterableWidthMatchesPcssInTheMean) {
     // off by up to 6% between levels. Measured on the CPU twin: 15.03.
     EXPECT_NEAR(mean, 15.0, 0.1 * 15.0) << "blur radius " << blurRadius;
   }
+}
+
+TEST(SoftShadows, EsmFallbackUnderAnAreaLightIsPcssOverThePenumbra) {
+  // A receiver at 20 world units inside the shadow of an occluder at 16 whose edge lies two texels
+  // away, with open ground at 28 beyond it: the ground behind the receiver dominates ESM's
+  // filtered exp(c z) (ESM paper §3.3), so the pixel fails classification. Its penumbra is
+  // 0.05 x (20 - 16) / 0.02 = 10 texels, a share of which sees past the edge. The fallback once
+  // tested the blur's own kernel, 2x2 texels with no blur: a hard 0 inside a soft penumbra.
+  const float near = 10.0f, far = 30.0f, texel = 0.02f, size = 0.05f;
+  const shaders::SoftLight light = softLight(size, false, near, far, texel);
+  Image depth(kMapSize, kMapSize, 1);
+  for (int y = 0; y < kMapSize; ++y) {
+    for (int x = 0; x < kMapSize; ++x) depth.at(x, y) = x < 120 ? 0.3f : 0.9f;
+  }
+  LookupPixel pixel;
+  pixel.uv = {118.5f / float(kMapSize), 64.5f / float(kMapSize)};
+  pixel.receiverDepth = 0.5f;
+  const LookupSample esm =
+      CpuShadowLookup(depth, softConfig(Technique::Esm, FilterMode::Trilinear, light))
+          .lookup(pixel);
+  ASSERT_EQ(esm.diagnostic, 1.0f) << "the pixel must fail classification";
+  // PCSS with the fallback's test (receiver plane, the reference's tie, no slope bias).
+  LookupConfig pcss = softConfig(Technique::Pcf, FilterMode::Trilinear, light);
+  pcss.params.pcf.receiverPlane = 1;
+  pcss.params.pcf.bias.constantBias = shaders::kReferenceTie;
+  pcss.params.pcf.bias.slopeScaledBias = 0.0f;
+  const float expected = CpuShadowLookup(depth, pcss).lookup(pixel).visibility;
+  EXPECT_GT(expected, 0.2f);  // 3.5 of the box's 10 texels lie past the edge
+  EXPECT_LT(expected, 0.5f);
+  EXPECT_EQ(esm.visibility, expected);  // the same shared function on the same taps
 }
 
 TEST(SoftShadows, EveryTechniquesSoftVariantIsAVisibilityAndLitWhereNothingOccludes) {

@@ -282,6 +282,23 @@ PENUMBRA_INLINE float esmPaperFallback(LookupSources s, LookupSettings ls, EsmPa
   return lit;
 }
 
+// The default fallback (kEsmFallbackPcf): PCF of the light pass's depth, which the prefilter never
+// touched, under the kernel the lookup filters with. Hard lights: the prefilter's own kernel (the
+// filtered reference itself for point and bilinear lookups; mip-mapped and summed-area lookups
+// widen their kernel with the footprint where PCF keeps the blur's, docs/techniques.md). Area
+// lights: PCSS's box of the penumbra's width, the kernel the widened filter stands for (the blur's
+// own 2x2 test would put a hard edge inside a soft penumbra). penumbraTexels < 0: a hard light.
+PENUMBRA_INLINE float esmPcfFallback(LookupSources s, LookupSettings ls, vec2 uv,
+                                     float receiverDepth, vec2 depthPerTexel,
+                                     float penumbraTexels) {
+  PcfParams pcf = pcfMatchingPrefilter(ls);
+  if (penumbraTexels >= 0.0f) {
+    return pcssVisibility(s, ls.shadowMapSize, uv, receiverDepth, depthPerTexel, pcf.receiverPlane,
+                          pcf.bias, penumbraTexels);
+  }
+  return pcfLookup(s, ls.shadowMapSize, true, uv, receiverDepth, depthPerTexel, pcf);
+}
+
 // Visibility and the technique's per-pixel state: 1 for an ESM pixel that failed classification,
 // the layer index for LVSM, 0 otherwise.
 struct ShadowSample {
@@ -302,6 +319,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
   float d = clamp(receiverDepth, 0.0f, 1.0f);
   bool softProbes = false;  // the penumbra, not the pixel's footprint, sets the filter width
   float softWidth = 0.0f;
+  float penumbra = -1.0f;  // area lights: the penumbra's width in texels, blur included
   if (light.size > 0.0f && technique != kTechniqueHard) {
     BlockerEstimate blockers = searchBlockers(s, ls.shadowMapSize, light, uv, d, depthPerTexel);
     if (blockers.share == 0.0f) {
@@ -309,6 +327,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
       return r;
     }
     float width = softFilterTexels(light, d, blockers);
+    penumbra = width;
     if (technique == kTechniquePcf) {
       r.visibility = pcssVisibility(s, ls.shadowMapSize, uv, d, depthPerTexel, p.pcf.receiverPlane,
                                     p.pcf.bias, width);
@@ -344,8 +363,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     if (p.esm.fallback == kEsmFallbackPaper) {
       r.visibility = esmPaperFallback(s, ls, p.esm, uv, d);
     } else {
-      r.visibility =
-          pcfLookup(s, ls.shadowMapSize, true, uv, d, depthPerTexel, pcfMatchingPrefilter(ls));
+      r.visibility = esmPcfFallback(s, ls, uv, d, depthPerTexel, penumbra);
     }
     return r;
   }
