@@ -146,7 +146,8 @@ std::string viewLabel(View v) {
 }
 
 constexpr FilterMode kFilters[] = {FilterMode::Point, FilterMode::Bilinear, FilterMode::Trilinear,
-                                   FilterMode::Anisotropic, FilterMode::SummedArea};
+                                   FilterMode::Anisotropic, FilterMode::AnisotropicDriver,
+                                   FilterMode::SummedArea};
 constexpr int kShadowSizes[] = {64, 128, 256, 512, 1024, 2048, 4096};
 constexpr int kMsaa[] = {1, 2, 4, 8};
 
@@ -211,7 +212,7 @@ void renderSection(ViewerState& state, Changes& changes) {
       comboOf("shadow map", r.shadowMapSize, std::span<const int>(kShadowSizes), intLabel);
   changes.render |= comboOf("MSAA", r.msaaSamples, std::span<const int>(kMsaa), intLabel);
   changes.render |= comboOf("filter", r.filter, std::span<const FilterMode>(kFilters), filterLabel);
-  if (r.filter == FilterMode::Anisotropic) {
+  if (r.filter == FilterMode::Anisotropic || r.filter == FilterMode::AnisotropicDriver) {
     changes.render |= ImGui::SliderInt("anisotropy", &r.anisotropy, 1, gl::kMaxAnisotropy);
   }
   int taps = 2 * r.blur.radius + 1;

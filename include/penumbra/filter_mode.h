@@ -7,10 +7,14 @@
 
 namespace penumbra {
 
-// In the order of shared/lookup_footprint.h kFilter*.
-enum class FilterMode { Point, Bilinear, Trilinear, Anisotropic, SummedArea };
+// In the order of shared/lookup_footprint.h kFilter*. Anisotropic filters every channel through
+// the probes the filtered reference models, so every technique is ranked under one kernel;
+// AnisotropicDriver gives mean channels the driver's anisotropic filter (its own kernel: the
+// techniques whose channels are all mean then differ from the reference by more).
+enum class FilterMode { Point, Bilinear, Trilinear, Anisotropic, SummedArea, AnisotropicDriver };
 
-std::string_view filterModeName(FilterMode mode);  // "point", "bilinear", ..., "sat"
+// "point", "bilinear", "trilinear", "anisotropic", "sat", "anisotropic-driver"
+std::string_view filterModeName(FilterMode mode);
 // Throws Error listing the valid names.
 FilterMode parseFilterMode(std::string_view name);
 std::string filterModeNameList();

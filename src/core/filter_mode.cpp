@@ -15,13 +15,15 @@ static_assert(int(FilterMode::Bilinear) == shaders::kFilterBilinear);
 static_assert(int(FilterMode::Trilinear) == shaders::kFilterTrilinear);
 static_assert(int(FilterMode::Anisotropic) == shaders::kFilterAnisotropic);
 static_assert(int(FilterMode::SummedArea) == shaders::kFilterSummedArea);
+static_assert(int(FilterMode::AnisotropicDriver) == shaders::kFilterAnisotropicDriver);
 
-constexpr std::array<std::pair<FilterMode, std::string_view>, 5> kFilterModes{{
+constexpr std::array<std::pair<FilterMode, std::string_view>, 6> kFilterModes{{
     {FilterMode::Point, "point"},
     {FilterMode::Bilinear, "bilinear"},
     {FilterMode::Trilinear, "trilinear"},
     {FilterMode::Anisotropic, "anisotropic"},
     {FilterMode::SummedArea, "sat"},
+    {FilterMode::AnisotropicDriver, "anisotropic-driver"},
 }};
 
 }  // namespace
@@ -47,7 +49,8 @@ FilterMode parseFilterMode(std::string_view name) {
 }
 
 bool usesMips(FilterMode mode) {
-  return mode == FilterMode::Trilinear || mode == FilterMode::Anisotropic;
+  return mode == FilterMode::Trilinear || mode == FilterMode::Anisotropic ||
+         mode == FilterMode::AnisotropicDriver;
 }
 
 }  // namespace penumbra

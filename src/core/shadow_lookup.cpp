@@ -54,14 +54,10 @@ vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
   return v;
 }
 
-// The usual model of anisotropic filtering: trilinear probes along the footprint's major axis.
+// The driver's anisotropic filter, which the CPU cannot know: the usual model of it, the probes
+// the filtered reference models (anisotropic-driver's CPU twin is approximate).
 vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy) {
-  const LookupProbes probes = lookupProbes(uvDx, uvDy, s.textures->settings);
-  vec4 v(0.0f);
-  for (int k = 0; k < probes.count; ++k) {
-    v += channelLinear(s, layer, uv + probeOffset(probes, k), probes.lod) / float(probes.count);
-  }
-  return v;
+  return channelProbes(s, s.textures->settings, layer, uv, uvDx, uvDy);
 }
 
 float lightDepthTexel(LookupSources s, ivec2 texel) {

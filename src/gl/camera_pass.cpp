@@ -25,7 +25,9 @@ void setChannelSampling(const Texture& channels, int levels, const RenderSetting
   if (mode == FilterMode::Point) minFilter = GL_NEAREST;
   if (levels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
   glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
-  const float anisotropy = mode == FilterMode::Anisotropic ? float(settings.anisotropy) : 1.0f;
+  // Only the driver's kernel needs the sampler's anisotropy: the modelled probes are textureLod.
+  const float anisotropy =
+      mode == FilterMode::AnisotropicDriver ? float(settings.anisotropy) : 1.0f;
   glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
 }
 

@@ -59,7 +59,8 @@ TEST(ComparePcf, AnyPcfParameterTheUserSetsIsKeptAndTheReportSaysPcfIsNotMatched
   for (const std::vector<std::string>& params :
        {std::vector<std::string>{"--param", "constantBias=0.01"},
         std::vector<std::string>{"--param", "pcf.sigma=2"}}) {
-    std::vector<std::string> extra{"--technique", "hard,pcf", "--blur", "9", "--blur-sigma", "30"};
+    std::vector<std::string> extra{"--technique", "hard,pcf",     "--blur",       "9",
+                                   "--blur-kernel", "gaussian", "--blur-sigma", "30"};
     extra.insert(extra.end(), params.begin(), params.end());
     const Report r = compare(extra);
     ASSERT_EQ(r.exitCode, 0) << r.output;

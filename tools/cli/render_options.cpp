@@ -32,7 +32,7 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
                  "cascaded shadow maps for the directional light, 1..8 (1: one map of the scene)")
       ->capture_default_str();
   // The options that tune cascades need more than one (from --cascades or a settings file):
-  // checked once the count is known (requireCascadesForTuning), never silently ignored.
+  // checked once the count is known (requireGivenOptionsApply), never silently ignored.
   auto tunesCascades = [&o](CLI::Option* option) {
     option->each([&o](const std::string&) { o.cascadesTuned = true; });
     return option;
@@ -89,8 +89,12 @@ gl::RenderSettings renderSettingsOf(const RenderOptions& o) {
   return s;
 }
 
-void requireCascadesForTuning(const RenderOptions& o, int cascadeCount) {
-  if (o.cascadesTuned && cascadeCount == 1) {
+void requireGivenOptionsApply(const RenderOptions& o, const gl::RenderSettings& s) {
+  if (o.blurSigma && s.blur.kernel != BlurKernel::Gaussian) {
+    throw Error("--blur-sigma sets the Gaussian blur's width, but the blur kernel is " +
+                std::string(gl::blurKernelName(s.blur.kernel)) + ": give --blur-kernel gaussian");
+  }
+  if (o.cascadesTuned && s.cascades.count == 1) {
     throw Error(
         "the --cascade-* and --shadow-distance options tune cascaded shadow maps; give "
         "--cascades 2..8 (1 is one map of the whole scene)");
@@ -99,7 +103,7 @@ void requireCascadesForTuning(const RenderOptions& o, int cascadeCount) {
 
 gl::RenderSettings toRenderSettings(const RenderOptions& o) {
   gl::RenderSettings s = renderSettingsOf(o);
-  requireCascadesForTuning(o, s.cascades.count);
+  requireGivenOptionsApply(o, s);
   gl::validateRenderSettings(s);
   return s;
 }

@@ -41,10 +41,11 @@ void addRenderOptions(CLI::App& app, RenderOptions& options);
 // a settings file merged in later may supply what they need (the cascade count). Throws Error for
 // an unknown name or an even blur width.
 gl::RenderSettings renderSettingsOf(const RenderOptions& options);
-// Throws Error when a --cascade-* or --shadow-distance option was given and `cascadeCount`, the
-// count the command renders with, is 1: they would be ignored.
-void requireCascadesForTuning(const RenderOptions& options, int cascadeCount);
-// renderSettingsOf, checked (requireCascadesForTuning, gl::validateRenderSettings): for commands
+// Throws Error when an option given would be ignored by `settings`, what the command renders
+// with (a settings file merged in): a --cascade-* or --shadow-distance option with one cascade,
+// --blur-sigma with a box kernel.
+void requireGivenOptionsApply(const RenderOptions& options, const gl::RenderSettings& settings);
+// renderSettingsOf, checked (requireGivenOptionsApply, gl::validateRenderSettings): for commands
 // without a settings file.
 gl::RenderSettings toRenderSettings(const RenderOptions& options);
 

@@ -37,7 +37,7 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
     }
     gl::applySettingsFile(path, s, given);
   }
-  requireCascadesForTuning(render, s.render.cascades.count);
+  requireGivenOptionsApply(render, s.render);
   gl::validateRenderSettings(s.render);
   s.view = sceneOverrides(scene, s.view);
   validateOverrides(s.view);

@@ -10,8 +10,12 @@ PENUMBRA_BEGIN_SHARED
 const int kFilterPoint = 0;
 const int kFilterBilinear = 1;
 const int kFilterTrilinear = 2;
+// Anisotropic: every channel through the probes the filtered reference models (lookupProbes);
+// AnisotropicDriver: mean channels through the driver's own anisotropic filter, whose kernel is
+// its own, so techniques pay different kernel-mismatch penalties (docs/techniques.md).
 const int kFilterAnisotropic = 3;
 const int kFilterSummedArea = 4;
+const int kFilterAnisotropicDriver = 5;
 
 // Everything the lookup needs to know about the shadow map and its prefilter.
 struct LookupSettings {
@@ -74,7 +78,7 @@ PENUMBRA_INLINE LookupProbes lookupProbes(vec2 uvDx, vec2 uvDy, LookupSettings s
   float minor = max(min(lengthX, lengthY), 1.0e-6f);
   LookupProbes p;
   p.count = 1;
-  if (s.filterMode == kFilterAnisotropic) {
+  if (s.filterMode == kFilterAnisotropic || s.filterMode == kFilterAnisotropicDriver) {
     // Clamped as a float first: major / minor may exceed any int where a derivative vanishes.
     p.count = int(clamp(ceil(major / minor), 1.0f, float(max(s.anisotropy, 1))));
   }

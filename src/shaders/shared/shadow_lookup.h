@@ -66,6 +66,18 @@ PENUMBRA_INLINE float filterChannelByTaps(LookupSources s, LookupSettings ls, in
   return reductionResult(a);
 }
 
+// A texel layer through the anisotropic probes the filtered reference models: trilinear lookups
+// along the footprint's major axis, averaged (lookupProbes).
+PENUMBRA_INLINE vec4 channelProbes(LookupSources s, LookupSettings ls, int layer, vec2 uv,
+                                   vec2 uvDx, vec2 uvDy) {
+  LookupProbes probes = lookupProbes(uvDx, uvDy, ls);
+  vec4 v = vec4(0.0f);
+  for (int k = 0; k < probes.count; ++k) {
+    v += channelLinear(s, layer, uv + probeOffset(probes, k), probes.lod) / float(probes.count);
+  }
+  return v;
+}
+
 #if PENUMBRA_SUMMED_AREA
 // The table's continuous prefix sum at texel-edge coordinates (X, Y): bilinear between the
 // integer prefix sums, since the channel is constant over each texel. Relative to `origin`, a
@@ -131,8 +143,10 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
     if (linear) {
       if (ls.filterMode == kFilterPoint) {
         v = channelTexel(s, layer, nearestTexel(uv, ls.shadowMapSize), 0);
-      } else if (ls.filterMode == kFilterAnisotropic) {
+      } else if (ls.filterMode == kFilterAnisotropicDriver) {
         v = channelAnisotropic(s, layer, uv, uvDx, uvDy);
+      } else if (ls.filterMode == kFilterAnisotropic) {
+        v = channelProbes(s, ls, layer, uv, uvDx, uvDy);
       } else {
         float lod = ls.filterMode == kFilterBilinear ? 0.0f : lookupProbes(uvDx, uvDy, ls).lod;
         v = channelLinear(s, layer, uv, lod);
