@@ -47,25 +47,21 @@ enum class Promise {
   UpperBound,  // Chebyshev (VSM, EVSM on monotone warps, LVSM on a monotone clamp of depth) and
                // Markov (ESM: P(z >= d) <= E[exp(c z)] / exp(c d)): v >= L
   UnitRange,   // CSM's truncated series and the power-function fit approximate the CDF with no
-               // side promised; the paper's own clamp (CSM §3.2.2, Gumbau eq. 4) keeps them in range
+              // side promised; the paper's own clamp (CSM §3.2.2, Gumbau eq. 4) keeps them in range
 };
 
 Promise promise(Technique t) {
   switch (t) {
-    case Technique::Hard:
-      return Promise::Binary;
-    case Technique::Pcf:
-      return Promise::Exact;
+    case Technique::Hard: return Promise::Binary;
+    case Technique::Pcf: return Promise::Exact;
     case Technique::Vsm:
     case Technique::Lvsm:
     case Technique::Evsm2:
     case Technique::Evsm4:
     case Technique::Esm:
-    case Technique::Msm:
-      return Promise::UpperBound;
+    case Technique::Msm: return Promise::UpperBound;
     case Technique::Csm:
-    case Technique::PowerCdf:
-      return Promise::UnitRange;
+    case Technique::PowerCdf: return Promise::UnitRange;
   }
   return Promise::UnitRange;
 }
@@ -124,9 +120,7 @@ TEST_P(TechniqueInvariants, VisibilityStaysInUnitRangeOnTheSideOfTheLitShareItPr
     EXPECT_LE(v, 1.0f);
     inside += v > 0.0f && v < 1.0f;
     switch (promise(t)) {
-      case Promise::Binary:
-        EXPECT_TRUE(v == 0.0f || v == 1.0f) << v;
-        break;
+      case Promise::Binary: EXPECT_TRUE(v == 0.0f || v == 1.0f) << v; break;
       case Promise::Exact:
         // Sums of at most five weights in fp32.
         EXPECT_NEAR(
@@ -143,8 +137,7 @@ TEST_P(TechniqueInvariants, VisibilityStaysInUnitRangeOnTheSideOfTheLitShareItPr
         }
         break;
       }
-      case Promise::UnitRange:
-        break;
+      case Promise::UnitRange: break;
     }
   }
   if (promise(t) != Promise::Binary) {
@@ -294,8 +287,7 @@ TEST(TechniqueIds, AllTechniquesListsEveryIdOfTheEnumerationOnce) {
   int parsed = 0;
   for (size_t comma; (comma = list.find(", ")) != std::string::npos; list.erase(0, comma + 2)) {
     const Technique t = parseTechnique(list.substr(0, comma));
-    EXPECT_EQ(std::count(allTechniques().begin(), allTechniques().end(), t), 1)
-        << techniqueId(t);
+    EXPECT_EQ(std::count(allTechniques().begin(), allTechniques().end(), t), 1) << techniqueId(t);
     ++parsed;
   }
   EXPECT_EQ(parsed, shaders::kTechniqueCount);

@@ -913,8 +913,8 @@ TEST_F(ReferenceTest, SupersampledGroundTruthIsTheBoxAverageOfTheReferenceAtFour
         }
       }
       if (!valid) continue;
-      const float step = std::max(glm::length(grid[0][1] - grid[0][0]),
-                                  glm::length(grid[1][0] - grid[0][0]));
+      const float step =
+          std::max(glm::length(grid[0][1] - grid[0][0]), glm::length(grid[1][0] - grid[0][0]));
       float bend = 0.0f;
       glm::vec2 centroid(0.0f);
       for (int j = 0; j < kFactor; ++j) {
