@@ -44,8 +44,8 @@ struct LoadContext {
   const tinygltf::Model* model = nullptr;  // the one being parsed: its buffers are read by now
 };
 
-// Anything there, regular or not: readWholeFile refuses what is not a regular file, where a "not
-// found" would only make an image's a warning.
+// Anything there, regular or not, so that readWholeFile refuses a device or FIFO by name (tinygltf
+// would only warn that an image it cannot find is missing).
 bool fileExists(const std::string& path, void* user) {
   const auto* context = static_cast<const LoadContext*>(user);
   std::error_code ec;
