@@ -58,6 +58,31 @@ Image crop(const Image& image, glm::vec4 rect, int zoom) {
   return out;
 }
 
+// A technique's images with its non-finite pixels (VisibilityErrors::nonFinitePixels) drawn in
+// `marker` (every channel of a pixel with any non-finite one): the PNG writers refuse NaN, and the
+// page says which pixels these are (nonFiniteNote).
+Image markNonFinite(const Image& image, const std::vector<float>& marker) {
+  Image out = image;
+  const size_t channels = size_t(image.channels());
+  for (size_t texel = 0; texel < out.data().size(); texel += channels) {
+    bool finite = true;
+    for (size_t c = 0; c < channels; ++c) finite = finite && std::isfinite(out.data()[texel + c]);
+    if (finite) continue;
+    for (size_t c = 0; c < channels; ++c) out.data()[texel + c] = marker[c % marker.size()];
+  }
+  return out;
+}
+const std::vector<float> kShadedMarker{1.0f, 0.0f, 1.0f, 1.0f};  // magenta
+const std::vector<float> kValueMarker{0.0f};
+
+std::string nonFiniteNote(const TechniqueResult& t) {
+  if (t.filtered.nonFinitePixels == 0) return {};
+  return "<p><b>" + std::to_string(t.filtered.nonFinitePixels) +
+         " covered pixels are not a number</b>: every error column is NaN and the technique ranks "
+         "last; they are magenta in the shaded image and 0 in the visibility and error "
+         "images.</p>\n";
+}
+
 ordered_json errorsJson(const VisibilityErrors& e) {
   return {{"pixels", e.pixels},
           {"non_finite_pixels", e.nonFinitePixels},  // > 0: the errors below are NaN (null)
@@ -383,7 +408,8 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << "<p>RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare
       << ", over-darkening share " << t.filtered.darkShare << ", flicker " << t.flicker
       << "; parameters: <code>" << html(paramsJson(t.technique, t.params).dump())
-      << "</code></p>\n<div class=\"row\">"
+      << "</code></p>\n"
+      << nonFiniteNote(t) << "<div class=\"row\">"
       << "<figure><img src=\"images/" << id << "_shaded.png\" alt=\"" << id
       << " shaded\"><figcaption>shaded</figcaption></figure>"
       << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id
@@ -455,12 +481,15 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   std::vector<ScatterPoint> byMemory, byTime;
   for (const TechniqueResult& t : r.techniques) {
     const std::string id(techniqueId(t.technique));
-    writeColorPng(t.color, dir / "images" / (id + "_shaded.png"));
-    writeGrey16Png(t.visibility, dir / "images" / (id + "_visibility.png"));
-    plotErrorHeatMap(t.error, range, id + ": visibility error against the " + referenceName(r),
+    const Image color = markNonFinite(t.color, kShadedMarker);
+    writeColorPng(color, dir / "images" / (id + "_shaded.png"));
+    writeGrey16Png(markNonFinite(t.visibility, kValueMarker),
+                   dir / "images" / (id + "_visibility.png"));
+    plotErrorHeatMap(markNonFinite(t.error, kValueMarker), range,
+                     id + ": visibility error against the " + referenceName(r),
                      dir / "images" / (id + "_error.png"));
     for (const TroubleSpot& spot : r.scene.troubleSpots) {
-      writeColorPng(crop(t.color, spot.rect, 3),
+      writeColorPng(crop(color, spot.rect, 3),
                     dir / "crops" / (id + "_" + slug(spot.name) + ".png"));
     }
     tiles.push_back({dir / "images" / (id + "_shaded.png"), id});

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "penumbra/compare/comparison.h"
@@ -216,6 +217,43 @@ TEST_F(ComparisonTest, VsmStaysAtTheReferenceUnderAnisotropicLookupsOnThePlanarS
   EXPECT_LT(find(r, Technique::Vsm).filtered.rmse, 1e-3);
   EXPECT_GT(find(r, Technique::Vsm).filtered.pixels, 5000);
   EXPECT_EQ(parseFilterMode("anisotropic-driver"), FilterMode::AnisotropicDriver);
+}
+
+}  // namespace
+}  // namespace penumbra
+
+namespace penumbra {
+namespace {
+
+// A technique whose visibility is NaN at a pixel still gets a report (the PNG writers refuse NaN,
+// which once failed the whole report): its errors are NaN (null in metrics.json, with the count),
+// it ranks last, and the page says which pixels were drawn in place of NaN.
+TEST_F(ComparisonTest, AReportWithANaNVisibilityIsWrittenWithTheTechniqueLast) {
+  compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
+  q.settings.shadowMapSize = 128;
+  q.settings.width = 64;
+  q.settings.height = 36;
+  compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  compare::TechniqueResult& vsm = r.techniques[0];
+  int x = 0, y = 0;
+  while (r.coverage.at(x, y) <= 0.5f) {  // a covered pixel
+    if (++x == r.coverage.width()) x = 0, ++y;
+  }
+  vsm.visibility.at(x, y) = std::numeric_limits<float>::quiet_NaN();
+  vsm.filtered = measureVisibilityErrors(vsm.visibility, r.referenceVisibility, r.coverage);
+  vsm.error = signedVisibilityError(vsm.visibility, r.referenceVisibility, r.coverage);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("penumbra-nan-report-" + std::to_string(getpid()));
+  std::filesystem::create_directories(dir);
+  EXPECT_NO_THROW(compare::writeReportFiles(r, dir));
+  std::ifstream metrics(dir / "metrics.json"), page(dir / "index.html");
+  const std::string text((std::istreambuf_iterator<char>(metrics)), {});
+  const std::string html((std::istreambuf_iterator<char>(page)), {});
+  std::filesystem::remove_all(dir);
+  EXPECT_NE(html.find("1 covered pixels are not a number"), std::string::npos);
+  EXPECT_NE(text.find("\"non_finite_pixels\": 1"), std::string::npos);
+  EXPECT_NE(text.find("\"psnr_db\": null"), std::string::npos);
+  EXPECT_EQ(compare::rankTechniques(r).back()->technique, Technique::Vsm);
 }
 
 }  // namespace
