@@ -10,7 +10,7 @@
 namespace penumbra {
 
 struct VisibilityErrors {
-  int pixels = 0;             // covered pixels compared
+  int pixels = 0;  // covered pixels compared
   // Covered pixels where v or r is not a finite number. Any makes rmse, meanAbsolute,
   // maxAbsolute and psnr NaN (an error that cannot be measured is not a small one), and the worst
   // pixel is the first of them.

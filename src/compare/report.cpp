@@ -254,8 +254,9 @@ std::string pcfNote(const ComparisonResult& r) {
         "<p><b>PCF</b> runs with the prefilter's kernel, radius and sigma, no bias and the "
         "receiver-plane test: ";
     if (matchedPcfIsReference(r.request, r.areaLight)) {
-      return note + "it is the filtered reference itself, so its error is the reference's own "
-                    "rounding.</p>\n";
+      return note +
+             "it is the filtered reference itself, so its error is the reference's own "
+             "rounding.</p>\n";
     }
     if (r.request.settings.msaaSamples > 1) {
       note += "under " + std::to_string(r.request.settings.msaaSamples) +

@@ -190,7 +190,8 @@ TEST(ComparisonRanking, SortsByRmseAndPutsANaNErrorLast) {
     r.techniques.push_back(k);
   }
   std::vector<Technique> order;
-  for (const compare::TechniqueResult* t : compare::rankTechniques(r)) order.push_back(t->technique);
+  for (const compare::TechniqueResult* t : compare::rankTechniques(r))
+    order.push_back(t->technique);
   // Ties keep the request's order (csm before lvsm).
   EXPECT_EQ(order, (std::vector<Technique>{Technique::Msm, Technique::Csm, Technique::Lvsm,
                                            Technique::Vsm, Technique::Esm}));
