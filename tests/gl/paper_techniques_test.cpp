@@ -116,6 +116,28 @@ TEST_F(PaperTechniques, EsmFallbackShadesFailingPixelsDifferently) {
   EXPECT_GT(failing, 100);
   EXPECT_GT(changed, failing / 20) << "the fallback must shade failing pixels differently";
   EXPECT_EQ(passingButChanged, 0) << "pixels that pass classification keep the ESM result";
+
+  // The value: under a hard light with bilinear lookups, the default fallback is PCF of the
+  // light pass's depth under the prefilter's kernel, i.e. the filtered reference itself
+  // (docs/reference.md). Both are fp32 sums of the same taps in the same shared code; a tap
+  // whose depth lies within rounding of the reference's tie may flip, which moves a pixel by
+  // one tap's weight, so 99.9% of failing pixels must match to 1e-5 and every one to a tap.
+  gl::RenderSettings bilinear = settings(Technique::Esm);
+  bilinear.filter = gl::FilterMode::Bilinear;
+  const Scene scene = makeBuiltinScene("contact");
+  const gl::RenderResult shaded = renderer->render(scene, bilinear);
+  const gl::RenderResult reference = renderer->renderReference(scene, bilinear, 1);
+  std::vector<float> errors;
+  for (size_t i = 0; i < shaded.diagnostic.data().size(); ++i) {
+    if (shaded.diagnostic.data()[i] <= 0.5f) continue;
+    errors.push_back(std::abs(shaded.visibility.data()[i] - reference.visibility.data()[i]));
+  }
+  std::sort(errors.begin(), errors.end());
+  ASSERT_GT(errors.size(), 100u);
+  // A flipped tap moves a pixel by its weight: at most 0.403^2 = 0.16 for the default 5-tap
+  // Gaussian of sigma 1 (its largest 2D weight; the bilinear tent only spreads it).
+  EXPECT_LE(errors[errors.size() * 999 / 1000], 1e-5f) << "p99.9 of " << errors.size();
+  EXPECT_LE(errors.back(), 0.2f) << "max of " << errors.size();
 }
 
 TEST_F(PaperTechniques, EsmLogSpaceFilteringAgreesWithLinearSpaceThroughHardwareModes) {
@@ -307,7 +329,10 @@ TEST_F(PaperTechniques, PowerCdfSixteenBitStaysCloseToThirtyTwo) {
       render("spheres", settings(Technique::PowerCdf, {"storage=float16"})).visibility;
   const double mean = meanAbsoluteDifference(p16, p32);
   RecordProperty("powercdf_16_vs_32_mean_abs", std::to_string(mean));
-  EXPECT_LT(mean, 0.01);
+  // docs/techniques.md: within 6e-4 with the default depth bias. The bound leaves 2/3 of that
+  // again for another rasteriser's edges; without the bias (depthBias=0), fp16 rounding pushes
+  // planar receivers behind their own mean and the difference is several times larger.
+  EXPECT_LT(mean, 1e-3);
 }
 
 TEST_F(PaperTechniques, EverySceneRendersEveryPaperVariant) {
@@ -331,9 +356,48 @@ TEST_F(PaperTechniques, EverySceneRendersEveryPaperVariant) {
       s.width = 160;
       s.height = 90;
       const gl::RenderResult r = render(name, s);
-      int bad = 0;
-      for (float v : r.visibility.data()) bad += !(v >= 0.0f && v <= 1.0f);
-      EXPECT_EQ(bad, 0) << name << " " << techniqueId(technique) << " " << params.front();
+      // Every output is clamped to [0,1], so the range says little; the shadows must also be
+      // where the filtered reference of the same kernel puts them. Where it is fully lit or fully
+      // shadowed, the variant must read the same side of 1/2 on most pixels: light bleeding
+      // (CSM's ringing, ESM's over-darkening at contact, LVSM/the power CDF's layer seams) keeps
+      // it from every pixel, an inverted, black, white or misplaced shadow from most.
+      const gl::RenderResult reference = renderer->renderReference(makeBuiltinScene(name), s, 1);
+      int bad = 0, lit = 0, litKept = 0, dark = 0, darkKept = 0;
+      double litSum = 0.0, darkSum = 0.0;
+      for (int y = 0; y < r.visibility.height(); ++y) {
+        for (int x = 0; x < r.visibility.width(); ++x) {
+          const float v = r.visibility.at(x, y);
+          const float expected = reference.visibility.at(x, y);
+          bad += !(v >= 0.0f && v <= 1.0f);
+          if (reference.lookup.at(x, y, 3) < 1.0f) continue;  // no lookup decided it
+          if (expected == 1.0f) {
+            ++lit;
+            litKept += v > 0.5f;
+            litSum += v;
+          } else if (expected == 0.0f) {
+            ++dark;
+            darkKept += v < 0.5f;
+            darkSum += v;
+          }
+        }
+      }
+      const std::string where =
+          std::string(name) + " " + std::string(techniqueId(technique)) + " " + params.front();
+      EXPECT_EQ(bad, 0) << where;
+      EXPECT_GE(litKept, 0.9 * lit) << where << ": lit " << lit;
+      // CSM's series with 4 or 8 terms is too smooth to reach below 1/2 in umbrae (CSM §3.2:
+      // fewer terms, a lighter and wider step; M = 4 keeps a quarter of the range between lit
+      // and umbra on spheres); every variant's shadows must still be darker than its light, which
+      // an inverted, uniform, black or white frame is not.
+      const bool fewTerms = technique == Technique::Csm && s.params.csm.termCount < 16;
+      if (!fewTerms) {
+        EXPECT_GE(darkKept, 0.9 * dark) << where << ": shadowed " << dark;
+      }
+      if (lit > 0 && dark > 0) {
+        EXPECT_GT(litSum / lit - darkSum / dark, 0.2) << where;
+      }
+      RecordProperty(where, std::to_string(double(litKept) / std::max(lit, 1)) + " " +
+                                std::to_string(double(darkKept) / std::max(dark, 1)));
     }
   }
 }
