@@ -209,6 +209,13 @@ TEST_F(SoftShadowGpu, SphereLightReferenceEqualsTheAnalyticPenumbraAndConvergesW
   EXPECT_LT(fine.rmse, 0.5 * coarse.rmse);
 }
 
+// Every pixel's |GPU - CPU| under a soft light. LookupParity holds each pixel to an envelope
+// derived from the twin's filtered channels, but CpuShadowLookup::filteredChannels does not
+// model the soft probes, so this bound is not derived: it is the largest difference on these
+// frames (8.5e-3, MSM with summed-area tables, where one unorm16 step of the moments moves the
+// Hamburger solve most) rounded up. It still fails a lookup that reads the wrong texel or probe.
+constexpr float kSoftMaxRounding = 1e-2f;
+
 TEST_F(SoftShadowGpu, SoftPointLightLookupsEqualTheCpuTwinFaceByFace) {
   gl::Renderer renderer(*context);
   Scene scene = makeBuiltinScene("lantern");
@@ -260,8 +267,10 @@ TEST_F(SoftShadowGpu, SoftPointLightLookupsEqualTheCpuTwinFaceByFace) {
       // PCSS reads texels and weights them in the same order on both sides: equal to the bit.
       EXPECT_EQ(errors.back(), 0.0f);
     } else {
-      // As for the disk lights above: rounding only, 99% of pixels within 2e-3.
+      // As for the disk lights above: rounding only, 99% of pixels within 2e-3, every one
+      // within kSoftMaxRounding.
       EXPECT_LT(p99, 2e-3f) << techniqueId(c.technique);
+      EXPECT_LE(errors.back(), kSoftMaxRounding) << techniqueId(c.technique);
     }
   }
 }
@@ -312,8 +321,10 @@ TEST_F(SoftShadowGpu, SoftLookupsEqualTheCpuTwinOnThePenumbraeScene) {
                 std::string(filterModeName(c.filter)).c_str(), errors.size(), p99, errors.back());
     // Both sides run shared/soft_shadow.h; only rounding differs (fp32 in another order, the
     // texture unit's 8-bit filter weights for trilinear lookups): 99% of pixels within 2e-3, the
-    // rest where a search or filter tap rounds to the neighbouring texel.
+    // rest where a search or filter tap rounds to the neighbouring texel, every one within
+    // kSoftMaxRounding.
     EXPECT_LT(p99, 2e-3f) << techniqueId(c.technique);
+    EXPECT_LE(errors.back(), kSoftMaxRounding) << techniqueId(c.technique);
   }
 }
 
