@@ -1,4 +1,4 @@
-// The accuracy gate's matrix, its ceilings table and the check.
+// The accuracy gate's matrix and configurations, its ceilings table and the check.
 #include "penumbra/compare/accuracy.h"
 
 #include <fstream>
@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/renderer.h"
 
 namespace penumbra::compare {
 
@@ -23,18 +24,67 @@ ComparisonRequest accuracyRequest(std::string_view scene) {
   return r;
 }
 
-std::vector<AccuracyEntry> measureAccuracy(gl::Renderer& renderer, const Progress& progress) {
-  std::vector<AccuracyEntry> entries;
-  const auto scenes = builtinSceneNames();
-  for (size_t i = 0; i < scenes.size(); ++i) {
-    if (progress) progress(int(i), int(scenes.size()), std::string(scenes[i]));
-    const ComparisonResult result = runComparison(accuracyRequest(scenes[i]), renderer);
-    for (const TechniqueResult& t : result.techniques) {
-      entries.push_back(
-          {std::string(scenes[i]), std::string(techniqueId(t.technique)), t.filtered.rmse});
+std::vector<AccuracyConfiguration> accuracyConfigurations() {
+  // Each extra row on a scene where its setting matters: minification's far posts for the mip
+  // chain and footprints, backyard's soft penumbrae for the blur kernel, street's depth range for
+  // cascades, contact's silhouettes for MSAA.
+  return {{"default", ""},         {"trilinear", "minification"}, {"anisotropic", "minification"},
+          {"sat", "minification"}, {"gaussian", "backyard"},      {"cascades", "street"},
+          {"msaa", "contact"}};
+}
+
+ComparisonRequest accuracyRequest(const AccuracyConfiguration& configuration,
+                                  std::string_view scene, const gl::Renderer& renderer) {
+  ComparisonRequest r = accuracyRequest(scene);
+  gl::RenderSettings& s = r.settings;
+  if (configuration.name == "trilinear") s.filter = FilterMode::Trilinear;
+  if (configuration.name == "anisotropic") s.filter = FilterMode::Anisotropic;
+  if (configuration.name == "sat") s.filter = FilterMode::SummedArea;
+  if (configuration.name == "gaussian") s.blur = {BlurKernel::Gaussian, 2, 1.0f};
+  if (configuration.name == "cascades") s.cascades.count = 3;
+  if (configuration.name == "msaa") s.msaaSamples = 4;
+  std::vector<Technique> accepted;
+  for (Technique t : r.techniques) {
+    gl::RenderSettings one = s;
+    one.technique = t;
+    try {
+      renderer.validate(one);
+      accepted.push_back(t);
+    } catch (const Error&) {
+      // e.g. the summed-area filter with exponential channels
     }
   }
-  if (progress) progress(int(scenes.size()), int(scenes.size()), "measured");
+  r.techniques = accepted;
+  return r;
+}
+
+std::vector<AccuracyEntry> measureAccuracy(gl::Renderer& renderer, const Progress& progress) {
+  struct Run {
+    AccuracyConfiguration configuration;
+    std::string scene;
+  };
+  std::vector<Run> runs;
+  for (const AccuracyConfiguration& c : accuracyConfigurations()) {
+    if (!c.scene.empty()) {
+      runs.push_back({c, c.scene});
+      continue;
+    }
+    for (std::string_view scene : builtinSceneNames()) runs.push_back({c, std::string(scene)});
+  }
+  std::vector<AccuracyEntry> entries;
+  for (size_t i = 0; i < runs.size(); ++i) {
+    const Run& run = runs[i];
+    if (progress) {
+      progress(int(i), int(runs.size()), run.configuration.name + " " + run.scene);
+    }
+    const ComparisonResult result =
+        runComparison(accuracyRequest(run.configuration, run.scene, renderer), renderer);
+    for (const TechniqueResult& t : result.techniques) {
+      entries.push_back({run.configuration.name, run.scene, std::string(techniqueId(t.technique)),
+                         t.filtered.rmse});
+    }
+  }
+  if (progress) progress(int(runs.size()), int(runs.size()), "measured");
   return entries;
 }
 
@@ -46,10 +96,11 @@ std::vector<AccuracyCeiling> readAccuracyCeilings(const std::filesystem::path& c
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
-    if (line.empty() || line[0] == '#' || line.rfind("scene,", 0) == 0) continue;
+    if (line.empty() || line[0] == '#' || line.rfind("configuration,", 0) == 0) continue;
     std::istringstream row(line);
     AccuracyCeiling c;
     std::string measured, ceiling, extra;
+    std::getline(row, c.configuration, ',');
     std::getline(row, c.scene, ',');
     std::getline(row, c.technique, ',');
     std::getline(row, measured, ',');
@@ -65,13 +116,15 @@ std::vector<AccuracyCeiling> readAccuracyCeilings(const std::filesystem::path& c
       }
     } catch (const std::exception&) {
       throw Error(csv.string() + ":" + std::to_string(number) +
-                  ": expected scene,technique,measured_rmse,ceiling_rmse with numbers, got '" +
+                  ": expected configuration,scene,technique,measured_rmse,ceiling_rmse with "
+                  "numbers, got '" +
                   line + "'");
     }
     for (const AccuracyCeiling& earlier : ceilings) {
-      if (earlier.scene == c.scene && earlier.technique == c.technique) {
+      if (earlier.configuration == c.configuration && earlier.scene == c.scene &&
+          earlier.technique == c.technique) {
         throw Error(csv.string() + ":" + std::to_string(number) + ": a second ceiling for " +
-                    c.scene + " " + c.technique);
+                    c.configuration + " " + c.scene + " " + c.technique);
       }
     }
     ceilings.push_back(c);
@@ -83,7 +136,8 @@ std::vector<AccuracyCeiling> ceilingsFor(const std::vector<AccuracyEntry>& measu
                                          double floor) {
   std::vector<AccuracyCeiling> ceilings;
   for (const AccuracyEntry& e : measured) {
-    ceilings.push_back({e.scene, e.technique, e.rmse, std::max(factor * e.rmse, floor)});
+    ceilings.push_back(
+        {e.configuration, e.scene, e.technique, e.rmse, std::max(factor * e.rmse, floor)});
   }
   return ceilings;
 }
@@ -91,9 +145,10 @@ std::vector<AccuracyCeiling> ceilingsFor(const std::vector<AccuracyEntry>& measu
 void writeAccuracyCeilings(const std::vector<AccuracyCeiling>& ceilings,
                            const std::filesystem::path& csv) {
   std::ofstream out(csv);
-  out << "scene,technique,measured_rmse,ceiling_rmse\n" << std::setprecision(4);
+  out << "configuration,scene,technique,measured_rmse,ceiling_rmse\n" << std::setprecision(4);
   for (const AccuracyCeiling& c : ceilings) {
-    out << c.scene << "," << c.technique << "," << c.measured << "," << c.ceiling << "\n";
+    out << c.configuration << "," << c.scene << "," << c.technique << "," << c.measured << ","
+        << c.ceiling << "\n";
   }
   if (!out) throw Error("cannot write the accuracy ceilings " + csv.string());
 }
@@ -101,16 +156,18 @@ void writeAccuracyCeilings(const std::vector<AccuracyCeiling>& ceilings,
 std::vector<std::string> checkAccuracy(const std::vector<AccuracyEntry>& measured,
                                        const std::vector<AccuracyCeiling>& ceilings) {
   std::vector<std::string> problems;
-  auto find = [&](const std::string& scene, const std::string& technique) {
+  auto find = [&](const AccuracyEntry& e) {
     for (const AccuracyCeiling& c : ceilings) {
-      if (c.scene == scene && c.technique == technique) return &c;
+      if (c.configuration == e.configuration && c.scene == e.scene && c.technique == e.technique)
+        return &c;
     }
     return static_cast<const AccuracyCeiling*>(nullptr);
   };
   for (const AccuracyEntry& e : measured) {
-    const AccuracyCeiling* c = find(e.scene, e.technique);
+    const AccuracyCeiling* c = find(e);
     std::ostringstream text;
-    text << std::setprecision(4) << e.scene << " " << e.technique << ": RMSE " << e.rmse;
+    text << std::setprecision(4) << e.configuration << " " << e.scene << " " << e.technique
+         << ": RMSE " << e.rmse;
     if (c == nullptr) {
       problems.push_back(text.str() + " has no ceiling in the table");
     } else if (!(e.rmse <= c->ceiling)) {
@@ -122,9 +179,11 @@ std::vector<std::string> checkAccuracy(const std::vector<AccuracyEntry>& measure
   for (const AccuracyCeiling& c : ceilings) {
     bool found = false;
     for (const AccuracyEntry& e : measured)
-      found |= e.scene == c.scene && e.technique == c.technique;
+      found |=
+          e.configuration == c.configuration && e.scene == c.scene && e.technique == c.technique;
     if (!found)
-      problems.push_back(c.scene + " " + c.technique + ": a ceiling without a measurement");
+      problems.push_back(c.configuration + " " + c.scene + " " + c.technique +
+                         ": a ceiling without a measurement");
   }
   return problems;
 }

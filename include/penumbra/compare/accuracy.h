@@ -17,23 +17,41 @@ namespace penumbra::compare {
 // defaults scaled down for llvmpipe.
 ComparisonRequest accuracyRequest(std::string_view scene);
 
+// A setting the gate checks beyond its defaults, on one scene: "default" runs every built-in
+// scene; "trilinear", "anisotropic", "sat" (summed-area tables, the techniques that allow them),
+// "gaussian" (5-tap Gaussian blur, sigma 1), "cascades" (three) and "msaa" (4 samples) run one
+// scene each, at the default's sizes.
+struct AccuracyConfiguration {
+  std::string name;
+  std::string scene;  // empty: every built-in scene
+};
+std::vector<AccuracyConfiguration> accuracyConfigurations();
+// The comparison of `scene` under a configuration; its techniques are those the renderer
+// accepts under it.
+ComparisonRequest accuracyRequest(const AccuracyConfiguration& configuration,
+                                  std::string_view scene, const gl::Renderer& renderer);
+
 struct AccuracyEntry {
+  std::string configuration;  // AccuracyConfiguration::name
   std::string scene;
   std::string technique;  // technique id
   double rmse = 0.0;      // against the filtered reference, frame 0
 };
 
-// Measures the matrix over every built-in scene (scenes x techniques, scene order first).
+// Measures every configuration: the default over every built-in scene (scenes x techniques,
+// scene order first), then each other configuration's scene.
 std::vector<AccuracyEntry> measureAccuracy(gl::Renderer& renderer, const Progress& progress = {});
 
 struct AccuracyCeiling {
+  std::string configuration;
   std::string scene;
   std::string technique;
   double measured = 0.0;  // when the ceiling was set (docs/results/accuracy.md names the machine)
   double ceiling = 0.0;
 };
 
-// The ceilings table: CSV with a header `scene,technique,measured_rmse,ceiling_rmse`; throws
+// The ceilings table: CSV with a header
+// `configuration,scene,technique,measured_rmse,ceiling_rmse`; throws
 // Error naming the file and line of a malformed row.
 std::vector<AccuracyCeiling> readAccuracyCeilings(const std::filesystem::path& csv);
 // Ceilings at `factor` times each measured RMSE, never below `floor` (for the exact ones).
