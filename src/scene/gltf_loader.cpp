@@ -15,6 +15,8 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <map>
 #include <set>
+#include <span>
+#include <sstream>
 
 #include "file_scene.h"
 #include "gltf_json_types.h"
@@ -142,6 +144,8 @@ class Importer {
   std::vector<glm::vec3> readVec3(int accessor, const std::string& what) const;
   std::vector<glm::vec2> readTexcoords(int accessor, const std::string& what) const;
   std::vector<uint32_t> readIndices(int accessor, const std::string& what) const;
+  void refuseNonFinite(std::span<const float> element, int accessor, size_t index,
+                       const std::string& what) const;
 
   // A node of the scene's trees and where it sits in the world.
   struct NodeInstance {
@@ -172,11 +176,30 @@ class Importer {
   Scene scene_;
   std::vector<int> parentCount_;
   std::map<int, int> textureOfImage_;
+  std::set<int> blendWarned_;  // materials
   std::optional<glm::mat4> cameraWorld_;
   int cameraIndex_ = -1;
   std::optional<glm::mat4> lightWorld_;
   int lightIndex_ = -1;
 };
+
+// Doubles from here up (FLT_MAX plus half its last place) round to infinity as float.
+constexpr double kFloatOverflow = 0x1.ffffffp+127;
+
+bool allWithinFloat(const std::vector<double>& values) {
+  for (double v : values) {
+    if (!(std::abs(v) < kFloatOverflow)) return false;
+  }
+  return true;
+}
+
+// A number as a file would write it ("1e+39", "0.25"), NaN without a sign.
+std::string shortText(double v) {
+  if (std::isnan(v)) return "nan";
+  std::ostringstream text;
+  text << v;
+  return text.str();
+}
 
 size_t componentSize(int type) {
   switch (type) {
@@ -315,8 +338,22 @@ std::vector<glm::vec3> Importer::readVec3(int accessor, const std::string& what)
   for (size_t i = 0; i < v.count; ++i) {
     const uint8_t* p = v.data + i * v.stride;
     out[i] = glm::vec3(load<float>(p), load<float>(p + 4), load<float>(p + 8));
+    refuseNonFinite(std::span<const float>(&out[i].x, 3), accessor, i, what);
   }
   return out;
+}
+
+// glTF 2.0 §3.6.2.4 allows no NaN or infinity in an accessor (glTF-Validator's
+// ACCESSOR_INVALID_FLOAT): refused with the accessor, the element and its values.
+void Importer::refuseNonFinite(std::span<const float> element, int accessor, size_t index,
+                               const std::string& what) const {
+  for (float c : element) {
+    if (std::isfinite(c)) continue;
+    std::string values;
+    for (float e : element) values += (values.empty() ? "" : ", ") + shortText(e);
+    fail(what + " (accessor " + std::to_string(accessor) + ") element " + std::to_string(index) +
+         " is not finite (" + values + ")");
+  }
 }
 
 std::vector<glm::vec2> Importer::readTexcoords(int accessor, const std::string& what) const {
@@ -335,6 +372,7 @@ std::vector<glm::vec2> Importer::readTexcoords(int accessor, const std::string& 
     const uint8_t* p = v.data + i * v.stride;
     out[i] = glm::vec2(component(p, v.componentType, v.normalized, 0),
                        component(p, v.componentType, v.normalized, 1));
+    refuseNonFinite(std::span<const float>(&out[i].x, 2), accessor, i, what);
   }
   return out;
 }
@@ -579,8 +617,17 @@ void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where,
   const tinygltf::Material& m = model_.materials[size_t(material)];
   const std::string what = "material " + std::to_string(material);
   const std::vector<double>& factor = m.pbrMetallicRoughness.baseColorFactor;
-  if (factor.size() != 4 || !allFinite(factor)) {
-    fail(what + "'s baseColorFactor must be 4 finite numbers");
+  // JSON holds no NaN or infinity, but doubles beyond float's range become infinite here.
+  if (factor.size() != 4 || !allWithinFloat(factor)) {
+    std::string values;
+    for (double f : factor) values += (values.empty() ? "" : ", ") + shortText(f);
+    fail(what + "'s baseColorFactor must be 4 numbers within single precision (it is [" + values +
+         "])");
+  }
+  // Refused whatever the mode (glTF ignores the cutoff outside MASK): a value no float holds is a
+  // broken file.
+  if (!allWithinFloat({m.alphaCutoff})) {
+    fail(what + "'s alphaCutoff " + shortText(m.alphaCutoff) + " is beyond single precision");
   }
   mesh.albedo =
       glm::clamp(glm::vec3(float(factor[0]), float(factor[1]), float(factor[2])), 0.0f, 1.0f);
@@ -595,6 +642,12 @@ void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where,
     mesh.alphaCutoff = float(m.alphaCutoff);
   } else if (m.alphaMode == "BLEND") {
     mesh.alphaMode = AlphaMode::Blend;
+    // Once per material, as OBJ's `d` below 1: each names its material and its alpha.
+    if (blendWarned_.insert(material).second) {
+      warn(what + (m.name.empty() ? "" : " ('" + m.name + "')") +
+           " is BLEND (baseColorFactor alpha " + std::to_string(mesh.opacity) +
+           "): drawn as a mask at 0.5");
+    }
   } else if (m.alphaMode == "OPAQUE" || m.alphaMode.empty()) {
     mesh.alphaMode = AlphaMode::Opaque;
   } else {

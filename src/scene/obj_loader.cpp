@@ -1,5 +1,6 @@
-// OBJ import: tinyobjloader parses (polygons triangulated as fans), this file checks every index
-// and groups the faces by material into meshes, one vertex per distinct position/normal/texcoord.
+// OBJ import: tinyobjloader parses (polygons triangulated as fans), this file checks every number
+// and index and groups the faces by material into meshes, one vertex per distinct
+// position/normal/texcoord.
 #include "obj_loader.h"
 
 #include <tiny_obj_loader.h>
@@ -9,6 +10,7 @@
 #include <cstdlib>
 #include <map>
 #include <set>
+#include <span>
 #include <sstream>
 #include <string_view>
 #include <unordered_map>
@@ -23,12 +25,132 @@ namespace {
 
 namespace fs = std::filesystem;
 
+// Calls visit(lineNumber, keyword, tokens) for each line of an OBJ or MTL text as
+// tinyobjloader reads it: lines end at \n, \r or \r\n, and at a NUL (it reads each line as a C
+// string); the keyword is the first token, the tokens those after it, split at spaces and tabs.
+template <typename Visit>
+void forEachStatement(const std::string& text, Visit&& visit) {
+  size_t lineNumber = 0;
+  std::vector<std::string_view> tokens;
+  for (size_t start = 0; start < text.size();) {
+    const size_t end = std::min(text.find_first_of("\r\n", start), text.size());
+    ++lineNumber;
+    std::string_view line(text.data() + start, end - start);
+    start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
+    line = line.substr(0, line.find('\0'));
+    tokens.clear();
+    for (size_t at = 0;;) {
+      at = line.find_first_not_of(" \t", at);
+      if (at == std::string_view::npos) break;
+      const size_t tokenEnd = std::min(line.find_first_of(" \t", at), line.size());
+      tokens.push_back(line.substr(at, tokenEnd - at));
+      at = tokenEnd;
+    }
+    if (!tokens.empty()) {
+      visit(lineNumber, tokens.front(), std::span<const std::string_view>(tokens).subspan(1));
+    }
+  }
+}
+
+// tinyobjloader (Debian's 2.0.0~rc) converts a skin-weight line's joint ids (`vw VERTEX JOINT
+// WEIGHT ...`, its extension) to int unchecked (tiny_obj_loader.h:2669): a joint beyond int's
+// range is undefined behaviour (the fuzzer's "vw 0 6000000000"). Penumbra reads no skin weights;
+// such a line is refused here, before tinyobjloader sees it (a number is the longest numeric
+// prefix of its token, which strtod reads the same or larger).
+void refuseSkinJoint(size_t lineNumber, std::span<const std::string_view> tokens,
+                     const std::string& name) {
+  // The vertex, then joint and weight pairs.
+  for (size_t i = 1; i < tokens.size(); i += 2) {
+    const std::string token(tokens[i]);
+    const double joint = std::strtod(token.c_str(), nullptr);
+    if (!(joint >= -2147483648.0 && joint < 2147483648.0)) {
+      throw Error(name + ": line " + std::to_string(lineNumber) + ": skin weight (vw) joint '" +
+                  token + "' is outside int's range [-2147483648, 2147483647]");
+    }
+  }
+}
+
+// The statements whose arguments are all numbers, as tinyobjloader reads them: OBJ's positions
+// (with an optional w or colour), texture coordinates and normals; MTL's colours and factors.
+bool isObjNumberStatement(std::string_view keyword) {
+  return keyword == "v" || keyword == "vt" || keyword == "vn";
+}
+bool isMtlNumberStatement(std::string_view keyword) {
+  for (std::string_view k : {"Ka", "Kd", "Ks", "Kt", "Tf", "Ke", "Ni", "Ns", "d", "Tr", "Pr", "Pm",
+                             "Ps", "Pc", "Pcr", "aniso", "anisor"}) {
+    if (keyword == k) return true;
+  }
+  return false;
+}
+
+// Doubles from here up (FLT_MAX plus half its last place) round to infinity as float.
+constexpr double kFloatOverflow = 0x1.ffffffp+127;
+
+// tinyobjloader reads numbers with a parser of its own that takes no "nan" or "inf" and stores 0
+// for a token it cannot read: `v nan 0 0` became a vertex at 0 and `d nan` a material that
+// vanished, while 1e39 became infinity (as float) and was refused. So the statements' tokens are
+// read here with strtod, which reads "nan", "inf" and "infinity" as what they say, before
+// tinyobjloader sees them; a token strtod reads as a non-finite number, or as one beyond float, is
+// refused with its line. (A token that is no number at all, "#" starting a comment, stays
+// tinyobjloader's to read.)
+void refuseNonFiniteNumbers(size_t lineNumber, std::string_view keyword,
+                            std::span<const std::string_view> tokens, const std::string& where) {
+  for (std::string_view t : tokens) {
+    if (t.starts_with('#')) return;
+    const std::string token(t);
+    char* end = nullptr;
+    const double value = std::strtod(token.c_str(), &end);
+    if (end == token.c_str() || std::abs(value) < kFloatOverflow) continue;
+    throw Error(where + ": line " + std::to_string(lineNumber) + ": " + std::string(keyword) +
+                " value '" + token + "' is " +
+                (std::isfinite(value) ? "beyond single precision (at most 3.4e38 in magnitude)"
+                                      : "not a finite number"));
+  }
+}
+
+// The line of each v, vt and vn statement, in order: tinyobjloader stores one element per
+// statement, so a value it reads as non-finite is named by its line.
+struct ObjNumberLines {
+  std::vector<size_t> v, vt, vn;
+};
+
+// What is refused before tinyobjloader parses the OBJ text (above).
+ObjNumberLines checkObjStatements(const std::string& objText, const std::string& name) {
+  ObjNumberLines lines;
+  forEachStatement(objText, [&](size_t lineNumber, std::string_view keyword,
+                                std::span<const std::string_view> tokens) {
+    if (keyword == "vw") refuseSkinJoint(lineNumber, tokens, name);
+    if (!isObjNumberStatement(keyword)) return;
+    refuseNonFiniteNumbers(lineNumber, keyword, tokens, name);
+    (keyword == "v" ? lines.v : keyword == "vt" ? lines.vt : lines.vn).push_back(lineNumber);
+  });
+  return lines;
+}
+
+// tinyobjloader's own arithmetic can still make a non-finite value of a number strtod reads as
+// finite ("0e500": 0 × 5^500, an infinity, is NaN): what it stored is checked too.
+void refuseNonFiniteValues(const std::vector<tinyobj::real_t>& values, size_t perStatement,
+                           const std::vector<size_t>& lines, const char* keyword,
+                           const std::string& name) {
+  for (size_t i = 0; i < values.size(); ++i) {
+    if (std::isfinite(values[i])) continue;
+    const size_t statement = i / perStatement;
+    throw Error(name + ": " +
+                (statement < lines.size() ? "line " + std::to_string(lines[statement])
+                                          : "statement " + std::to_string(statement + 1)) +
+                ": " + keyword + " value " + std::to_string(i % perStatement + 1) +
+                " is not finite as tinyobjloader reads it (" +
+                (std::isnan(values[i]) ? "nan" : std::to_string(values[i])) + ")");
+  }
+}
+
 // Material libraries through the caller's file reader (tinyobjloader's own reads the disk). A
 // refusal (not a regular file, over the budget) is kept and thrown once tinyobjloader returns:
 // nothing is thrown through its code.
 class LibraryReader : public tinyobj::MaterialReader {
  public:
-  explicit LibraryReader(const ObjFileReader& read) : read_(read) {}
+  LibraryReader(const ObjFileReader& read, const std::string& objName)
+      : read_(read), objName_(objName) {}
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* names, std::string* warn, std::string*) override {
     std::optional<std::vector<uint8_t>> bytes;
@@ -42,15 +164,44 @@ class LibraryReader : public tinyobj::MaterialReader {
       if (warn) *warn += "material library '" + name + "' cannot be read\n";
       return false;
     }
-    std::istringstream in(std::string(bytes->begin(), bytes->end()));
+    const std::string text(bytes->begin(), bytes->end());
+    const std::string where = objName_ + ": material library '" + name + "'";
+    const size_t first = materials->size();
+    try {
+      forEachStatement(text, [&](size_t lineNumber, std::string_view keyword,
+                                 std::span<const std::string_view> tokens) {
+        if (isMtlNumberStatement(keyword))
+          refuseNonFiniteNumbers(lineNumber, keyword, tokens, where);
+      });
+    } catch (const Error& e) {
+      if (refusal.empty()) refusal = e.what();
+      return false;
+    }
+    std::istringstream in(text);
     tinyobj::LoadMtl(names, materials, &in, warn, nullptr);
-    return true;
+    // What penumbra reads of a material, as tinyobjloader's arithmetic made it (see
+    // refuseNonFiniteValues).
+    for (size_t m = first; m < materials->size() && refusal.empty(); ++m) {
+      const tinyobj::material_t& material = (*materials)[m];
+      const auto refuse = [&](const char* what, double value) {
+        if (!refusal.empty()) return;
+        refusal = where + ": material '" + material.name + "': " + what +
+                  " is not finite as tinyobjloader reads it (" +
+                  (std::isnan(value) ? "nan" : std::to_string(value)) + ")";
+      };
+      for (double c : material.diffuse) {
+        if (!std::isfinite(c)) refuse("Kd", c);
+      }
+      if (!std::isfinite(material.dissolve)) refuse("d (or Tr)", material.dissolve);
+    }
+    return refusal.empty();
   }
 
   std::string refusal;
 
  private:
   const ObjFileReader& read_;
+  const std::string& objName_;
 };
 
 // map_Kd's colour with map_d's luminance as alpha (the .mtl convention for cut-outs), map_d
@@ -182,41 +333,6 @@ class ObjTextures {
   std::map<std::string, std::optional<TextureImage>> decoded_;
 };
 
-// tinyobjloader (Debian's 2.0.0~rc) converts a skin-weight line's joint ids (`vw VERTEX JOINT
-// WEIGHT ...`, its extension) to int unchecked (tiny_obj_loader.h:2669): a joint beyond int's
-// range is undefined behaviour (the fuzzer's "vw 0 6000000000"). Penumbra reads no skin weights;
-// such a line is refused here, before tinyobjloader sees it, tokenised as tinyobjloader does
-// (lines end at \n, \r or \r\n; tokens at spaces, tabs and \r; a number is the longest
-// numeric prefix of its token, which strtod reads the same or larger).
-void refuseSkinJointsBeyondInt(const std::string& objText, const std::string& name) {
-  size_t lineNumber = 0;
-  for (size_t start = 0; start < objText.size();) {
-    const size_t end = std::min(objText.find_first_of("\r\n", start), objText.size());
-    ++lineNumber;
-    const std::string_view line(objText.data() + start, end - start);
-    start = end + (objText.compare(end, 2, "\r\n") == 0 ? 2 : 1);
-    const size_t first = line.find_first_not_of(" \t");
-    if (first == std::string_view::npos || line.size() < first + 3 ||
-        line.compare(first, 2, "vw") != 0 || (line[first + 2] != ' ' && line[first + 2] != '\t'))
-      continue;
-    // Tokens after "vw": the vertex, then joint and weight pairs.
-    int index = 0;
-    for (size_t at = first + 2;;) {
-      at = line.find_first_not_of(" \t", at);
-      if (at == std::string_view::npos) break;
-      const size_t tokenEnd = std::min(line.find_first_of(" \t", at), line.size());
-      const std::string token(line.substr(at, tokenEnd - at));
-      at = tokenEnd;
-      if (index++ % 2 != 1) continue;  // the vertex and the weights
-      const double joint = std::strtod(token.c_str(), nullptr);
-      if (!(joint >= -2147483648.0 && joint < 2147483648.0)) {
-        throw Error(name + ": line " + std::to_string(lineNumber) + ": skin weight (vw) joint '" +
-                    token + "' is outside int's range [-2147483648, 2147483647]");
-      }
-    }
-  }
-}
-
 struct VertexKey {
   int position, normal, texcoord, face;  // face: -1, or the face of a flat-normal vertex
   bool operator==(const VertexKey&) const = default;
@@ -268,9 +384,9 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
   std::string warn, err;
-  refuseSkinJointsBeyondInt(objText, name);
+  const ObjNumberLines numberLines = checkObjStatements(objText, name);
   std::istringstream in(objText);
-  LibraryReader libraries(readFile);
+  LibraryReader libraries(readFile, name);
   const bool parsed =
       tinyobj::LoadObj(&attrib, &shapes, &materials, &warn, &err, &in, &libraries, true, false);
   if (!libraries.refusal.empty()) throw Error(libraries.refusal);
@@ -278,6 +394,9 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
     throw Error(name +
                 ": not a valid OBJ file: " + (err.empty() ? "tinyobjloader gave no reason" : err));
   }
+  refuseNonFiniteValues(attrib.vertices, 3, numberLines.v, "v", name);
+  refuseNonFiniteValues(attrib.texcoords, 2, numberLines.vt, "vt", name);
+  refuseNonFiniteValues(attrib.normals, 3, numberLines.vn, "vn", name);
   Scene scene;
   std::istringstream warnings(warn);
   for (std::string line; std::getline(warnings, line);) {
@@ -296,13 +415,10 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
     Mesh mesh;
     if (material >= 0) {
       const tinyobj::material_t& m = materials[size_t(material)];
+      // Finite: LibraryReader refuses a material otherwise.
       mesh.albedo = glm::clamp(
           glm::vec3(float(m.diffuse[0]), float(m.diffuse[1]), float(m.diffuse[2])), 0.0f, 1.0f);
-      if (!std::isfinite(mesh.albedo.x + mesh.albedo.y + mesh.albedo.z)) {
-        throw Error(name + ": material '" + m.name +
-                    "' has a diffuse colour Kd that is not finite");
-      }
-      mesh.opacity = std::isfinite(m.dissolve) ? std::clamp(float(m.dissolve), 0.0f, 1.0f) : 1.0f;
+      mesh.opacity = std::clamp(float(m.dissolve), 0.0f, 1.0f);
       mesh.baseColorTexture = textures.textureOf(m, scene.textures);
       if (!m.alpha_texname.empty()) {
         mesh.alphaMode = AlphaMode::Mask;

@@ -102,7 +102,7 @@ INSTANTIATE_TEST_SUITE_P(
         BrokenFile{"IndexOutOfRange/AllIndicesOutOfRange.gltf", "index 65535 at position 0"},
         BrokenFile{"MissingBin/BoxTextured.gltf", "File not found : BoxTextured0.bin"},
         BrokenFile{"BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb",
-                   "a vertex position is not finite"},
+                   "POSITION (accessor 2) element 0 is not finite"},
         BrokenFile{"RecursiveNodes/RecursiveNodes.gltf",
                    "the node hierarchy is recursive: 0 -> 1 -> 0"},
         BrokenFile{"TestNoRootNode/NoScene.gltf", "the file has no scene"},
