@@ -162,4 +162,29 @@ bool filtersAfterTest(Technique technique) {
   return shaders::techniqueFiltersAfterTest(sharedId(technique));
 }
 
+bool prefiltersChannels(Technique technique) {
+  return !filtersAfterTest(technique) && technique != Technique::Hard;
+}
+
+void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params) {
+  if (!prefiltersChannels(technique)) return;
+  if (technique == Technique::Evsm2 || technique == Technique::Evsm4 ||
+      technique == Technique::Esm) {
+    // Fixed-point sums bound the error by the channel's largest deviation (R * 2^-32):
+    // exponential channels span up to e^+-84, so every small value would drown.
+    throw Error("the summed-area filter sums channels in fixed point relative to their range; " +
+                std::string(techniqueId(technique)) +
+                "'s exponential channels span too many orders of magnitude; use vsm, lvsm, csm or "
+                "msm with sat, or trilinear/anisotropic for this technique");
+  }
+  for (int c = 0; c < channelCount(technique, params); ++c) {
+    if (channelReduction(technique, params, c) != ChannelReduction::Mean) {
+      throw Error("the summed-area filter averages channels, but " +
+                  std::string(techniqueId(technique)) +
+                  " has min/max or log-space channels; use point, bilinear, trilinear or "
+                  "anisotropic");
+    }
+  }
+}
+
 }  // namespace penumbra

@@ -220,26 +220,9 @@ void Renderer::validate(const RenderSettings& settings, LightKind light) const {
   checkRange("anisotropy", settings.anisotropy, 1,
              std::min(kMaxAnisotropy, int(s.maxAnisotropy)));
   validateParams(settings.technique, settings.params);
-  if (settings.filter == FilterMode::SummedArea &&
-      (settings.technique == Technique::Evsm2 || settings.technique == Technique::Evsm4 ||
-       settings.technique == Technique::Esm)) {
-    // Fixed-point sums bound the error by the channel's largest deviation (R * 2^-32): exponential
-    // channels span up to e^+-84, so every small value would drown.
-    throw Error("the summed-area filter sums channels in fixed point relative to their range; " +
-                std::string(techniqueId(settings.technique)) +
-                "'s exponential channels span too many orders of magnitude; use vsm, lvsm, csm or "
-                "msm with sat, or trilinear/anisotropic for this technique");
-  }
   if (settings.filter == FilterMode::SummedArea) {
     const TechniqueParams& p = settings.params;
-    for (int c = 0; c < channelCount(settings.technique, p); ++c) {
-      if (channelReduction(settings.technique, p, c) != ChannelReduction::Mean) {
-        throw Error(
-            "the summed-area filter averages channels, but " +
-            std::string(techniqueId(settings.technique)) +
-            " has min/max or log-space channels; use point, bilinear, trilinear or anisotropic");
-      }
-    }
+    checkSummedAreaFilterable(settings.technique, p);
     // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
     const uint64_t entries = uint64_t(channelCount(settings.technique, p)) *
                              uint64_t(shadowMapLayers(settings, light)) *
