@@ -122,6 +122,10 @@ ObjNumberLines checkObjStatements(const std::string& objText, const std::string&
     if (keyword == "vw") refuseSkinJoint(lineNumber, tokens, name);
     if (!isObjNumberStatement(keyword)) return;
     refuseNonFiniteNumbers(lineNumber, keyword, tokens, name);
+    // tinyobjloader takes a statement only where a space or tab follows its keyword (a bare "v"
+    // is no vertex, "v " one at 0); std::string's text ends in a NUL, so the read is in bounds.
+    const char after = keyword.data()[keyword.size()];
+    if (after != ' ' && after != '\t') return;
     (keyword == "v" ? lines.v : keyword == "vt" ? lines.vt : lines.vn).push_back(lineNumber);
   });
   return lines;

@@ -75,6 +75,10 @@ INSTANTIATE_TEST_SUITE_P(
         // strtod reads 0e500 as 0; tinyobjloader as 0 x 5^500 = 0 x infinity, NaN.
         ObjValue{"v_tinyobjloader_nan", "v 0 0 0\nv 1 0 0\nv 0e500 1 0\nf 1 2 3\n", "",
                  "line 3: v value 1 is not finite as tinyobjloader reads it (nan)"},
+        // A bare "v" is no statement to tinyobjloader, "v " (a trailing space) one at 0: the
+        // line is still the right one.
+        ObjValue{"v_tinyobjloader_nan_after_bare_v", "v\nv \nv 1 0 0\nv 0e500 1 0\nf 1 2 3\n", "",
+                 "line 4: v value 1 is not finite as tinyobjloader reads it (nan)"},
         // `d nan` was 0: the material's geometry vanished, rc 0.
         ObjValue{"d_nan", "mtllib lib.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl a\nf 1 2 3\n",
                  "newmtl a\nKd 1 1 1\nd nan\n",
