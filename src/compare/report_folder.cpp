@@ -2,6 +2,7 @@
 #include "penumbra/compare/report_folder.h"
 
 #include <signal.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,9 +32,19 @@ std::string quoted(const fs::path& path) {
   return "'" + path.string() + "'";
 }
 
-// The marker's lines, or nothing when `folder` has no readable marker.
+// A marker lists a report's entries: far below this in any real report.
+constexpr std::uintmax_t kMaxMarkerBytes = 16u << 20;
+
+// The marker's lines, or nothing when `folder` has no marker that is a regular file of a sane
+// size (a FIFO or a link to a device planted there must not block or flood the read).
 std::vector<std::string> markerLines(const fs::path& folder) {
-  std::ifstream in(folder / kReportMarkerFile);
+  const fs::path marker = folder / kReportMarkerFile;
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(marker, ec);
+  if (ec || !fs::is_regular_file(status)) return {};
+  const std::uintmax_t bytes = fs::file_size(marker, ec);
+  if (ec || bytes > kMaxMarkerBytes) return {};
+  std::ifstream in(marker);
   std::vector<std::string> lines;
   for (std::string line; std::getline(in, line);) lines.push_back(line);
   return lines;
@@ -82,6 +93,16 @@ std::string unlistedEntry(const fs::path& folder) {
   return "";
 }
 
+// The first symbolic link below `folder` (relative), or "": penumbra writes none.
+std::string firstLinkBelow(const fs::path& folder) {
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(folder, ec);
+       !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (it->is_symlink(ec)) return it->path().lexically_relative(folder).generic_string();
+  }
+  return "";
+}
+
 std::string stagingMarker(long pid) {
   return std::string(kMarkerLine) + "\nstaging " + std::to_string(pid) + "\n";
 }
@@ -99,7 +120,8 @@ Existing classify(const fs::path& target) {
     throw Error("the output folder " + quoted(target) + " exists and is not a folder");
   }
   if (isPenumbraReport(target)) {
-    return unlistedEntry(target).empty() ? Existing::Report : Existing::Other;
+    return unlistedEntry(target).empty() && firstLinkBelow(target).empty() ? Existing::Report
+                                                                          : Existing::Other;
   }
   const bool empty = fs::is_empty(target, ec);
   if (ec) throw Error("cannot inspect the output folder " + quoted(target) + ": " + ec.message());
@@ -109,7 +131,8 @@ Existing classify(const fs::path& target) {
 void refuseOther(const fs::path& target) {
   if (isPenumbraReport(target)) {
     throw Error("the output folder " + quoted(target) +
-                " holds files penumbra did not write there (" + unlistedEntry(target) +
+                " holds files penumbra did not write there (" +
+                (unlistedEntry(target).empty() ? firstLinkBelow(target) : unlistedEntry(target)) +
                 "); move them out, choose another folder, or pass --force to replace it and "
                 "everything in it");
   }
@@ -157,9 +180,23 @@ long pidAfter(std::string_view entry, std::string_view prefix) {
   return pid;
 }
 
+// True when the path from `folder` to the entry `relative` passes through a symbolic link: the
+// entry would then be resolved outside the folder. (The entry itself may be a link: removing it
+// removes the link.) penumbra never writes links, so such an entry is not its own.
+bool passesThroughLink(const fs::path& folder, const fs::path& relative) {
+  fs::path at = folder;
+  for (auto part = relative.begin(); part != relative.end(); ++part) {
+    if (std::next(part) == relative.end()) return false;
+    at /= *part;
+    std::error_code ec;
+    if (fs::is_symlink(fs::symlink_status(at, ec))) return true;
+  }
+  return false;
+}
+
 // Removes from `folder` the entries its marker lists ("entry <relative path>"), deepest first,
 // folders only once empty, then the marker and the folder itself if nothing else is left: what
-// someone else put there stays.
+// someone else put there stays, and nothing is reached through a link.
 void removeListedEntries(const fs::path& folder, const std::vector<std::string>& markerText) {
   std::vector<std::string> listed;
   for (const std::string& line : markerText) {
@@ -175,6 +212,7 @@ void removeListedEntries(const fs::path& folder, const std::vector<std::string>&
   std::sort(listed.rbegin(), listed.rend());
   std::error_code ec;
   for (const std::string& entry : listed) {
+    if (passesThroughLink(folder, entry)) continue;
     const fs::path path = folder / entry;
     if (fs::is_directory(fs::symlink_status(path, ec))) {
       if (!fs::is_empty(path, ec)) continue;
@@ -205,6 +243,9 @@ void removeStaleFolders(const fs::path& target) {
     if (pid == 0 || pid == long(::getpid()) || !processIsGone(pid)) continue;
     std::error_code typeError;
     if (!entry.is_directory(typeError) || entry.is_symlink(typeError)) continue;
+    // Only this user's leftovers: in a shared folder (/tmp) another user's are not ours to clean.
+    struct stat owner {};
+    if (::lstat(entry.path().c_str(), &owner) != 0 || owner.st_uid != ::geteuid()) continue;
     const std::vector<std::string> lines = markerLines(entry.path());
     if (lines.empty() || lines[0] != kMarkerLine) continue;
     if (stagingPid != 0 && (lines.size() < 2 || lines[1] != "staging " + std::to_string(pid))) {
@@ -271,6 +312,9 @@ void ReportFolder::createStaging() {
   }
   staging_ = staging;
   try {
+    // Private while it is written: no one else can plant a link for a writer to follow.
+    fs::permissions(staging_, fs::perms::owner_all, ec);
+    if (ec) throw Error("cannot make " + quoted(staging_) + " private: " + ec.message());
     writeMarker(staging_, stagingMarker(pid));
     startOutputJournal(staging_, staging_ / kReportMarkerFile);
   } catch (const Error& e) {
@@ -282,6 +326,13 @@ void ReportFolder::createStaging() {
 void ReportFolder::commit() {
   if (staging_.empty()) throw Error("no staged output to move to " + quoted(target_));
   stopOutputJournal();
+  {
+    // The finished output gets the permissions the user's umask gives a new folder.
+    const mode_t mask = ::umask(0);
+    ::umask(mask);
+    std::error_code ec;
+    fs::permissions(staging_, fs::perms(0777 & ~mask), ec);
+  }
   writeMarker(staging_, finishedMarker(staging_));
   // The run took a while: check the target again.
   const Existing existing = classify(target_);

@@ -4,6 +4,7 @@
 #include "penumbra/compare/report_folder.h"
 
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -307,6 +308,66 @@ TEST(ReportFolder, RemovesOnlyTheEntriesADeadRunListed) {
   EXPECT_EQ(readFile(staging / "notes.txt"), "a user's");
   EXPECT_EQ(readFile(scratch.path() / "outside.txt"), "a user's");
   EXPECT_FALSE(fs::exists(aside));  // everything in it was listed: gone, marker and folder too
+}
+
+// A listed entry reached through a symbolic link would be removed outside the folder: a link in a
+// dead run's folder and one in an earlier report are never followed, and a report holding a link
+// is not penumbra's (it writes none). A marker naming another process keeps its folder.
+TEST(ReportFolder, NeverRemovesThroughALinkNorAnotherProcesssFolder) {
+  ScratchFolder scratch;
+  const long dead = deadPid();
+  const std::string marker = std::string(kReportMarkerFile);
+  writeFile(scratch.path() / "victim" / "secret.txt", "a user's");
+  const fs::path staging = scratch.path() / ("report.partial-" + std::to_string(dead));
+  writeFile(staging / marker, "penumbra report 1\nstaging " + std::to_string(dead) +
+                                  "\nentry link\nentry link/secret.txt\n");
+  fs::create_directory_symlink(scratch.path() / "victim", staging / "link");
+  const fs::path other = scratch.path() / ("report.partial-" + std::to_string(dead + 1000000));
+  writeFile(other / marker, "penumbra report 1\nstaging " + std::to_string(dead) +
+                                "\nentry index.html\n");
+  writeFile(other / "index.html", "another run's");
+  {
+    ReportFolder folder(scratch.path() / "report", false);
+    folder.createStaging();
+  }
+  EXPECT_EQ(readFile(scratch.path() / "victim" / "secret.txt"), "a user's");
+  EXPECT_FALSE(fs::exists(fs::symlink_status(staging / "link")));  // the link itself was listed
+  EXPECT_EQ(readFile(other / "index.html"), "another run's");
+
+  const fs::path earlier = scratch.path() / "earlier";
+  writeFile(earlier / marker, "penumbra report 1\nentry link\nentry link/secret.txt\n");
+  fs::create_directory_symlink(scratch.path() / "victim", earlier / "link");
+  EXPECT_NE(errorOf([&] { ReportFolder(earlier, false); }).find("did not write there (link)"),
+            std::string::npos);
+  EXPECT_EQ(readFile(scratch.path() / "victim" / "secret.txt"), "a user's");
+}
+
+// A marker that is a FIFO or a device is not read (it would block or never end).
+TEST(ReportFolder, AMarkerThatIsNotARegularFileIsNotPenumbras) {
+  ScratchFolder scratch;
+  fs::create_directories(scratch.path() / "out");
+  ASSERT_EQ(mkfifo((scratch.path() / "out" / std::string(kReportMarkerFile)).c_str(), 0600), 0);
+  EXPECT_NE(errorOf([&] { ReportFolder(scratch.path() / "out", false); })
+                .find("is not a penumbra report"),
+            std::string::npos);
+  fs::create_directories(scratch.path() / "dev");
+  fs::create_symlink("/dev/zero", scratch.path() / "dev" / std::string(kReportMarkerFile));
+  EXPECT_NE(errorOf([&] { ReportFolder(scratch.path() / "dev", false); })
+                .find("is not a penumbra report"),
+            std::string::npos);
+}
+
+// The staging folder is private while it is written.
+TEST(ReportFolder, StagingIsPrivateUntilCommitted) {
+  ScratchFolder scratch;
+  ReportFolder folder(scratch.path() / "report", false);
+  folder.createStaging();
+  EXPECT_EQ(fs::status(folder.staging()).permissions() & fs::perms::all, fs::perms::owner_all);
+  const mode_t mask = ::umask(0);
+  ::umask(mask);
+  folder.commit();
+  EXPECT_EQ(fs::status(scratch.path() / "report").permissions() & fs::perms::all,
+            fs::perms(0777 & ~mask));
 }
 
 // What this run writes is listed before it is written, so a SIGKILL at any point leaves a list
