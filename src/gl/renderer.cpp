@@ -122,9 +122,10 @@ bool proxyAccepts(const PlannedTexture& t) {
   return width != 0;
 }
 
-// Why these settings do not fit, or nothing when they do.
+// Why these settings do not fit beside the uploaded scene's `sceneBytes`, or nothing when they
+// do.
 std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& budget,
-                            int maxArrayLayers, LightKind light) {
+                            int maxArrayLayers, LightKind light, uint64_t sceneBytes) {
   for (const PlannedTexture& t : plannedTextures(settings, light)) {
     if (t.layers > maxArrayLayers) {
       return "its " + std::string(t.what) + " needs " + std::to_string(t.layers) +
@@ -136,7 +137,7 @@ std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& 
              " (GL proxy test)";
     }
   }
-  if (estimateMemory(settings, light).total() > budget.bytes)
+  if (estimateMemory(settings, light).total() + sceneBytes > budget.bytes)
     return "that is more than " + budget.source;
   return {};
 }
@@ -243,17 +244,22 @@ void Renderer::checkMemory(const RenderSettings& settings, LightKind light) cons
   const State& s = *state_;
   const MemoryBudget budget = memoryBudget(s);
   const int maxLayers = s.limits.maxArrayLayers;
-  const std::string shortfall = memoryShortfall(settings, budget, maxLayers, light);
+  // The uploaded scene's vertex, index and texture storage shares the budget with the render's.
+  const uint64_t sceneBytes = s.scene ? s.scene->bytes() : 0;
+  const std::string shortfall = memoryShortfall(settings, budget, maxLayers, light, sceneBytes);
   if (shortfall.empty()) return;
   // The largest shadow-map size that fits with everything else unchanged (all allocations grow
   // with it, so the search is monotone).
   auto fits = [&](int size) {
     RenderSettings smaller = settings;
     smaller.shadowMapSize = size;
-    return memoryShortfall(smaller, budget, maxLayers, light).empty();
+    return memoryShortfall(smaller, budget, maxLayers, light, sceneBytes).empty();
   };
   std::string advice = "no shadow-map size fits with this frame size";
-  if (fits(16)) {
+  if (sceneBytes >= budget.bytes) {
+    advice = "the scene's geometry and textures alone take " + gib(sceneBytes) + " (" +
+             std::to_string(sceneBytes) + " bytes)";
+  } else if (fits(16)) {
     int lo = 16, hi = settings.shadowMapSize;  // fits(lo), !fits(hi)
     while (hi - lo > 1) {
       const int mid = lo + (hi - lo) / 2;
@@ -261,14 +267,16 @@ void Renderer::checkMemory(const RenderSettings& settings, LightKind light) cons
     }
     advice = "the largest shadow-map size that fits is " + std::to_string(lo);
   }
-  const uint64_t need = estimateMemory(settings, light).total();
+  const uint64_t need = estimateMemory(settings, light).total() + sceneBytes;
   throw Error(std::string(techniqueId(settings.technique)) + " at shadow-map size " +
               std::to_string(settings.shadowMapSize) + " (frame " + std::to_string(settings.width) +
               "x" + std::to_string(settings.height) +
               (settings.msaaSamples > 1 ? ", " + std::to_string(settings.msaaSamples) + "x MSAA"
                                         : std::string()) +
-              ") needs " + gib(need) + " (" + std::to_string(need) + " bytes), and " + shortfall +
-              "; " + advice);
+              ") needs " + gib(need) + " (" + std::to_string(need) + " bytes" +
+              (sceneBytes > 0 ? ", the scene's " + std::to_string(sceneBytes) + " included"
+                              : std::string()) +
+              "), and " + shortfall + "; " + advice);
 }
 
 }  // namespace penumbra::gl

@@ -601,6 +601,54 @@ TEST_F(RendererTest, SettingsBeyondTheMemoryBudgetAreRefusedWithTheLargestSizeTh
   EXPECT_NO_THROW(renderer->validate(s));  // the cap is gone
 }
 
+TEST_F(RendererTest, TheUploadedScenesStorageCountsAgainstTheMemoryBudget) {
+  // A scene too large for the device beside the render's textures is refused by validate() after
+  // its upload and before any pass draws it (llvmpipe crashed drawing one within the textures'
+  // budget). Here a 256^2 grid (130,050 triangles) under a cap set around it: cheap.
+  constexpr int kSide = 256;
+  Mesh mesh;
+  for (int z = 0; z < kSide; ++z) {
+    for (int x = 0; x < kSide; ++x) {
+      mesh.vertices.push_back({glm::vec3(x, 0, z), glm::vec3(0, 1, 0), glm::vec2(0)});
+      if (x + 1 == kSide || z + 1 == kSide) continue;
+      const auto a = uint32_t(z * kSide + x), b = a + kSide;
+      mesh.indices.insert(mesh.indices.end(), {a, b, a + 1, a + 1, b, b + 1});
+    }
+  }
+  Scene scene;
+  scene.name = "grid";
+  scene.meshes.push_back(mesh);
+  // What the upload stores: one 32-byte vertex each, 32-bit indices, no texture.
+  const uint64_t sceneBytes = 65536 * 32 + 390150 * 4;
+  ASSERT_EQ(mesh.vertices.size(), 65536u);
+  ASSERT_EQ(mesh.indices.size(), 390150u);
+  ASSERT_EQ(sizeof(Vertex), 32u);
+  const gl::RenderSettings s = small(Technique::Vsm);
+  const uint64_t textures = gl::estimateMemory(s).total();
+  const auto refusal = [&] {
+    try {
+      renderer->validate(s);
+      return std::string("accepted");
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+  };
+  renderer->limitMemory(textures);
+  EXPECT_EQ(refusal(), "accepted");  // no scene yet
+  renderer->setScene(scene);
+  const std::string message = refusal();
+  EXPECT_NE(message.find("(" + std::to_string(textures + sceneBytes) + " bytes, the scene's " +
+                         std::to_string(sceneBytes) + " included)"),
+            std::string::npos)
+      << message;
+  renderer->limitMemory(textures + sceneBytes);
+  EXPECT_EQ(refusal(), "accepted");  // the budget is inclusive
+  renderer->limitMemory(sceneBytes);
+  EXPECT_NE(refusal().find("the scene's geometry and textures alone take"), std::string::npos)
+      << refusal();
+  renderer->limitMemory(0);
+}
+
 TEST_F(RendererTest, TexturesTheGlCannotCreateAreRefusedBeforeAllocation) {
   // The case: EVSM4 at 16384^2 is a 5.3 GiB texture, which llvmpipe cannot create (its
   // textures stay below 2 GiB); validate() asks the GL's proxy test instead of failing in
