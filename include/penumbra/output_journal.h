@@ -18,7 +18,7 @@ void stopOutputJournal() noexcept;
 // when the journal cannot be written: a file that could not be listed is not created.
 void recordOutput(const std::filesystem::path& path);
 
-// Records, then creates the folder `path` and any missing parents; throws Error.
+// Records, then creates the folder `path` (its parent must exist); throws Error.
 void createOutputDirectory(const std::filesystem::path& path);
 
 }  // namespace penumbra

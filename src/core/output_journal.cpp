@@ -70,7 +70,9 @@ void recordOutput(const fs::path& path) {
 void createOutputDirectory(const fs::path& path) {
   recordOutput(path);
   std::error_code ec;
-  fs::create_directories(path, ec);
+  // Not create_directories: a staging folder removed under a writer (an interrupt) must stay
+  // removed, not come back without its marker.
+  fs::create_directory(path, ec);
   if (ec) throw Error("cannot create " + path.string() + ": " + ec.message());
 }
 

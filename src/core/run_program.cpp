@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <csignal>
 #include <cstring>
 
 #include "penumbra/error.h"
@@ -32,14 +33,30 @@ ProgramResult runProgram(const std::vector<std::string>& args, const std::filesy
   }
   posix_spawn_file_actions_t actions;
   posix_spawn_file_actions_init(&actions);
+  // No input: a tool that reads its terminal (ffmpeg) would stop a background run on SIGTTIN.
+  posix_spawn_file_actions_addopen(&actions, 0, "/dev/null", O_RDONLY, 0);
   if (logFd >= 0) {
     posix_spawn_file_actions_adddup2(&actions, logFd, 1);
     posix_spawn_file_actions_adddup2(&actions, logFd, 2);
   } else {
     posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
   }
+  // The child starts with no signal blocked and SIGINT/SIGTERM at their defaults: the CLI blocks
+  // them in every thread for its interrupt watcher (tools/cli/interrupt_cleanup.h), and a child
+  // inheriting that mask would outlive a Ctrl-C.
+  posix_spawnattr_t attributes;
+  posix_spawnattr_init(&attributes);
+  sigset_t none, defaults;
+  sigemptyset(&none);
+  sigemptyset(&defaults);
+  sigaddset(&defaults, SIGINT);
+  sigaddset(&defaults, SIGTERM);
+  posix_spawnattr_setsigmask(&attributes, &none);
+  posix_spawnattr_setsigdefault(&attributes, &defaults);
+  posix_spawnattr_setflags(&attributes, POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETSIGDEF);
   pid_t pid = 0;
-  const int spawnError = posix_spawnp(&pid, argv[0], &actions, nullptr, argv.data(), environ);
+  const int spawnError = posix_spawnp(&pid, argv[0], &actions, &attributes, argv.data(), environ);
+  posix_spawnattr_destroy(&attributes);
   posix_spawn_file_actions_destroy(&actions);
   if (logFd >= 0) ::close(logFd);
 

@@ -80,6 +80,17 @@ int decodedFrames(const fs::path& video) {
   }
 }
 
+// ffmpeg reads its input as a printf pattern: a '%' in the output folder's name stays literal.
+TEST(RenderFrames, APercentInTheFolderNameIsEncodedLiterally) {
+  ScratchFolder scratch;
+  const RunResult run = runPenumbra(
+      {"render", "--scene", "planar", "--technique", "vsm", "--shadow-size", "128", "--width",
+       "64", "--height", "36", "--frames", "2", "--out", "seq%d%04d"},
+      scratch.path());
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  EXPECT_EQ(decodedFrames(scratch.path() / "seq%d%04d" / "planar_vsm.mp4"), 2);
+}
+
 TEST(RenderFrames, WritesEveryFrameAndAnMp4OfTheSameLength) {
   ScratchFolder scratch;
   const RunResult run = runPenumbra(

@@ -70,12 +70,16 @@ gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
   }
   files["frames"] = "frames/" + stem + "_%04d.png";
   files["video"] = stem + ".mp4";
-  // Absolute paths: ffmpeg reads a leading "name:" as a protocol (concat:, subfile:, ...).
+  // Absolute paths: ffmpeg reads a leading "name:" as a protocol (concat:, subfile:, ...). The
+  // input is a pattern: a '%' of the folder's or the scene's name is doubled to stay literal.
   const fs::path absoluteDir = fs::absolute(dir);
+  std::string pattern = (absoluteDir / "frames" / stem).string();
+  for (size_t at = pattern.find('%'); at != std::string::npos; at = pattern.find('%', at + 2)) {
+    pattern.insert(at, 1, '%');
+  }
   const std::vector<std::string> command{
-      "ffmpeg", "-y", "-loglevel", "error", "-framerate", "30", "-i",
-      (absoluteDir / "frames" / (stem + "_%04d.png")).string(), "-c:v", "libx264", "-pix_fmt",
-      "yuv420p",
+      "ffmpeg", "-nostdin", "-y", "-loglevel", "error", "-framerate", "30", "-i",
+      pattern + "_%04d.png", "-c:v", "libx264", "-pix_fmt", "yuv420p",
       // H.264 in yuv420p needs even sizes.
       "-vf", "pad=ceil(iw/2)*2:ceil(ih/2)*2", (absoluteDir / files.at("video")).string()};
   recordOutput(dir / files.at("video"));
