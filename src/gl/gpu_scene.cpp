@@ -8,6 +8,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/gl/scene_buffers.h"
 #include "shared/alpha_mask.h"
 
 namespace penumbra::gl {
@@ -62,6 +63,13 @@ GpuScene::GpuScene(const Scene& scene) {
   if (vertexCount > size_t(INT32_MAX)) {
     throw Error("scene '" + scene.name + "' has " + std::to_string(vertexCount) +
                 " vertices; the renderer draws at most 2^31 - 1");
+  }
+  // Before anything is copied or uploaded.
+  const auto* device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  if (const std::string why = sceneBufferShortfall(vertexCount, indexCount, device ? device : "");
+      !why.empty()) {
+    throw Error("scene '" + scene.name + "' cannot be drawn on this GL: " + why +
+                "; use a smaller scene or a GPU");
   }
   std::vector<Vertex> vertices;
   std::vector<uint32_t> indices;

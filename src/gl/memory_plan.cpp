@@ -1,4 +1,4 @@
-// The allocations of a render, from its settings.
+// The allocations of a render, from its settings, and the largest scene buffers a GL draws from.
 #include "memory_plan.h"
 
 #include <epoxy/gl.h>
@@ -7,7 +7,9 @@
 
 #include "gl_formats.h"
 #include "penumbra/channel_layout.h"
+#include "penumbra/gl/scene_buffers.h"
 #include "penumbra/point_light.h"
+#include "penumbra/scene.h"
 #include "shared/constants.h"
 
 namespace penumbra::gl {
@@ -175,6 +177,29 @@ std::vector<PlannedTexture> plannedTextures(const RenderSettings& s, LightKind k
     return a.bytes > b.bytes;
   });
   return t;
+}
+
+std::string sceneBufferShortfall(uint64_t vertices, uint64_t indices, std::string_view device) {
+  bool software = false;
+  for (std::string_view name : {"llvmpipe", "softpipe"}) {
+    software |= device.find(name) != std::string_view::npos;
+  }
+  if (!software) return {};
+  const struct {
+    const char* what;
+    uint64_t count;
+    uint64_t size;
+  } buffers[] = {{"vertices", vertices, sizeof(Vertex)}, {"indices", indices, sizeof(uint32_t)}};
+  for (const auto& b : buffers) {
+    const uint64_t bytes = b.count * b.size;
+    if (bytes <= kSoftwareRasterizerMaxBufferBytes) continue;
+    return "its " + std::to_string(b.count) + " " + b.what + " take " + std::to_string(bytes) +
+           " bytes in one buffer (" + std::to_string(b.size) + " each), and " +
+           std::string(device) + " draws from buffers of at most " +
+           std::to_string(kSoftwareRasterizerMaxBufferBytes) +
+           " bytes (signed 32-bit offsets; it crashes beyond)";
+  }
+  return {};
 }
 
 }  // namespace penumbra::gl

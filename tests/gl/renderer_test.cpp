@@ -12,6 +12,7 @@
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/gl/scene_buffers.h"
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
@@ -647,6 +648,23 @@ TEST_F(RendererTest, TheUploadedScenesStorageCountsAgainstTheMemoryBudget) {
   EXPECT_NE(refusal().find("the scene's geometry and textures alone take"), std::string::npos)
       << refusal();
   renderer->limitMemory(0);
+}
+
+// Checked on counts: a scene at the limit takes 2 GiB of host memory. (llvmpipe drew a
+// 2,147,200,000-byte vertex buffer and crashed on a 2,240,000,000-byte one.)
+TEST(SceneBuffers, SoftwareRasterizersRefuseABufferBeyondSignedThirtyTwoBitOffsets) {
+  const std::string llvmpipe = "llvmpipe (LLVM 15.0.6, 256 bits)";
+  // 2^26 vertices of 32 bytes and 2^29 indices of 4 are 2^31 bytes, one past the largest offset.
+  constexpr uint64_t kVertices = uint64_t(1) << 26, kIndices = uint64_t(1) << 29;
+  EXPECT_EQ(gl::sceneBufferShortfall(kVertices - 1, kIndices - 1, llvmpipe), "");
+  EXPECT_EQ(gl::sceneBufferShortfall(kVertices, 3, llvmpipe),
+            "its 67108864 vertices take 2147483648 bytes in one buffer (32 each), and " + llvmpipe +
+                " draws from buffers of at most 2147483647 bytes (signed 32-bit offsets; it "
+                "crashes beyond)");
+  EXPECT_NE(gl::sceneBufferShortfall(3, kIndices, llvmpipe).find("its 536870912 indices take "),
+            std::string::npos);
+  EXPECT_EQ(gl::sceneBufferShortfall(kVertices * 4, kIndices * 4, "NVIDIA H200/PCIe/SSE2"), "")
+      << "a GPU's driver takes larger buffers";
 }
 
 TEST_F(RendererTest, TexturesTheGlCannotCreateAreRefusedBeforeAllocation) {
