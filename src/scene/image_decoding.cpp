@@ -5,6 +5,7 @@
 #include <cstring>
 #include <vector>
 
+#include "stb_allocation_limit.h"
 #include "stb_image.h"
 
 namespace penumbra::scene {
@@ -72,10 +73,20 @@ std::optional<TextureImage> decodeImage(std::span<const uint8_t> original, const
           " per side, " + std::to_string(kMaxTextureTexels) + " texels)";
     return std::nullopt;
   }
+  // What a decode of the declared size can need in one allocation: stb_image's widest buffer is
+  // 16 bytes a texel (HDR's float RGBA before conversion; 16-bit PNG RGBA and its filter bytes
+  // are 8), plus 1 MiB for its tables and first inflate buffer.
+  const size_t texels = size_t(width) * size_t(height);
+  stbAllocationLimit = {texels * 16 + size_t(height) * 16 + (size_t(1) << 20), false};
   stbi_uc* pixels =
       stbi_load_from_memory(bytes.data(), int(bytes.size()), &width, &height, &channels, 4);
+  const bool bomb = stbAllocationLimit.exceeded;
+  stbAllocationLimit = {};
   if (pixels == nullptr) {
-    why = std::string("decoding failed (") + stbi_failure_reason() + ")";
+    why = bomb ? "decoding it needs more memory than its declared size " + std::to_string(width) +
+                     "x" + std::to_string(height) +
+                     " can (its compressed data expands beyond the image: a decompression bomb)"
+               : std::string("decoding failed (") + stbi_failure_reason() + ")";
     return std::nullopt;
   }
   TextureImage image;
