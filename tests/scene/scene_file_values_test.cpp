@@ -34,8 +34,6 @@ std::string refusal(const fs::path& file) {
   }
 }
 
-// --- OBJ ---------------------------------------------------------------------------------------
-
 struct ObjValue {
   const char* name;     // the test's
   const char* obj;      // the OBJ
@@ -115,8 +113,6 @@ TEST(UntrustedObj, ReadsFiniteNumbersAndCommentsAsBefore) {
   EXPECT_EQ(s.meshes[0].alphaMode, AlphaMode::Opaque);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
 }
-
-// --- glTF --------------------------------------------------------------------------------------
 
 // A quad with normals and texture coordinates drawn by `nodes` with material 0 (`material`, the
 // JSON object, textured by tex.png); `poison` writes `value` into component 0 of vertex 2 of
