@@ -93,12 +93,19 @@ inline void writeFile(const fs::path& path, const std::string& text) {
   std::ofstream(path) << text;
 }
 
-// Every regular file below `folder` with its contents, for "left untouched" checks.
+// Every entry below `folder`: files with their contents, folders and links marked as such (so a
+// new empty folder, a staging folder left behind or a link counts as a change), for "left
+// untouched" checks.
 inline std::vector<std::pair<std::string, std::string>> snapshot(const fs::path& folder) {
   std::vector<std::pair<std::string, std::string>> files;
   for (const auto& entry : fs::recursive_directory_iterator(folder)) {
-    if (entry.is_regular_file()) {
-      files.emplace_back(fs::relative(entry.path(), folder).string(), readFile(entry.path()));
+    const std::string name = fs::relative(entry.path(), folder).string();
+    if (entry.is_symlink()) {
+      files.emplace_back(name, "<link to " + fs::read_symlink(entry.path()).string() + ">");
+    } else if (entry.is_directory()) {
+      files.emplace_back(name, "<folder>");
+    } else {
+      files.emplace_back(name, readFile(entry.path()));
     }
   }
   std::sort(files.begin(), files.end());
