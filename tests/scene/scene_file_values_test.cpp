@@ -4,6 +4,8 @@
 // drawn as a mask with a warning. Every file is generated here, in the test's temporary folder.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include <cstring>
 #include <limits>
 
@@ -112,6 +114,30 @@ TEST(UntrustedObj, ReadsFiniteNumbersAndCommentsAsBefore) {
   EXPECT_EQ(s.meshes[0].albedo, glm::vec3(0.5f, 0.25f, 1.0f));
   EXPECT_EQ(s.meshes[0].alphaMode, AlphaMode::Opaque);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
+}
+
+// One polygon of many corners: tinyobjloader's ear clipping is quadratic (60,000 corners took
+// 16 s), so beyond the limit the face is refused by its line before it is triangulated; a polygon
+// at the limit (a circle of 4096 corners) loads as 4094 triangles.
+std::string circleFace(size_t corners) {
+  std::string text = "# a circle\n";
+  for (size_t i = 0; i < corners; ++i) {
+    const double angle = 6.283185307179586 * double(i) / double(corners);
+    text += "v " + std::to_string(std::cos(angle)) + " 0 " + std::to_string(std::sin(angle)) + "\n";
+  }
+  text += "f";
+  for (size_t i = 1; i <= corners; ++i) text += " " + std::to_string(i);
+  return text + "\n";
+}
+
+TEST(UntrustedObj, RefusesAPolygonOfMoreCornersThanItTriangulatesInTime) {
+  const fs::path dir = scratch("polygon");
+  const fs::path atLimit = testing::writeFile(dir / "limit.obj", circleFace(4096));
+  EXPECT_EQ(loadScene(atLimit.string()).triangleCount(), 4094u);
+  const fs::path beyond = testing::writeFile(dir / "beyond.obj", circleFace(100000));
+  EXPECT_EQ(refusal(beyond), beyond.string() +
+                                 ": line 100002: a face of 100000 corners; penumbra takes polygons "
+                                 "of at most 4096 (triangulating it would take quadratic time)");
 }
 
 // A quad with normals and texture coordinates drawn by `nodes` with material 0 (`material`, the
