@@ -163,7 +163,7 @@ bool filtersAfterTest(Technique technique) {
 }
 
 bool prefiltersChannels(Technique technique) {
-  return !filtersAfterTest(technique) && technique != Technique::Hard;
+  return shaders::techniquePrefiltersChannels(sharedId(technique));
 }
 
 void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params) {

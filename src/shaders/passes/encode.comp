@@ -23,7 +23,7 @@ const int layerCount = LAYER_COUNT;
 
 #if MSAA
 vec4 encodeSamples(ivec3 p, int texelLayer) {
-  bool depthOnly = technique == kTechniqueHard || technique == kTechniquePcf;
+  bool depthOnly = !techniquePrefiltersChannels(technique);
   int count = techniqueChannelCount(technique, params);
   ChannelAccumulator acc[4];
   for (int c = 0; c < 4; ++c) {

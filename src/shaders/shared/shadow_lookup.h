@@ -356,7 +356,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     uvDx = footprint.uvDx;
     uvDy = footprint.uvDy;
   }
-  if (technique == kTechniquePcf || technique == kTechniqueHard) {
+  if (!techniquePrefiltersChannels(technique)) {
     PcfParams pcf = p.pcf;
     pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
     pcf.sigma = worldConstantKernelSigma(pcf.sigma, ls.kernelScale);

@@ -22,6 +22,14 @@ PENUMBRA_INLINE bool techniqueFiltersAfterTest(int technique) {
   return technique == kTechniquePcf;
 }
 
+// True where depth is encoded into channels filtered before the test (blur, mips, summed-area
+// table): every technique but PCF (filters after the test) and the hard test (no filter), whose
+// one channel is the raw depth. The GPU passes, the lookup and the CPU (prefiltersChannels) ask
+// this.
+PENUMBRA_INLINE bool techniquePrefiltersChannels(int technique) {
+  return !techniqueFiltersAfterTest(technique) && technique != kTechniqueHard;
+}
+
 // A depth's walk over its channel texture's layers, in order: CSM's basis waves rotate from one
 // texture to the next (csmBasisWalk) instead of evaluating every term's sine and cosine.
 struct TexelEncoding {
@@ -169,7 +177,7 @@ PENUMBRA_INLINE ivec2 receiverChannelRange(int technique, TechniqueParams p, flo
 // the technique's filtered channels. For PCF and the hard test the channel is one depth texel.
 PENUMBRA_INLINE float reconstructVisibility(int technique, float channels[kMaxChannels],
                                             float receiverDepth, TechniqueParams p) {
-  if (technique == kTechniqueHard || technique == kTechniquePcf) {
+  if (!techniquePrefiltersChannels(technique)) {
     HardParams bias = technique == kTechniqueHard ? p.hard : p.pcf.bias;
     return hardVisibility(channels[0], biasedReceiverDepth(receiverDepth, 0.0f, bias));
   }
