@@ -179,7 +179,9 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
                            ": both references are the area-light reference (mean of hard tests "
                            "from " +
                            std::to_string(r.request.areaLightSamples) +
-                           " stratified points on the light's disk) in place of the filtered one"
+                           " stratified points on the light's " +
+                           (r.scene.light.kind == LightKind::Point ? "sphere" : "disk") +
+                           ") in place of the filtered one"
                      : std::string("none: the light has no size, so the references are the "
                                    "filtered reference and its supersampled ground truth")},
         {"msaa", msaaNote(r)},

@@ -399,13 +399,6 @@ std::vector<uint32_t> Importer::readIndices(int accessor, const std::string& wha
   return out;
 }
 
-bool allFinite(const std::vector<double>& values) {
-  for (double v : values) {
-    if (!std::isfinite(v)) return false;
-  }
-  return true;
-}
-
 glm::mat4 Importer::localTransform(int index) const {
   const tinygltf::Node& node = model_.nodes[size_t(index)];
   const std::string where = "node " + std::to_string(index);
@@ -414,7 +407,8 @@ glm::mat4 Importer::localTransform(int index) const {
       fail(where + "'s " + what + " has " + std::to_string(values.size()) + " numbers, not " +
            std::to_string(size));
     }
-    if (!allFinite(values)) fail(where + "'s " + what + " is not finite");
+    // Within float, not only finite as a double: 1e39 became an infinite transform.
+    if (!allWithinFloat(values)) fail(where + "'s " + what + " is not finite in single precision");
   };
   checkSize(node.matrix, 16, "matrix");
   checkSize(node.translation, 3, "translation");

@@ -199,6 +199,16 @@ fs::path writeQuad(const fs::path& dir, const QuadFile& q) {
           R"({"bufferView":3,"componentType":5126,"count":4,"type":"VEC2"}]})");
 }
 
+// A node transform that overflows float (1e39) became an infinite transform: refused by node.
+TEST(UntrustedGltf, RefusesANodeTransformBeyondSinglePrecision) {
+  QuadFile q;
+  q.nodes = R"([{"mesh":0,"translation":[1e39,0,0]}])";
+  const fs::path file = writeQuad(scratch("node_transform"), q);
+  EXPECT_NE(refusal(file).find("node 0's translation is not finite in single precision"),
+            std::string::npos)
+      << refusal(file);
+}
+
 TEST(UntrustedGltf, LoadsTheGeneratedQuad) {
   const Scene s = loadScene(writeQuad(scratch("quad"), {}).string());
   EXPECT_EQ(s.triangleCount(), 2u);
