@@ -18,7 +18,8 @@ void stopOutputJournal() noexcept;
 // when the journal cannot be written: a file that could not be listed is not created.
 void recordOutput(const std::filesystem::path& path);
 
-// Records, then creates the folder `path` (its parent must exist); throws Error.
+// Records, then creates the folder `path` and its missing parents; throws Error, also when the
+// journalled folder no longer exists (an interrupt removed it: it must not come back).
 void createOutputDirectory(const std::filesystem::path& path);
 
 }  // namespace penumbra

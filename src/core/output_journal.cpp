@@ -70,9 +70,17 @@ void recordOutput(const fs::path& path) {
 void createOutputDirectory(const fs::path& path) {
   recordOutput(path);
   std::error_code ec;
-  // Not create_directories: a staging folder removed under a writer (an interrupt) must stay
-  // removed, not come back without its marker.
-  fs::create_directory(path, ec);
+  {
+    // A staging folder removed under a writer (an interrupt) must stay removed, not come back
+    // without its marker: missing parents are created only inside a journalled folder that
+    // still exists.
+    Journal& j = journal();
+    std::lock_guard lock(j.mutex);
+    if (!j.folder.empty() && !fs::is_directory(j.folder, ec)) {
+      throw Error("cannot create " + path.string() + ": the output folder being written is gone");
+    }
+  }
+  fs::create_directories(path, ec);
   if (ec) throw Error("cannot create " + path.string() + ": " + ec.message());
 }
 
