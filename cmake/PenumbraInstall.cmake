@@ -2,7 +2,7 @@
 # find_package(penumbra) gives penumbra::core, penumbra::shaders and penumbra::gl.
 include(CMakePackageConfigHelpers)
 
-set(PENUMBRA_INSTALL_TARGETS penumbra_core penumbra_shaders)
+set(PENUMBRA_INSTALL_TARGETS penumbra_core penumbra_shaders penumbra_truth)
 if(TARGET penumbra_gl)
   list(APPEND PENUMBRA_INSTALL_TARGETS penumbra_gl penumbra_compare)
 endif()

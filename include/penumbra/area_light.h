@@ -22,6 +22,17 @@ void checkAreaLightSamples(int count);
 // the unit square mapped by Shirley and Chiu's concentric map ("A Low Distortion Map Between Disk
 // and Square", 1997), which preserves area, so each point stands for 1/count of the disk.
 std::vector<glm::vec2> stratifiedDiskSamples(int count);
+// A disk light (spot, or directional with a size) as a centre and two perpendicular axes of the
+// disk's radius: the point of unit-disk coordinates (x, y) is centre + x axisA + y axisB. Spot:
+// in world units around the light's position. Directional: at unit distance from the receiver,
+// towards the light (centre = -direction), so the way a sample's light travels is
+// -normalize(point). areaLightSample builds its samples from it.
+struct LightDisk {
+  glm::vec3 centre;
+  glm::vec3 axisA;
+  glm::vec3 axisB;
+};
+LightDisk lightDisk(const Light& light);
 
 // The point light at `diskPoint` (unit disk coordinates) of an area light, with size 0.
 // Spot: the disk of diameter size centred on the light, perpendicular to its axis; the sample

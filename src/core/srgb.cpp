@@ -13,4 +13,11 @@ float srgbFromLinear(float linear) {
   return 1.055f * std::pow(linear, 1.0f / 2.4f) - 0.055f;
 }
 
+float linearFromSrgb(float encoded) {
+  if (!(encoded > 0.0f)) return 0.0f;  // and NaN
+  if (encoded >= 1.0f) return 1.0f;
+  if (encoded <= 0.04045f) return encoded / 12.92f;
+  return std::pow((encoded + 0.055f) / 1.055f, 2.4f);
+}
+
 }  // namespace penumbra

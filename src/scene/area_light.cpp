@@ -36,6 +36,18 @@ glm::vec2 concentricDisk(glm::vec2 square) {
 
 }  // namespace
 
+LightDisk lightDisk(const Light& light) {
+  const float radius = 0.5f * light.size;
+  glm::vec3 a, b;
+  if (light.kind == LightKind::Spot) {
+    perpendicularBasis(glm::normalize(light.target - light.position), a, b);
+    return {light.position, radius * a, radius * b};
+  }
+  const glm::vec3 travel = glm::normalize(light.direction);
+  perpendicularBasis(travel, a, b);
+  return {-travel, radius * a, radius * b};
+}
+
 void checkAreaLightSamples(int count) {
   const int side = int(std::lround(std::sqrt(double(std::max(count, 0)))));
   if (count < kMinAreaLightSamples || count > kMaxAreaLightSamples || side * side != count) {
@@ -61,19 +73,14 @@ std::vector<glm::vec2> stratifiedDiskSamples(int count) {
 Light areaLightSample(const Light& light, glm::vec2 diskPoint) {
   Light sample = light;
   sample.size = 0.0f;
-  const float radius = 0.5f * light.size;
-  glm::vec3 a, b;
+  const LightDisk disk = lightDisk(light);
+  const glm::vec3 offset = diskPoint.x * disk.axisA + diskPoint.y * disk.axisB;
   if (light.kind == LightKind::Spot) {
-    perpendicularBasis(glm::normalize(light.target - light.position), a, b);
-    const glm::vec3 offset = radius * (diskPoint.x * a + diskPoint.y * b);
+    // The sample keeps the axis: its target moves with it.
     sample.position += offset;
     sample.target += offset;
   } else {
-    // The light travels along `direction`; a point of the disk at unit distance towards the
-    // light sends its light along -(towards + offset).
-    const glm::vec3 travel = glm::normalize(light.direction);
-    perpendicularBasis(travel, a, b);
-    sample.direction = glm::normalize(travel - radius * (diskPoint.x * a + diskPoint.y * b));
+    sample.direction = -glm::normalize(disk.centre + offset);
   }
   return sample;
 }

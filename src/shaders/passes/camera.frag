@@ -217,7 +217,7 @@ void main() {
   // derivatives), the test comes last.
   vec4 baseColor = materialBaseColor(baseColorTexcoord);
   float lightAmount = cosine;
-  if (lightPerspective != 0 && pointLight == 0) lightAmount *= smoothstep(spotCosine, spotCosine + 0.05f, dot(-toLight, spotAxis));
+  if (lightPerspective != 0 && pointLight == 0) lightAmount *= spotConeFalloff(dot(-toLight, spotAxis), spotCosine);
   vec3 surface = baseColor.rgb;
   if (cascadeOverlay != 0 && choice.index < cascadeCount) {
     vec3 tint = cascadeTint(cascade);
