@@ -214,6 +214,9 @@ Image CameraPass::readReceiverPlane() const {
 Image CameraPass::readUvDerivatives() const {
   return readTexture(derivatives_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
 }
+Image CameraPass::readDepth() const {
+  return readTexture(depth_.id(), 0, width_, height_, 1, 1, GL_DEPTH_COMPONENT, true);
+}
 Image CameraPass::readCascades() const {
   return readTexture(cascade_.id(), 0, width_, height_, 1, 2, GL_RG, true);
 }

@@ -64,6 +64,7 @@ class CameraPass {
   Image readReceiverPlane() const;
   Image readUvDerivatives() const;
   Image readCascades() const;
+  Image readDepth() const;  // window depth in [0,1], 1 where nothing is drawn
   uint64_t bytes() const;
 
   GpuTimer timer;

@@ -393,6 +393,10 @@ Image Renderer::readDepthMap(int cascade) const {
   return state_->light.readDepth(cascade);
 }
 
+Image Renderer::readCameraDepth() const {
+  return state_->camera.readDepth();
+}
+
 Image Renderer::readDepthSamples(int cascade) const {
   return state_->light.readDepthSamples(state_->programs, cascade);
 }

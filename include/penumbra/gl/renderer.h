@@ -206,6 +206,11 @@ class Renderer {
   // A cascade's light-pass linear depth (sample 0 under MSAA) of the last render, row 0 at the
   // bottom.
   Image readDepthMap(int cascade = 0) const;
+  // The last camera pass's depth buffer, row 0 at the top: window depth in [0,1] through the
+  // camera's projection (clipFromView), 1 where nothing is drawn — at the reference's
+  // supersampled size after a supersampled reference. The ray-traced truth's surfaces are
+  // matched against it (truth::matchRasterisedSurfaces).
+  Image readCameraDepth() const;
   // Every light-pass sample of a cascade's depth (MSAA), one image channel per sample.
   Image readDepthSamples(int cascade = 0) const;
   // A cascade's technique channels at a mip level after the last render (encoded and
