@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "penumbra/compare/error_regions.h"
@@ -11,6 +12,7 @@
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
 #include "shared/shadow_lookup.h"
+#include "truth_measurement.h"
 
 namespace penumbra::compare {
 namespace {
@@ -41,7 +43,42 @@ gl::RenderResult referenceFor(const ComparisonRequest& request, gl::Renderer& re
   return renderer.renderReference(request.settings, view, supersample);
 }
 
+// The coverage minus the pixels where the reference darkens a lit truth
+// (TruthResult::referenceTooDark): a technique lighter than the reference there is nearer the
+// truth, not leaking.
+Image whereLeaksCount(const Image& coverage, const std::optional<TruthResult>& truth) {
+  if (!truth) return coverage;
+  Image mask = coverage;
+  for (size_t i = 0; i < mask.data().size(); ++i) {
+    if (truth->referenceTooDark.data()[i] > 0.5f) mask.data()[i] = 0.0f;
+  }
+  return mask;
+}
+
+// Errors against a shadow-map reference over `coverage`, its leak columns over `leakCoverage`
+// (whereLeaksCount), the leak share still a share of every measured pixel.
+VisibilityErrors errorsAgainstReference(const Image& visibility, const Image& reference,
+                                        const Image& coverage, const Image& leakCoverage,
+                                        double tau) {
+  VisibilityErrors e = measureVisibilityErrors(visibility, reference, coverage, tau);
+  const VisibilityErrors leaks = measureVisibilityErrors(visibility, reference, leakCoverage, tau);
+  e.leakShare = e.pixels > 0 ? leaks.leakShare * double(leaks.pixels) / double(e.pixels) : 0.0;
+  e.leakMeanExcess = leaks.leakMeanExcess;
+  return e;
+}
+
 }  // namespace
+
+std::string_view truthKindName(TruthKind kind) {
+  return kind == TruthKind::RayTraced ? "raytraced" : "none";
+}
+
+TruthKind parseTruthKind(std::string_view name) {
+  for (TruthKind k : {TruthKind::RayTraced, TruthKind::None}) {
+    if (name == truthKindName(k)) return k;
+  }
+  throw Error("unknown truth '" + std::string(name) + "': valid truths are raytraced, none");
+}
 
 bool matchesPcfKernel(const ComparisonRequest& request, bool areaLight) {
   return request.matchPcfKernel && !areaLight;
@@ -88,6 +125,9 @@ void validateRequest(const ComparisonRequest& request, const gl::Renderer& rende
                 std::to_string(2 << int(std::floor(std::log2(double(size))))));
   }
   checkAreaLightSamples(request.areaLightSamples);
+  if (request.truth == TruthKind::RayTraced) {
+    truth::checkTrueShadowLightSamples(request.truthLightSamples);
+  }
   if (!(request.tau > 0.0 && request.tau < 1.0)) {
     throw Error("leak threshold tau " + std::to_string(request.tau) + " is out of range (0, 1)");
   }
@@ -127,8 +167,10 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   result.device = renderer.deviceDescription();
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
   const bool measuresShimmer = request.settings.cascades.count > 1;
+  const bool traces = request.truth == TruthKind::RayTraced;
   const int total = request.pathFrames * (1 + int(request.techniques.size()) *
-                                                  (measuresShimmer ? 3 : 1)) + 1;
+                                                  (measuresShimmer ? 3 : 1)) +
+                    1 + (traces ? 1 : 0);
   int done = 0;
   auto step = [&](const std::string& what) {
     if (progress) progress(done, total, what);
@@ -139,6 +181,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   std::vector<std::vector<Image>> masks(request.techniques.size());
   std::vector<Image> references;
   renderer.setScene(result.scene);  // uploaded once; each frame is a view of it
+  // The truth's BVH, built once from the geometry (the same whatever the shadow map).
+  std::unique_ptr<truth::RayScene> rays;
+  if (traces) rays = std::make_unique<truth::RayScene>(result.scene);
   for (size_t frame = 0; frame < path.size(); ++frame) {
     const gl::FrameView view{path[frame], result.scene.light};
     step("reference, frame " + std::to_string(frame + 1));
@@ -166,6 +211,14 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       step("supersampled ground truth");
       result.groundTruthVisibility =
           referenceFor(request, renderer, view, areaLight, request.supersample).visibility;
+      if (traces) {
+        step("ray-traced truth");
+        const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels
+        result.truth = measureTruth(*rays, request, result.scene, path[frame],
+                                    {result.coverage, depth, reference.visibility,
+                                     result.groundTruthVisibility});
+      }
+      const Image leakCoverage = whereLeaksCount(result.coverage, result.truth);
       result.techniques.resize(request.techniques.size());
       double worst = -1.0;
       for (size_t k = 0; k < request.techniques.size(); ++k) {
@@ -175,10 +228,16 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         TechniqueResult& out = result.techniques[k];
         out.technique = t;
         out.params = r.params;
-        out.filtered = measureVisibilityErrors(r.visibility, reference.visibility, result.coverage,
-                                               request.tau);
-        out.groundTruth = measureVisibilityErrors(r.visibility, result.groundTruthVisibility,
-                                                  result.coverage, request.tau);
+        out.filtered = errorsAgainstReference(r.visibility, reference.visibility,
+                                              result.coverage, leakCoverage, request.tau);
+        out.groundTruth = errorsAgainstReference(r.visibility, result.groundTruthVisibility,
+                                                 result.coverage, leakCoverage, request.tau);
+        if (result.truth) {
+          out.truth = measureVisibilityErrors(r.visibility, result.truth->visibility,
+                                              result.truth->coverage, request.tau);
+          out.truthError = signedVisibilityError(r.visibility, result.truth->visibility,
+                                                 result.truth->coverage);
+        }
         out.failureRatePercent = r.failureRatePercent;
         out.gpuTimes = r.gpuTimes;
         out.wallTimes = r.wallTimes;

@@ -43,6 +43,7 @@ std::vector<VariantResult> measureVariants(gl::Renderer& renderer, const Figures
     for (const char* p : v.params) applyParamAssignment(one, request.settings.params, p);
     request.supersample = 1;
     request.pathFrames = 2;
+    request.truth = TruthKind::None;  // the figures plot errors against the filtered reference
     const ComparisonResult r = runComparison(request, renderer);
     const TechniqueResult& t = r.techniques.at(0);
     const std::string base = figure + "_" + fileName(v.label);

@@ -148,6 +148,43 @@ std::string msaaNote(const ComparisonResult& r) {
          "single-sampled light pass, so the sub-texel depths MSAA adds count as error";
 }
 
+// A technique's error against the truth in its two parts (docs/reference.md): the sampling part,
+// the shadow-map reference's own distance to the truth (resolution, aliasing, the curved-receiver
+// artefact; the same for every technique), and the filtering part, the technique's distance to
+// the reference (its approximation of the step).
+ordered_json decompositionJson(const ComparisonResult& r, const TechniqueResult& t) {
+  if (!r.truth || !t.truth) return nullptr;
+  return {{"total_rmse_vs_truth", t.truth->rmse},
+          {"sampling_rmse_reference_vs_truth", r.truth->referenceVsTruth.rmse},
+          {"filtering_rmse_vs_reference", t.filtered.rmse}};
+}
+
+ordered_json truthJson(const ComparisonResult& r) {
+  if (!r.truth) return nullptr;
+  const TruthResult& t = *r.truth;
+  return {{"kind", "raytraced"},
+          {"ray_tracer", truth::embreeDescription()},
+          {"light_samples_per_sub_pixel", t.lightSamples},
+          {"sub_pixels_per_side", r.request.supersample},
+          {"pixels_measured", t.referenceVsTruth.pixels},
+          {"excluded_pixels", t.excludedPixels},
+          {"mismatched_sub_pixels", t.mismatchedSubPixels},
+          {"terminator_pixels", t.terminatorPixels},
+          {"reference_darker_than_lit_truth_pixels", t.referenceTooDarkPixels},
+          {"reference_vs_truth", errorsJson(t.referenceVsTruth)},
+          {"ground_truth_vs_truth", errorsJson(t.groundTruthVsTruth)},
+          {"triangles", t.triangles},
+          {"bvh_seconds", t.bvhSeconds},
+          {"trace_seconds", t.traceSeconds},
+          {"camera_rays", t.cameraRays},
+          {"shadow_rays", t.shadowRays}};
+}
+
+// The error the report ranks by: against the truth when there is one.
+double rankingRmse(const TechniqueResult& t) {
+  return t.truth ? t.truth->rmse : t.filtered.rmse;
+}
+
 void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   ordered_json techniques = ordered_json::array();
   for (const TechniqueResult& t : r.techniques) {
@@ -156,6 +193,8 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
                           {"params", paramsJson(t.technique, t.params)},
                           {"vs_filtered_reference", errorsJson(t.filtered)},
                           {"vs_ground_truth", errorsJson(t.groundTruth)},
+                          {"vs_truth", t.truth ? errorsJson(*t.truth) : ordered_json(nullptr)},
+                          {"error_decomposition", decompositionJson(r, t)},
                           {"temporal_flicker", t.flicker},
                           {"shimmer", shimmerJson(t)},
                           {"esm_failure_rate_percent", t.failureRatePercent},
@@ -169,8 +208,14 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
       {"scene_description", r.scene.description},
       {"device", r.device},
       {"settings", settingsJson(r.request)},
+      {"ranked_by", r.truth ? "rmse against the ray-traced truth (vs_truth)"
+                            : "rmse against the filtered reference (vs_filtered_reference)"},
+      {"truth", truthJson(r)},
       {"references",
-       {{"filtered",
+       {{"truth",
+         "the true shadow ray traced from the scene's geometry (Embree) at the ground truth's "
+         "sub-pixels: the camera ray's first hit, occlusion rays to the light (docs/reference.md)"},
+        {"filtered",
          "exact PCF of the raw depth under each technique's effective kernel (blur x lookup), "
          "receiver-plane depth per tap; frame 0 (docs/reference.md)"},
         {"ground_truth", "the filtered reference averaged over supersample^2 sub-pixel positions"},
@@ -186,8 +231,10 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
                                    "filtered reference and its supersampled ground truth")},
         {"msaa", msaaNote(r)},
         {"columns",
-         "vs_filtered_reference: rmse, errors, leaks, over-darkening; vs_ground_truth: the same "
-         "including minification aliasing; temporal_flicker: along the camera path against the "
+         "vs_truth: against the ray-traced truth over the pixels that see the same surfaces as "
+         "the rasterised frame; vs_filtered_reference: rmse, errors, leaks, over-darkening (the "
+         "leaks leaving out the pixels where the reference is darker than a lit truth); "
+         "vs_ground_truth: the same including minification aliasing; temporal_flicker: along the camera path against the "
          "filtered reference's own change; shimmer (cascades only): the visibility's mean "
          "frame-to-frame change with the view held at the path's first camera while stabilised "
          "or tight cascades follow the path"}}},
@@ -203,7 +250,8 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
   csv << std::setprecision(8)
       << "technique,rmse,mean_absolute,max_absolute,psnr_db,leak_share,leak_mean_excess,dark_share,"
          "dark_mean_excess,rmse_ground_truth,temporal_flicker,shimmer_stabilized,shimmer_tight,"
-         "esm_failure_rate_percent,wall_ms,gpu_ms,technique_memory_bytes\n";
+         "esm_failure_rate_percent,wall_ms,gpu_ms,technique_memory_bytes,rmse_truth,"
+         "leak_share_truth,dark_share_truth,sampling_rmse_reference_vs_truth\n";
   for (const TechniqueResult& t : r.techniques) {
     const VisibilityErrors& e = t.filtered;
     csv << techniqueId(t.technique) << "," << e.rmse << "," << e.meanAbsolute << ","
@@ -213,7 +261,14 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
     if (t.shimmer) csv << t.shimmer->stabilized << "," << t.shimmer->tight;  // else both empty
     else csv << ",";
     csv << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
-        << "," << techniqueBytes(t) << "\n";
+        << "," << techniqueBytes(t) << ",";
+    if (t.truth && r.truth) {  // else all four empty
+      csv << t.truth->rmse << "," << t.truth->leakShare << "," << t.truth->darkShare << ","
+          << r.truth->referenceVsTruth.rmse;
+    } else {
+      csv << ",,,";
+    }
+    csv << "\n";
   }
   writeText(dir / "metrics.csv", csv.str());
 }
@@ -276,6 +331,53 @@ std::string pcfNote(const ComparisonResult& r) {
   return "<p><b>PCF is not matched to the prefilter</b>: it runs with its parameters as given "
          "(<code>--param</code> or the settings file), so it is measured like any other "
          "technique, not as the reference.</p>\n";
+}
+
+// What the truth is, which pixels it measures, and the references' own distance to it.
+std::string truthNote(const ComparisonResult& r) {
+  if (!r.truth) {
+    return "<p><b>No ray-traced truth</b> (<code>--truth none</code>): the techniques are ranked "
+           "against the " + referenceName(r) + ".</p>\n";
+  }
+  const TruthResult& t = *r.truth;
+  std::ostringstream h;
+  h << std::setprecision(4)
+    << "<p><b>Ray-traced truth</b>: the true shadow from the scene's geometry ("
+    << html(truth::embreeDescription()) << ", " << t.triangles << " triangles), at the ground "
+    << "truth's " << r.request.supersample << "×" << r.request.supersample
+    << " sub-pixels: each camera ray's first hit, then "
+    << (t.lightSamples > 1 ? std::to_string(t.lightSamples) +
+                                 " occlusion rays to stratified points of the light's " +
+                                 (r.scene.light.kind == LightKind::Point ? "sphere" : "disk")
+                           : std::string("one occlusion ray to the light"))
+    << ", started off the surface by its floating-point precision, not a bias ("
+    << t.cameraRays + t.shadowRays << " rays in " << t.traceSeconds << " s, BVH " << t.bvhSeconds
+    << " s). It is the same whatever the shadow map. The techniques are <b>ranked by their RMSE "
+       "against it</b>, over the "
+    << t.referenceVsTruth.pixels
+    << " lit pixels where the traced and the rasterised frame see the same surface in every "
+       "sub-pixel; <b>"
+    << t.excludedPixels
+    << "</b> covered pixels where they do not (silhouettes) are left out (magenta below), and <b>"
+    << t.terminatorPixels
+    << "</b> where the triangle itself faces away from the light though its smooth shading "
+       "normal does (the shadow terminator of a tessellated surface: dark in the truth, lit by "
+       "a shadow map's normal offset; cyan below).</p>\n"
+    << "<p><b>Error decomposition</b>: a technique's error against the truth = the "
+       "<i>sampling</i> part, the "
+    << referenceName(r) << "'s own distance to the truth (RMSE <b>" << t.referenceVsTruth.rmse
+    << "</b>, leak share " << t.referenceVsTruth.leakShare << ", over-darkening share "
+    << t.referenceVsTruth.darkShare << "; the supersampled ground truth's RMSE "
+    << t.groundTruthVsTruth.rmse
+    << "): shadow-map resolution, aliasing, the receiver plane on curved surfaces — plus the "
+       "<i>filtering</i> part, the technique's distance to the "
+    << referenceName(r) << " (the columns without <i>truth</i>). <b>" << t.referenceTooDarkPixels
+    << "</b> pixels that the truth lights but the " << referenceName(r)
+    << " darkens by more than τ (orange below: its kernel spreads a shadow past a hard edge, or "
+       "its receiver plane misses the curved neighbours of a surface) are left out of the leak "
+       "columns against it: a technique lighter than the reference there is nearer the truth, "
+       "not leaking.</p>\n";
+  return h.str();
 }
 
 // Cascaded runs: each technique's shimmer with stabilised and tight fits, side by side.
@@ -349,7 +451,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     h << ", " << r.request.settings.msaaSamples << "× MSAA in the techniques' light pass";
   }
   h << ".</p>\n"
-    << areaLightNote(r)
+    << truthNote(r) << areaLightNote(r)
     << (r.request.settings.msaaSamples > 1
             ? "<p><b>MSAA</b>: " + html(msaaNote(r)) + ".</p>\n"
             : std::string())
@@ -363,9 +465,12 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "<code>metrics.json</code>.</p>\n"
     << pcfNote(r)
     << "<h2>All techniques</h2>\n<img src=\"grid.png\" alt=\"grid of all techniques\">\n"
-    << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the " << referenceName(r)
+    << "<h2>Metrics</h2>\n<p>Ranked by RMSE against the "
+    << (r.truth ? std::string("ray-traced truth") : referenceName(r))
     << "; click a column to sort.</p>\n<table id=\"metrics\"><thead><tr>"
-    << "<th>technique</th><th>rank</th><th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR "
+    << "<th>technique</th><th>rank</th>"
+    << (r.truth ? "<th>RMSE truth</th><th>leak share truth</th><th>dark share truth</th>" : "")
+    << "<th>RMSE</th><th>mean abs</th><th>max abs</th><th>PSNR "
        "dB</th><th>leak "
        "share</th>"
        "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
@@ -376,7 +481,12 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     const TechniqueResult& t = *ranked[rank];
     const VisibilityErrors& e = t.filtered;
     h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique)
-      << "</a></td><td>" << rank + 1 << "</td><td>" << e.rmse << "</td><td>" << e.meanAbsolute
+      << "</a></td><td>" << rank + 1 << "</td><td>";
+    if (t.truth) {
+      h << t.truth->rmse << "</td><td>" << t.truth->leakShare << "</td><td>"
+        << t.truth->darkShare << "</td><td>";
+    }
+    h << e.rmse << "</td><td>" << e.meanAbsolute
       << "</td><td>" << e.maxAbsolute << "</td><td>" << e.psnr << "</td><td>" << e.leakShare
       << "</td><td>" << e.leakMeanExcess << "</td><td>" << e.darkShare << "</td><td>"
       << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse << "</td><td>" << t.flicker
@@ -404,11 +514,27 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     << "<img src=\"images/ground_truth_visibility.png\" alt=\"ground truth "
        "visibility\"><figcaption>supersampled "
     << "ground truth visibility</figcaption></figure></div>\n";
+  if (r.truth) {
+    h << "<div class=\"row\"><figure><img src=\"images/truth_shaded.png\" alt=\"truth\">"
+         "<figcaption>ray-traced truth, shaded</figcaption></figure><figure>"
+         "<img src=\"images/truth_visibility.png\" alt=\"truth visibility\"><figcaption>"
+         "ray-traced truth visibility</figcaption></figure><figure>"
+         "<img src=\"images/truth_pixels.png\" alt=\"pixels measured against the truth\">"
+         "<figcaption>magenta: left out (another surface in a sub-pixel); cyan: left out (the "
+         "triangle faces away from the light); orange: the "
+      << referenceName(r) << " darker than the lit truth</figcaption></figure></div>\n";
+  }
   for (const TechniqueResult& t : r.techniques) {
     const std::string id(techniqueId(t.technique));
     h << "<h2 id=\"" << id << "\">" << id << " — " << html(std::string(techniqueTitle(t.technique)))
       << "</h2>\n"
-      << "<p>RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare
+      << "<p>";
+    if (t.truth) {
+      h << "Against the truth: RMSE " << t.truth->rmse << ", leak share " << t.truth->leakShare
+        << ", over-darkening share " << t.truth->darkShare << ". Against the "
+        << referenceName(r) << ": ";
+    }
+    h << "RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare
       << ", over-darkening share " << t.filtered.darkShare << ", flicker " << t.flicker
       << "; parameters: <code>" << html(paramsJson(t.technique, t.params).dump())
       << "</code></p>\n"
@@ -418,7 +544,14 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id
       << " visibility\"><figcaption>visibility</figcaption></figure>"
       << "<figure><img src=\"images/" << id << "_error.png\" alt=\"" << id
-      << " error\"><figcaption>error heat map</figcaption></figure></div>\n";
+      << " error\"><figcaption>error against the " << referenceName(r)
+      << "</figcaption></figure>";
+    if (t.truth) {
+      h << "<figure><img src=\"images/" << id << "_truth_error.png\" alt=\"" << id
+        << " error against the truth\"><figcaption>error against the ray-traced "
+           "truth</figcaption></figure>";
+    }
+    h << "</div>\n";
     if (!spots.empty()) {
       h << "<div class=\"row\">";
       for (const TroubleSpot& spot : spots) {
@@ -462,6 +595,36 @@ window.addEventListener('load', function () {
   writeText(dir / "index.html", h.str());
 }
 
+// The truth's visibility with the pixels no camera ray hit (-1) shown as 1, as the rasterised
+// references show the sky (nothing drawn: nothing shadowed).
+Image untracedAsLit(const Image& visibility) {
+  Image out = visibility;
+  for (float& v : out.data()) v = v < 0.0f ? 1.0f : v;
+  return out;
+}
+
+std::string rankingName(const ComparisonResult& r) {
+  return "RMSE against the " + (r.truth ? std::string("ray-traced truth") : referenceName(r));
+}
+
+// The truth's shaded image with the pixels it does not measure marked: magenta where a sub-pixel
+// sees another surface than the rasterised frame, orange where the reference darkens a lit truth.
+Image truthPixelsImage(const ComparisonResult& r) {
+  Image image = r.truth->color;
+  for (int y = 0; y < image.height(); ++y) {
+    for (int x = 0; x < image.width(); ++x) {
+      glm::vec3 mark(-1.0f);
+      const float excluded = r.truth->exclusion.at(x, y);
+      if (excluded == TruthResult::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
+      if (excluded == TruthResult::kExcludedTerminator) mark = {0.0f, 0.8f, 0.9f};  // cyan
+      if (r.truth->referenceTooDark.at(x, y) > 0.5f) mark = {1.0f, 0.45f, 0.0f};
+      if (mark.x < 0.0f) continue;
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = mark[c];
+    }
+  }
+  return image;
+}
+
 void writeContents(const ComparisonResult& r, const fs::path& dir) {
   // Not create_directories: a staging folder removed under us (an interrupt) must stay removed.
   for (const char* sub : {"images", "crops", "plots"}) {
@@ -476,6 +639,11 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   // Visibility is a quantity, not light: its value is the grey level (no sRGB encoding).
   writeGrey16Png(r.referenceVisibility, dir / "images" / "reference_visibility.png");
   writeGrey16Png(r.groundTruthVisibility, dir / "images" / "ground_truth_visibility.png");
+  if (r.truth) {
+    writeColorPng(r.truth->color, dir / "images" / "truth_shaded.png");
+    writeGrey16Png(untracedAsLit(r.truth->visibility), dir / "images" / "truth_visibility.png");
+    writeColorPng(truthPixelsImage(r), dir / "images" / "truth_pixels.png");
+  }
   tiles.push_back({dir / "images" / "reference_shaded.png", referenceName(r)});
   for (const TroubleSpot& spot : r.scene.troubleSpots) {
     writeColorPng(crop(r.referenceColor, spot.rect, 3),
@@ -491,13 +659,18 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     plotErrorHeatMap(markNonFinite(t.error, kValueMarker), range,
                      id + ": visibility error against the " + referenceName(r),
                      dir / "images" / (id + "_error.png"));
+    if (t.truth) {
+      plotErrorHeatMap(markNonFinite(t.truthError, kValueMarker), range,
+                       id + ": visibility error against the ray-traced truth",
+                       dir / "images" / (id + "_truth_error.png"));
+    }
     for (const TroubleSpot& spot : r.scene.troubleSpots) {
       writeColorPng(crop(color, spot.rect, 3),
                     dir / "crops" / (id + "_" + slug(spot.name) + ".png"));
     }
     tiles.push_back({dir / "images" / (id + "_shaded.png"), id});
-    byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), t.filtered.rmse});
-    byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), t.filtered.rmse});
+    byMemory.push_back({id, std::max(mib(techniqueBytes(t)), 1e-3), rankingRmse(t)});
+    byTime.push_back({id, std::max(t.wallTimes.total(), 1e-3), rankingRmse(t)});
   }
   // gnuplot scales each image into its tile keeping its aspect (size ratio -1). A tile is at most
   // twice as tall as wide whatever the frame's shape: cairo refuses surfaces beyond 32767 pixels,
@@ -508,10 +681,10 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
       2 * tileWidth);
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
   plotParetoScatter(byMemory, "technique memory (MiB, log scale)",
-                    "RMSE against the " + referenceName(r), r.scene.name + ": error against memory",
+                    rankingName(r), r.scene.name + ": error against memory",
                     true, dir / "plots" / "error_vs_memory.png");
   plotParetoScatter(byTime, "frame time (wall ms, log scale)",
-                    "RMSE against the " + referenceName(r), r.scene.name + ": error against time",
+                    rankingName(r), r.scene.name + ": error against time",
                     true, dir / "plots" / "error_vs_time.png");
   const bool hasCurves = !r.worstRegion.empty();
   if (hasCurves) {
@@ -545,10 +718,10 @@ std::vector<const TechniqueResult*> rankTechniques(const ComparisonResult& resul
   // NaN compares false with everything, which is no strict weak order: sort on (NaN, rmse).
   std::stable_sort(ranked.begin(), ranked.end(),
                    [](const TechniqueResult* a, const TechniqueResult* b) {
-                     const bool aNaN = std::isnan(a->filtered.rmse);
-                     const bool bNaN = std::isnan(b->filtered.rmse);
+                     const double ea = rankingRmse(*a), eb = rankingRmse(*b);
+                     const bool aNaN = std::isnan(ea), bNaN = std::isnan(eb);
                      if (aNaN != bNaN) return bNaN;
-                     return !aNaN && a->filtered.rmse < b->filtered.rmse;
+                     return !aNaN && ea < eb;
                    });
   return ranked;
 }

@@ -192,6 +192,12 @@ void checkTrueShadowLightSamples(int count) {
 }
 
 TrueShadow traceTrueShadow(const RayScene& rayScene, const TrueShadowRequest& request) {
+  return *traceTrueShadow(rayScene, request, TraceControl{});
+}
+
+std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
+                                          const TrueShadowRequest& request,
+                                          const TraceControl& control) {
   if (request.width < 1 || request.width > kMaxTraceSide || request.height < 1 ||
       request.height > kMaxTraceSide) {
     throw Error("true-shadow image " + std::to_string(request.width) + "x" +
@@ -231,11 +237,18 @@ TrueShadow traceTrueShadow(const RayScene& rayScene, const TrueShadowRequest& re
   TrueShadow out;
   out.visibility = Image(request.width, request.height, 1, -1.0f);
   out.color = Image(request.width, request.height, 4, 0.0f);
+  out.facesLight = Image(request.width, request.height, 1, 1.0f);
   out.subPixelViewDepth =
       Image(bigWidth, bigHeight, 1, std::numeric_limits<float>::infinity());
   std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
   const auto start = std::chrono::steady_clock::now();
+  std::atomic<bool> stopped{false};
   detail::parallelForRows(request.height, [&](int y) {
+    if (stopped.load(std::memory_order_relaxed)) return;
+    if (control.stopRequested && control.stopRequested()) {
+      stopped.store(true, std::memory_order_relaxed);
+      return;
+    }
     uint64_t rowShadowRays = 0;
     for (int x = 0; x < request.width; ++x) {
       double visibilitySum = 0.0;
@@ -291,6 +304,9 @@ TrueShadow traceTrueShadow(const RayScene& rayScene, const TrueShadowRequest& re
           const glm::vec3 toLight = perspectiveLight
                                         ? glm::normalize(request.light.position - hit.position)
                                         : toLightDirectional;
+          if (!(glm::dot(hit.geometricNormal, toLight) > shaders::kGrazingCosine)) {
+            out.facesLight.at(x, y) = 0.0f;
+          }
           float lightAmount = std::max(glm::dot(hit.shadingNormal, toLight), 0.0f);
           if (request.light.kind == LightKind::Spot) {
             lightAmount *= shaders::spotConeFalloff(glm::dot(-toLight, spotAxis), spotCosine);
@@ -306,7 +322,9 @@ TrueShadow traceTrueShadow(const RayScene& rayScene, const TrueShadowRequest& re
       out.color.at(x, y, 3) = 1.0f;
     }
     shadowRays.fetch_add(rowShadowRays, std::memory_order_relaxed);
+    if (control.rowsDone != nullptr) control.rowsDone->fetch_add(1, std::memory_order_release);
   });
+  if (stopped.load()) return std::nullopt;
   out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   out.cameraRays = cameraRays.load();
   out.shadowRays = shadowRays.load();

@@ -40,6 +40,8 @@ struct CompareOptions {
   RenderOptions render = compareRenderDefaults();
   int supersample = 4;
   int areaSamples = kMinAreaLightSamples;
+  std::string truth = "raytraced";
+  int truthSamples = truth::kDefaultTrueShadowLightSamples;
   bool filterGiven = false;  // --filter on the command line
   bool blurGiven = false;    // --blur
   int frames = 4;
@@ -92,6 +94,8 @@ void runCompare(const CompareOptions& o) {
   }
   request.supersample = o.supersample;
   request.areaLightSamples = o.areaSamples;
+  request.truth = compare::parseTruthKind(o.truth);
+  request.truthLightSamples = o.truthSamples;
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
@@ -122,8 +126,9 @@ void registerCompareCommand(CLI::App& app) {
   auto o = std::make_shared<CompareOptions>();
   CLI::App* cmd = app.add_subcommand(
       "compare",
-      "Measure techniques against the exact filtered reference and a supersampled ground truth; "
-      "writes an HTML report with images, error maps, metrics and plots.");
+      "Measure techniques against the ray-traced true shadow, the exact filtered reference and a "
+      "supersampled ground truth; writes an HTML report with images, error maps, metrics and "
+      "plots.");
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
@@ -134,6 +139,14 @@ void registerCompareCommand(CLI::App& app) {
   cmd->add_option("--area-samples", o->areaSamples,
                   "with --light-size: point samples of the area-light reference, side^2 with side "
                   "in [8, 32]")
+      ->capture_default_str();
+  cmd->add_option("--truth", o->truth,
+                  "the primary reference: raytraced (the true shadow from the scene's geometry, "
+                  "Embree; the ranking is by it) or none (the filtered reference ranks)")
+      ->capture_default_str();
+  cmd->add_option("--truth-samples", o->truthSamples,
+                  "with a light size: the true shadow's light samples per sub-pixel, side^2 with "
+                  "side in [1, 64]")
       ->capture_default_str();
   cmd->add_option("--frames", o->frames, "camera-path frames for flicker, 2..32")
       ->capture_default_str();

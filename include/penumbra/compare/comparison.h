@@ -1,7 +1,8 @@
-// Measuring techniques against the exact references (docs/reference.md): every technique is
-// rendered along the scene's camera path, next to the filtered reference of the same effective
-// kernel and, for the first frame, the supersampled ground truth; metrics come from
-// penumbra/metrics.h. The report writer (report.h) turns the result into files.
+// Measuring techniques against the references (docs/reference.md): every technique is rendered
+// along the scene's camera path, next to the filtered reference of the same effective kernel
+// and, for the first frame, the supersampled ground truth and the ray-traced true shadow (the
+// primary reference: the ranking is by it); metrics come from penumbra/metrics.h. The report
+// writer (report.h) turns the result into files.
 #pragma once
 
 #include <functional>
@@ -13,8 +14,16 @@
 #include "penumbra/depth_distribution.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/metrics.h"
+#include "penumbra/truth/true_shadow.h"
 
 namespace penumbra::compare {
+
+// The primary reference: the ray-traced true shadow of frame 0 (penumbra/truth/true_shadow.h),
+// or none (the filtered reference ranks, as before the truth existed).
+enum class TruthKind { RayTraced, None };
+// "raytraced", "none"; parseTruthKind throws Error listing the valid names.
+std::string_view truthKindName(TruthKind kind);
+TruthKind parseTruthKind(std::string_view name);
 
 struct ComparisonRequest {
   std::string scene = "backyard";  // a built-in scene's name or a scene file (loadScene)
@@ -35,6 +44,10 @@ struct ComparisonRequest {
   // samples per light disk (penumbra/area_light.h), replacing the filtered reference; PCF is then
   // PCSS, not matched.
   int areaLightSamples = kMinAreaLightSamples;
+  TruthKind truth = TruthKind::RayTraced;
+  // The truth's light samples per sub-pixel for a light with a size
+  // (truth::checkTrueShadowLightSamples); a hard light takes one ray.
+  int truthLightSamples = truth::kDefaultTrueShadowLightSamples;
 };
 
 // Shimmer (frameToFrameChange) of one technique with cascades fitted both ways, measured side by
@@ -63,6 +76,48 @@ struct TechniqueResult {
   Image color;  // frame 0, row 0 at the top
   Image visibility;
   Image error;  // visibility - filtered reference, 0 where uncovered
+  // Against the ray-traced truth (TruthKind::RayTraced): frame 0's errors over the truth's
+  // pixels (TruthResult::coverage) — the total error, whose parts are the filtering part
+  // (`filtered`: the technique against the filtered reference) and the sampling part common to
+  // all (TruthResult::referenceVsTruth) — and its heat map.
+  std::optional<VisibilityErrors> truth;
+  Image truthError;  // visibility - truth, 0 outside TruthResult::coverage
+};
+
+// The ray-traced true shadow of frame 0 and the shadow-map references measured against it.
+struct TruthResult {
+  static constexpr float kExcludedSurface = 1.0f;
+  static constexpr float kExcludedTerminator = 2.0f;
+
+  Image visibility;  // per pixel, -1 where no surface (truth::TrueShadow::visibility)
+  Image color;
+  // The pixels measured against the truth: covered (litSurfaceMask), traced, seeing the same
+  // surfaces in every sub-pixel as the rasterised frame (truth::matchRasterisedSurfaces), on
+  // triangles that face the light.
+  Image coverage;
+  // Per pixel, why a covered pixel is left out: 0 it is not, kExcludedSurface (a sub-pixel sees
+  // another surface than the rasterised frame, or none), kExcludedTerminator (below).
+  Image exclusion;
+  int excludedPixels = 0;  // covered pixels left out: a sub-pixel sees another surface
+  int mismatchedSubPixels = 0;
+  // Covered pixels left out where a triangle's own plane does not face the light though its
+  // shading normal does (truth::TrueShadow::facesLight: the shadow terminator).
+  int terminatorPixels = 0;
+  // Pixels the truth lights (>= 1 - tau) that the filtered (or area-light) reference darkens by
+  // more than tau (docs/reference.md): its kernel spreading a shadow past a hard edge, its
+  // receiver plane missing the curved neighbours of a surface. A technique lighter than the
+  // reference there is nearer the truth, so the leak columns against the reference leave them
+  // out: no technique is called leaking there.
+  Image referenceTooDark;
+  int referenceTooDarkPixels = 0;
+  VisibilityErrors referenceVsTruth;    // the sampling part: the filtered reference's own error
+  VisibilityErrors groundTruthVsTruth;  // the supersampled ground truth's
+  int lightSamples = 1;  // per sub-pixel (1 for a hard light)
+  size_t triangles = 0;
+  double bvhSeconds = 0.0;
+  double traceSeconds = 0.0;
+  uint64_t cameraRays = 0;
+  uint64_t shadowRays = 0;
 };
 
 struct ComparisonResult {
@@ -78,6 +133,7 @@ struct ComparisonResult {
   Image referenceVisibility;    // the filtered (or area-light) reference, frame 0
   Image groundTruthVisibility;  // supersampled, frame 0
   Image coverage;               // 1 where the shadow test decides the shading (litSurfaceMask)
+  std::optional<TruthResult> truth;  // absent with TruthKind::None
   std::vector<TechniqueResult> techniques;
   // The worst pixel over all techniques (against the filtered reference) and the depth
   // distribution of its reference kernel, shifted along the receiver plane so that the receiver

@@ -11,8 +11,8 @@ namespace penumbra::compare {
 
 // Writes the report's files into the existing folder `dir` (a ReportFolder's staging folder,
 // report_folder.h); throws Error when a file cannot be written.
-// The report's ranking: the techniques by RMSE against the filtered (or area-light) reference,
-// best first, ties in the request's order; a technique whose error is NaN (a visibility that is
+// The report's ranking: the techniques by RMSE against the ray-traced truth where there is one,
+// else against the filtered (or area-light) reference, best first, ties in the request's order; a technique whose error is NaN (a visibility that is
 // not a number, VisibilityErrors::nonFinitePixels) ranks last.
 std::vector<const TechniqueResult*> rankTechniques(const ComparisonResult& result);
 

@@ -9,8 +9,11 @@
 // integer-ulp offset of Wächter and Binder (surface_offset.h): no bias to tune.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "penumbra/image.h"
@@ -69,6 +72,13 @@ struct TrueShadow {
   // RGBA, linear light, row 0 at the top: Lambert + ambient shading of each hit with the
   // camera pass's formula (shared/shading.h) and this visibility, box-averaged; sky where none.
   Image color;
+  // Per output pixel: 1 where every sub-pixel's triangle faces the light (its centre) beyond
+  // grazing (shaders::kGrazingCosine) by its own plane, 0 where one does not — the shadow
+  // terminator of a tessellated surface, where the smoothly interpolated normal the camera pass
+  // shades with still faces the light but the flat triangle does not, so the truth is dark
+  // while a shadow map's normal offset lights it: neither is wrong about its own surface, and
+  // compare leaves these pixels out (and counts them) rather than score a leak there.
+  Image facesLight;
   // Per sub-pixel (width x supersample by height x supersample, row 0 at the top): the view
   // depth of the camera ray's first hit (distance along the camera's axis), +infinity on a miss:
   // what matchRasterisedSurfaces compares with the rasteriser's depth.
@@ -80,6 +90,16 @@ struct TrueShadow {
 
 // Throws Error for out-of-range sizes or sample counts, before tracing.
 TrueShadow traceTrueShadow(const RayScene& scene, const TrueShadowRequest& request);
+
+// For a trace off the caller's thread (the viewer's): progress, and a stop it checks between
+// output rows. Both optional.
+struct TraceControl {
+  std::function<bool()> stopRequested;  // true: the trace ends at its workers' next row
+  std::atomic<int>* rowsDone = nullptr;  // counts finished output rows (in any order)
+};
+// As above; nothing once stopRequested() said true.
+std::optional<TrueShadow> traceTrueShadow(const RayScene& scene, const TrueShadowRequest& request,
+                                          const TraceControl& control);
 
 // Where the ray-traced frame and a rasterised one see the same surfaces: the rasteriser's depth
 // buffer of the same camera at the same sub-pixels (window depth in [0,1], 1 where nothing is

@@ -59,7 +59,6 @@ layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth g
 layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the lookup's footprint
 layout(location = 6) out vec2 cascadeOut;        // the deciding cascade (-1: none) and blend
 
-const float kGrazingCosine = 0.05f;
 // Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
 const float kMaxReferenceTestsPerPixel = 48000.0f;
 

@@ -5,6 +5,12 @@
 #include "prelude.h"
 PENUMBRA_BEGIN_SHARED
 
+// The cosine between a surface's normal and the direction to the light below which the shadow
+// test no longer decides the shading (the camera pass's lookup w = 0.5, litSurfaceMask): a
+// grazing surface makes any receiver plane meaningless, and a surface facing away is dark
+// whatever the test says. The ray-traced truth holds a triangle's own plane to the same cutoff.
+const float kGrazingCosine = 0.05f;
+
 // lightAmount: N.L times the spot cone's falloff, in [0,1]; ambient: the ambient share, [0,1].
 PENUMBRA_INLINE vec3 shadeLambert(vec3 albedo, float ambient, float lightAmount, float visibility) {
   return albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);

@@ -1,0 +1,65 @@
+// Tracing a comparison's truth and measuring the references against it (truth_measurement.h).
+#include "truth_measurement.h"
+
+namespace penumbra::compare {
+
+TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& request,
+                         const Scene& scene, const Camera& camera, const RasterisedFrame& frame) {
+  truth::TrueShadowRequest trace;
+  trace.camera = camera;
+  trace.light = scene.light;
+  trace.sceneBounds = scene.bounds();
+  trace.width = request.settings.width;
+  trace.height = request.settings.height;
+  trace.supersample = request.supersample;
+  trace.lightSamples = scene.light.size > 0.0f ? request.truthLightSamples : 1;
+  trace.ambient = request.settings.ambient;
+  const truth::TrueShadow traced = truth::traceTrueShadow(rays, trace);
+  const truth::SurfaceMatch match =
+      truth::matchRasterisedSurfaces(traced, frame.supersampledDepth, trace);
+
+  TruthResult t;
+  t.visibility = traced.visibility;
+  t.color = traced.color;
+  t.lightSamples = trace.lightSamples;
+  t.triangles = rays.triangleCount();
+  t.bvhSeconds = rays.buildSeconds();
+  t.traceSeconds = traced.seconds;
+  t.cameraRays = traced.cameraRays;
+  t.shadowRays = traced.shadowRays;
+  t.mismatchedSubPixels = match.mismatchedSubPixels;
+  t.coverage = Image(trace.width, trace.height, 1, 0.0f);
+  t.exclusion = Image(trace.width, trace.height, 1, 0.0f);
+  t.referenceTooDark = Image(trace.width, trace.height, 1, 0.0f);
+  const float tau = float(request.tau);
+  for (int y = 0; y < trace.height; ++y) {
+    for (int x = 0; x < trace.width; ++x) {
+      if (!(frame.coverage.at(x, y) > 0.5f)) continue;
+      if (match.matched.at(x, y) < 0.5f || t.visibility.at(x, y) < 0.0f) {
+        ++t.excludedPixels;
+        t.exclusion.at(x, y) = TruthResult::kExcludedSurface;
+        continue;
+      }
+      if (traced.facesLight.at(x, y) < 0.5f) {
+        ++t.terminatorPixels;
+        t.exclusion.at(x, y) = TruthResult::kExcludedTerminator;
+        continue;
+      }
+      t.coverage.at(x, y) = 1.0f;
+      const float truth = t.visibility.at(x, y);
+      // The reference darkens a surface the geometry lights: its own artefact, not a leak of
+      // the techniques that light it.
+      if (truth >= 1.0f - tau && frame.referenceVisibility.at(x, y) < truth - tau) {
+        t.referenceTooDark.at(x, y) = 1.0f;
+        ++t.referenceTooDarkPixels;
+      }
+    }
+  }
+  t.referenceVsTruth =
+      measureVisibilityErrors(frame.referenceVisibility, t.visibility, t.coverage, request.tau);
+  t.groundTruthVsTruth =
+      measureVisibilityErrors(frame.groundTruthVisibility, t.visibility, t.coverage, request.tau);
+  return t;
+}
+
+}  // namespace penumbra::compare
