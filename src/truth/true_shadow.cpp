@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "../core/parallel.h"
 #include "penumbra/area_light.h"
@@ -23,9 +24,9 @@ constexpr int64_t kMaxSubPixels = int64_t(1) << 28;
 
 // The light as the shadow rays see it: one point (or direction) for a hard light; for a disk or
 // a sphere, a side x side grid of cells over the unit square, each 1/N of the light — mapped onto
-// the disk (polarDiskPoint: each point 1/N of its area, the area-light reference's weights), or
-// onto the cone of directions under which each receiver sees the sphere (sphereCapRay: 1/N of
-// its solid angle). Each sub-pixel shifts the grid its own way (gridShift).
+// the disk (each point 1/N of its area, the area-light reference's weights), or onto the cone of
+// directions under which each receiver sees the sphere (1/N of its solid angle): lightVisibility.
+// Each sub-pixel shifts the grid its own way (gridShift).
 struct SampledLight {
   Light light;
   bool atInfinity = false;  // directional
@@ -60,48 +61,24 @@ glm::vec2 gridShift(int x, int y) {
   return glm::vec2(float(z >> 40) * 0x1p-24f, float((z >> 8) & 0xffffffu) * 0x1p-24f);
 }
 
-// Cell (i, j) of a side x side grid over the unit square, shifted and wrapped.
-glm::vec2 gridPoint(int i, int j, int side, glm::vec2 shift) {
-  const glm::vec2 p((float(i) + 0.5f) / float(side) + shift.x,
-                    (float(j) + 0.5f) / float(side) + shift.y);
-  return p - glm::floor(p);
+// One axis of a side x side grid over the unit square: each cell's centre, shifted and wrapped.
+// A grid point is (u_i, v_j), so the maps below take their trigonometry per row and column, not
+// per point.
+void gridAxis(int side, float shift, std::vector<float>& out) {
+  out.resize(size_t(side));
+  for (int k = 0; k < side; ++k) {
+    const float p = (float(k) + 0.5f) / float(side) + shift;
+    out[size_t(k)] = p - std::floor(p);
+  }
 }
 
-// The polar map of the unit square onto the unit disk, r = sqrt(u), phi = 2 pi v: it keeps
-// area, so each cell of a grid stands for 1/N of the disk, as the area-light reference's
-// concentric map's do. Not the concentric map: a straight edge seen through a shifted grid under
-// it left 2.4x the error (docs/reference.md, Ray-traced truth), since it runs along the
-// concentric map's rows in places, every cell along it off the same way.
-glm::vec2 polarDiskPoint(glm::vec2 square) {
-  const float r = std::sqrt(square.x), phi = 2.0f * glm::pi<float>() * square.y;
-  return r * glm::vec2(std::cos(phi), std::sin(phi));
-}
-
-// A ray towards the light: its direction and how far it must stay unblocked.
-struct LightRay {
-  glm::vec3 direction;
-  float reach;  // in units of `direction`
-};
-
-// The direction of unit-square point `square` in the cone from `receiver` towards a sphere of
-// radius r at c (half angle alpha = asin(r / d), frame a, b, axis): cos(theta) = 1 - u (1 -
-// cos(alpha)), phi = 2 pi v — Archimedes' map, which keeps area, so uniform points of the square
-// are uniform in solid angle over the cone (docs/reference.md, Sphere lights). It reaches the
-// sphere's near surface, d cos(theta) - sqrt(r^2 - d^2 sin^2(theta)).
-struct SphereCone {
-  glm::vec3 a, b, axis;
-  double distance = 0.0, radius = 0.0, cosAlpha = 1.0;
-};
-LightRay sphereCapRay(const SphereCone& cone, glm::vec2 square) {
-  const double cosTheta = 1.0 - double(square.x) * (1.0 - cone.cosAlpha);
-  const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-  const double phi = 2.0 * glm::pi<double>() * double(square.y);
-  const glm::vec3 direction = float(sinTheta * std::cos(phi)) * cone.a +
-                              float(sinTheta * std::sin(phi)) * cone.b + float(cosTheta) * cone.axis;
-  const double across = cone.distance * sinTheta;
-  const double reach = cone.distance * cosTheta -
-                       std::sqrt(std::max(0.0, cone.radius * cone.radius - across * across));
-  return {direction, float(reach)};
+// Unit vectors cos(2 pi v) a + sin(2 pi v) b for each v: the azimuths of the polar maps below.
+void spokes(const std::vector<float>& v, glm::vec3 a, glm::vec3 b, std::vector<glm::vec3>& out) {
+  out.resize(v.size());
+  for (size_t k = 0; k < v.size(); ++k) {
+    const float phi = 2.0f * glm::pi<float>() * v[k];
+    out[k] = std::cos(phi) * a + std::sin(phi) * b;
+  }
 }
 
 struct Hit {
@@ -148,32 +125,49 @@ float lightVisibility(RTCScene scene, const SampledLight& light, const Hit& hit,
     return float(light.atInfinity ? seen(light.hardTowards, kForever)
                                   : seen(light.hardTowards - origin, 1.0f));
   }
+  thread_local std::vector<float> u, v;
+  thread_local std::vector<glm::vec3> azimuths;
+  gridAxis(light.side, shift.x, u);
+  gridAxis(light.side, shift.y, v);
   int count = 0;
   if (light.light.kind == LightKind::Point) {
-    SphereCone cone;
+    // The cone of directions from the receiver towards the sphere of radius r at distance d, half
+    // angle alpha = asin(r / d), sampled by Archimedes' map cos(theta) = 1 - u (1 - cos(alpha)),
+    // phi = 2 pi v, which keeps area, so the grid's points are uniform in solid angle over the
+    // cone (docs/reference.md, Sphere lights); each ray must reach the sphere's near surface,
+    // d cos(theta) - sqrt(r^2 - d^2 sin^2(theta)).
     const glm::vec3 toCentre = light.light.position - hit.position;
-    cone.distance = glm::length(toCentre);
-    cone.radius = 0.5 * double(light.light.size);
-    if (!(cone.distance > cone.radius)) return 1.0f;  // inside the light: it is all around
-    cone.axis = toCentre / float(cone.distance);
-    const glm::vec3 helper = std::abs(cone.axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f)
-                                                          : glm::vec3(1.0f, 0.0f, 0.0f);
-    cone.a = glm::normalize(glm::cross(cone.axis, helper));
-    cone.b = glm::cross(cone.axis, cone.a);
-    cone.cosAlpha = std::sqrt(std::max(0.0, 1.0 - (cone.radius * cone.radius) /
-                                                      (cone.distance * cone.distance)));
-    for (int j = 0; j < light.side; ++j) {
-      for (int i = 0; i < light.side; ++i) {
-        const LightRay ray = sphereCapRay(cone, gridPoint(i, j, light.side, shift));
-        count += seen(ray.direction, ray.reach);
+    const double distance = glm::length(toCentre);
+    const double radius = 0.5 * double(light.light.size);
+    if (!(distance > radius)) return 1.0f;  // inside the light: it is all around
+    const glm::vec3 axis = toCentre / float(distance);
+    const glm::vec3 helper =
+        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    const glm::vec3 a = glm::normalize(glm::cross(axis, helper));
+    spokes(v, a, glm::cross(axis, a), azimuths);
+    const double cosAlpha =
+        std::sqrt(std::max(0.0, 1.0 - (radius * radius) / (distance * distance)));
+    for (int i = 0; i < light.side; ++i) {
+      const double cosTheta = 1.0 - double(u[size_t(i)]) * (1.0 - cosAlpha);
+      const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
+      const double across = distance * sinTheta;
+      const float reach = float(distance * cosTheta -
+                                std::sqrt(std::max(0.0, radius * radius - across * across)));
+      for (const glm::vec3& azimuth : azimuths) {
+        count += seen(float(sinTheta) * azimuth + float(cosTheta) * axis, reach);
       }
     }
   } else {
-    for (int j = 0; j < light.side; ++j) {
-      for (int i = 0; i < light.side; ++i) {
-        const glm::vec2 q = gridPoint(i, j, light.side, shift);
-        const glm::vec2 p = polarDiskPoint(q);
-        const glm::vec3 point = light.disk.centre + p.x * light.disk.axisA + p.y * light.disk.axisB;
+    // The disk by the polar map r = sqrt(u), phi = 2 pi v, which keeps area, so each point stands
+    // for 1/N of the disk, as the area-light reference's concentric map's do. Not the concentric
+    // map: a straight edge seen through a shifted grid under it left 2.4x the error
+    // (docs/reference.md, Ray-traced truth), since it runs along that map's rows in places,
+    // every cell along it off the same way.
+    spokes(v, light.disk.axisA, light.disk.axisB, azimuths);
+    for (int i = 0; i < light.side; ++i) {
+      const float r = std::sqrt(u[size_t(i)]);
+      for (const glm::vec3& azimuth : azimuths) {
+        const glm::vec3 point = light.disk.centre + r * azimuth;
         count += light.atInfinity ? seen(point, kForever) : seen(point - origin, 1.0f);
       }
     }
