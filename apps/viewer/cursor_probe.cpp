@@ -54,13 +54,14 @@ CursorProbe probePixel(const gl::RenderResult& result, const std::vector<Image>&
 }
 
 void drawCursorProbe(const CursorProbe& probe, Technique shown, float positionX, float positionY,
-                     float width, float height) {
+                     float width, float height, const std::string& truthLine) {
   ImGui::SetNextWindowPos(ImVec2(positionX, positionY));
   ImGui::SetNextWindowSize(ImVec2(width, height));
   ImGui::Begin("under the cursor", nullptr,
                ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize | ImGuiWindowFlags_NoCollapse);
   ImGui::Text("pixel (%d, %d)  cascade %d  receiver depth %.5f  visibility %.3f", probe.x, probe.y,
               probe.cascade, double(probe.receiverDepth), double(probe.visibility));
+  if (!truthLine.empty()) ImGui::TextUnformatted(truthLine.c_str());
   if (!probe.status.empty() || probe.curves.columns.empty()) {
     ImGui::TextDisabled("%s", probe.status.c_str());
     ImGui::End();

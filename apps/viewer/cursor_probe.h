@@ -30,7 +30,8 @@ CursorProbe probePixel(const gl::RenderResult& result, const std::vector<Image>&
 
 // An ImGui window at `position`, `size`: the numbers, the distribution as a histogram and the
 // curves, `shown`'s curve and the exact one drawn thick, a marker at the receiver's depth.
+// `truthLine` (when not empty): the true shadow at the pixel, below the numbers.
 void drawCursorProbe(const CursorProbe& probe, Technique shown, float positionX, float positionY,
-                     float width, float height);
+                     float width, float height, const std::string& truthLine = {});
 
 }  // namespace penumbra::viewer

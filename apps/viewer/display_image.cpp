@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "penumbra/diagnostic_images.h"
@@ -42,6 +43,7 @@ std::string_view viewName(View view) {
     case View::Shaded: return "shaded";
     case View::Visibility: return "visibility";
     case View::Error: return "error vs filtered reference";
+    case View::TrueError: return "error vs true shadow (ray traced)";
     case View::FailureMask: return "ESM failure mask";
     case View::Layers: return "layers (LVSM, power CDF)";
     case View::ShadowMap: return "shadow map (depth)";
@@ -55,6 +57,7 @@ std::string_view viewId(View view) {
     case View::Shaded: return "shaded";
     case View::Visibility: return "visibility";
     case View::Error: return "error";
+    case View::TrueError: return "truth-error";
     case View::FailureMask: return "failures";
     case View::Layers: return "layers";
     case View::ShadowMap: return "shadowmap";
@@ -76,8 +79,50 @@ Image visibilityError(const gl::RenderResult& result, const Image& reference) {
   return signedVisibilityError(result.visibility, reference, litSurfaceMask(result.lookup));
 }
 
+Image trueShadowCoverage(const gl::RenderResult& result, const TrueShadowFrame& truth) {
+  Image coverage = litSurfaceMask(result.lookup);
+  const Image& visibility = truth.trace.visibility;
+  for (int y = 0; y < coverage.height(); ++y) {
+    for (int x = 0; x < coverage.width(); ++x) {
+      if (truth.match.matched.at(x, y) == 0.0f || visibility.at(x, y) < 0.0f ||
+          truth.trace.facesLight.at(x, y) == 0.0f) {
+        coverage.at(x, y) = 0.0f;
+      }
+    }
+  }
+  return coverage;
+}
+
+VisibilityErrors measureAgainstTrueShadow(const gl::RenderResult& result,
+                                          const TrueShadowFrame& truth) {
+  return measureVisibilityErrors(result.visibility, truth.trace.visibility,
+                                 trueShadowCoverage(result, truth));
+}
+
+std::string describeTrueShadowAt(const gl::RenderResult& result, const TrueShadowFrame& truth,
+                                 int x, int y) {
+  const Image& visibility = truth.trace.visibility;
+  if (x < 0 || y < 0 || x >= visibility.width() || y >= visibility.height()) return {};
+  if (truth.match.matched.at(x, y) == 0.0f) {
+    return "true shadow: not measured (the render and the trace see different surfaces)";
+  }
+  if (visibility.at(x, y) < 0.0f) return "true shadow: no surface";
+  if (truth.trace.facesLight.at(x, y) == 0.0f) {
+    return "true shadow: not measured (the triangle turns away from the light: terminator)";
+  }
+  char text[128];
+  if (litSurfaceMask(result.lookup).at(x, y) == 0.0f) {
+    std::snprintf(text, sizeof text, "true shadow %.3f (the shadow test does not decide here)",
+                  double(visibility.at(x, y)));
+  } else {
+    std::snprintf(text, sizeof text, "true shadow %.3f  error %+.3f", double(visibility.at(x, y)),
+                  double(result.visibility.at(x, y) - visibility.at(x, y)));
+  }
+  return text;
+}
+
 DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Image* reference,
-                            const Image* map, int referenceRows) {
+                            const Image* map, int referenceRows, const TrueShadowFrame* truth) {
   switch (view) {
     case View::Shaded: break;
     case View::Visibility: return grey(result.visibility, 0.0f, 1.0f, false);
@@ -92,6 +137,28 @@ DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Ima
           const glm::vec3 c = errorHeatColour(error.at(x, y), kErrorRange);
           uint8_t* p = &out.rgb[(size_t(y) * size_t(out.width) + size_t(x)) * 3];
           for (int i = 0; i < 3; ++i) p[i] = uint8_t(std::lround(c[i] * 255.0f));
+        }
+      }
+      return out;
+    }
+    case View::TrueError: {
+      DisplayImage out = grey(result.visibility, 0.0f, 2.0f, false);
+      if (truth == nullptr) return out;
+      const Image error = signedVisibilityError(result.visibility, truth->trace.visibility,
+                                                trueShadowCoverage(result, *truth));
+      for (int y = 0; y < out.height; ++y) {
+        for (int x = 0; x < out.width; ++x) {
+          uint8_t* p = &out.rgb[(size_t(y) * size_t(out.width) + size_t(x)) * 3];
+          if (truth->match.matched.at(x, y) == 0.0f) {
+            std::copy_n(kSilhouetteColour, 3, p);
+          } else if (truth->trace.visibility.at(x, y) < 0.0f) {
+            std::copy_n(kNoSurfaceColour, 3, p);
+          } else if (truth->trace.facesLight.at(x, y) == 0.0f) {
+            std::copy_n(kTerminatorColour, 3, p);
+          } else {
+            const glm::vec3 c = errorHeatColour(error.at(x, y), kErrorRange);
+            for (int i = 0; i < 3; ++i) p[i] = uint8_t(std::lround(c[i] * 255.0f));
+          }
         }
       }
       return out;

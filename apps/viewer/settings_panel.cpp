@@ -354,6 +354,19 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
                         double(kErrorRange));
     ImGui::TextWrapped("%s", state.referenceStatus.c_str());
   }
+  if (state.view == View::TrueError) {
+    ImGui::TextDisabled("red: leaks light, blue: over-darkens (+-%.1f saturates)",
+                        double(kErrorRange));
+    const auto swatch = [](const uint8_t (&c)[3]) {
+      return ImVec4(float(c[0]) / 255.0f, float(c[1]) / 255.0f, float(c[2]) / 255.0f, 1.0f);
+    };
+    ImGui::TextColored(swatch(kSilhouetteColour), "green: silhouettes, not measured");
+    ImGui::SameLine();
+    ImGui::TextColored(swatch(kTerminatorColour), "amber: terminator");
+    ImGui::SameLine();
+    ImGui::TextDisabled("grey: no surface");
+    ImGui::TextWrapped("%s", state.truthStatus.c_str());
+  }
 }
 
 // The last frames' time of each pass as a rolling graph, one colour per pass, stacked so that the

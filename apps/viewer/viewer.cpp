@@ -23,6 +23,7 @@
 #include "reference_job.h"
 #include "scene_texture.h"
 #include "settings_panel.h"
+#include "true_shadow_job.h"
 #include "viewer_state.h"
 #include "viewer_window.h"
 
@@ -91,7 +92,7 @@ class Viewer {
     while (!window_.shouldClose()) {
       // Scripted runs draw without waiting, but for the reference's progress; interactive ones
       // sleep once nothing has moved for two frames (ImGui settles in one).
-      const bool pending = referencePending();
+      const bool pending = referencePending() || truthPending();
       const bool waitingForProbe = probeJob_.valid() || (options_.frames > 0 && probePending());
       const double wait = pending || waitingForProbe                ? kProgressWaitSeconds
                           : options_.frames == 0 && idleFrames >= 2 ? kIdleWaitSeconds
@@ -111,6 +112,7 @@ class Viewer {
         if (tryOrReport([&] {
               loadSceneInto(state_, options_.sceneLoad);
               renderer_.setScene(state_.scene);
+              forgetRayScene();
             })) {
           renderNeeded = true;
         }
@@ -123,6 +125,7 @@ class Viewer {
         displayNeeded = true;
       }
       displayNeeded |= followReference();
+      displayNeeded |= followTruth();
       if (displayNeeded || changes.display) {
         showDisplay();
         displayNeeded = false;
@@ -132,11 +135,14 @@ class Viewer {
       ++frame;
       // Scripted runs end once the error view shows its complete reference and the probe its
       // pixel's curves.
-      const bool lastScripted =
-          options_.frames > 0 && frame >= options_.frames && referenceOnScreen() && !probePending();
+      const bool lastScripted = options_.frames > 0 && frame >= options_.frames &&
+                                referenceOnScreen() && truthOnScreen() && !probePending();
       if (lastScripted && referenceJob_ && referenceJob_->complete()) {
         followReference();  // the status of the complete reference
         std::cout << "penumbra-viewer: " << state_.referenceStatus << "\n";
+      }
+      if (lastScripted && state_.view == View::TrueError && truthShown_) {
+        std::cout << "penumbra-viewer: " << state_.truthStatus << "\n";
       }
       if (lastScripted && !options_.screenshot.empty()) writeScreenshot(options_.screenshot);
       if (lastScripted && !options_.saveSettings.empty()) {
@@ -161,6 +167,7 @@ class Viewer {
       const bool idle =
           !rendered && !changes.display && !changes.scene && !moving && !ImGui::IsAnyMouseDown();
       idleFrames = idle ? idleFrames + 1 : 0;
+      truthDescribed_ = truthShown_;
       if (lastScripted) break;
     }
   }
@@ -205,6 +212,7 @@ class Viewer {
         splitResult_.reset();
       }
       result_ = std::make_shared<const gl::RenderResult>(renderer_.render(settings, currentView()));
+      resultView_ = currentView();
       ++renderGeneration_;
       state_.gpuTimes.push_back(result_->gpuTimes);
       state_.wallTimes.push_back(result_->wallTimes);
@@ -213,6 +221,11 @@ class Viewer {
         state_.wallTimes.pop_front();
       }
       resultSettings_ = settings;
+      // A trace of another camera, light or frame size stops (the view starts the next one).
+      if (truthJob_ && !sameTrueShadowView(truthJob_->request(), trueShadowRequest())) {
+        retireTruthJob();
+      }
+      truthShown_ = false;  // the new render's error is composed once the trace is complete
       // The reference is started again when the error view asks for it; a running one stops,
       // retired so the window never waits for it (a twin being built checks no stop token).
       retireReferenceJob();
@@ -277,9 +290,131 @@ class Viewer {
                kProgressRefreshSeconds;
   }
 
+  // The error against the true shadow: nothing traced yet for the render's view, or not yet
+  // complete.
+  bool truthPending() const {
+    return state_.view == View::TrueError && result_ &&
+           (!truthJob_ || (!truthJob_->complete() && truthJob_->failure().empty()));
+  }
+
+  // Whether the view shows the complete trace (or its failure), the panel its numbers: a frame
+  // after the one that composed it, whose panel was drawn before.
+  bool truthOnScreen() const {
+    return state_.view != View::TrueError || !result_ ||
+           (truthJob_ && (!truthJob_->failure().empty() || (truthShown_ && truthDescribed_)));
+  }
+
+  // What the trace of the last render is: its camera, light and frame size, one sample per pixel
+  // (the frame's own pixels, as the render's camera depth is), the light's size with the
+  // default sample count.
+  truth::TrueShadowRequest trueShadowRequest() const {
+    truth::TrueShadowRequest request;
+    request.camera = resultView_.camera;
+    request.light = resultView_.light;
+    request.sceneBounds = state_.scene.bounds();
+    request.width = resultSettings_.width;
+    request.height = resultSettings_.height;
+    request.supersample = 1;
+    request.lightSamples = truth::kDefaultTrueShadowLightSamples;
+    request.ambient = resultSettings_.ambient;
+    return request;
+  }
+
+  static bool sameTrueShadowView(const truth::TrueShadowRequest& a,
+                                 const truth::TrueShadowRequest& b) {
+    const auto sameCamera = [](const Camera& p, const Camera& q) {
+      return p.position == q.position && p.target == q.target &&
+             p.verticalFovDegrees == q.verticalFovDegrees;
+    };
+    const auto sameLight = [](const Light& p, const Light& q) {
+      return p.kind == q.kind && p.direction == q.direction && p.position == q.position &&
+             p.target == q.target && p.spotAngleDegrees == q.spotAngleDegrees && p.size == q.size;
+    };
+    return sameCamera(a.camera, b.camera) && sameLight(a.light, b.light) &&
+           a.width == b.width && a.height == b.height && a.supersample == b.supersample &&
+           a.lightSamples == b.lightSamples;
+  }
+
+  // A new scene: its BVH is built again when the view needs it.
+  void forgetRayScene() {
+    retireTruthJob();
+    raySceneSlot_.reset();
+  }
+
+  void retireTruthJob() {
+    std::erase_if(retiredTruthJobs_, [](const auto& job) { return job->finished(); });
+    truthShown_ = false;
+    if (!truthJob_) return;
+    truthJob_->stop();
+    retiredTruthJobs_.push_back(std::move(truthJob_));
+  }
+
+  // Starts the trace of the last render's view unless it is running or done: the camera depth
+  // is read here, right after the render (GL stays on this thread).
+  void startTruthIfNeeded() {
+    if (!raySceneSlot_) raySceneSlot_ = std::make_shared<RaySceneSlot>(state_.scene);
+    const truth::TrueShadowRequest request = trueShadowRequest();
+    if (truthJob_ && truthJob_->slot() == raySceneSlot_ &&
+        sameTrueShadowView(truthJob_->request(), request)) {
+      return;
+    }
+    retireTruthJob();
+    truthJob_ = std::make_unique<TrueShadowJob>(raySceneSlot_, request, renderer_.readCameraDepth());
+    truthFrames_ = 0;
+    longestTruthFrameMs_ = 0.0;
+  }
+
+  // Whether the trace has just completed (the view composes it then); keeps the status line
+  // while it runs and reports a failure.
+  bool followTruth() {
+    if (state_.view != View::TrueError || !truthJob_) return false;
+    const TrueShadowJob& job = *truthJob_;
+    if (!job.failure().empty()) {
+      if (options_.frames > 0) throw Error("the true shadow failed: " + job.failure());
+      if (!state_.messageIsError) setMessage(state_, job.failure(), true);
+      state_.truthStatus = "the true shadow failed";
+      return false;
+    }
+    if (job.complete()) return !truthShown_;
+    char status[160];
+    if (!job.sceneReady()) {
+      std::snprintf(status, sizeof status, "building the scene's ray-tracing BVH... (%.1f s)",
+                    job.seconds());
+    } else {
+      std::snprintf(status, sizeof status, "tracing the true shadow... %d%% (%.1f s)",
+                    100 * job.rowsDone() / std::max(job.rows(), 1), job.seconds());
+    }
+    state_.truthStatus = status;
+    return false;
+  }
+
+  // The panel's lines for a complete trace: its cost, the silhouettes left out, the errors.
+  void describeTruth(const TrueShadowFrame& truth) {
+    const TrueShadowJob& job = *truthJob_;
+    const VisibilityErrors errors = measureAgainstTrueShadow(*result_, truth);
+    char status[512];
+    std::snprintf(
+        status, sizeof status,
+        "true shadow: %.0f ms on a background thread; %d frames drawn meanwhile, the longest "
+        "%.1f ms (BVH of %zu triangles built in %.0f ms, %llu shadow rays)\n"
+        "silhouettes: %d pixels not measured (the render sees another surface)\n"
+        "%s against it over %d pixels: RMSE %.4f, max %.3f, leaks light %.2f%%, over-darkens "
+        "%.2f%% (beyond %.2f)",
+        job.seconds() * 1000.0, truthFrames_, longestTruthFrameMs_, job.slot()->triangleCount(),
+        job.slot()->buildSeconds() * 1000.0,
+        static_cast<unsigned long long>(truth.trace.shadowRays), truth.match.excludedPixels,
+        std::string(techniqueId(resultSettings_.technique)).c_str(), errors.pixels, errors.rmse,
+        errors.maxAbsolute, 100.0 * errors.leakShare, 100.0 * errors.darkShare, 0.05);
+    state_.truthStatus = status;
+  }
+
   void recordFrameTime(double ms, bool whileReferencePending) {
     state_.frameMs.push_back(ms);
     if (state_.frameMs.size() > kTimeHistory) state_.frameMs.pop_front();
+    if (whileReferencePending && truthJob_ && !truthJob_->complete()) {
+      ++truthFrames_;
+      longestTruthFrameMs_ = std::max(longestTruthFrameMs_, ms);
+    }
     if (whileReferencePending && referenceJob_ && !referenceJob_->complete()) {
       ++pendingFrames_;
       longestPendingFrameMs_ = std::max(longestPendingFrameMs_, ms);
@@ -308,6 +443,18 @@ class Viewer {
           referenceShownAt_ = Clock::now();
         }
       }
+      std::optional<TrueShadowFrame> truth;
+      if (state_.view == View::TrueError) {
+        // The trace of the render's camera and light, on a background thread once per view
+        // (a technique or setting change reuses it); until it is complete the dimmed visibility.
+        startTruthIfNeeded();
+        if (truthJob_->complete()) {
+          truth.emplace(TrueShadowFrame{truthJob_->trace(), truthJob_->match()});
+          if (!truthShown_) describeTruth(*truth);
+          truthShown_ = true;
+        }
+      }
+      const TrueShadowFrame* truthShown = truth ? &*truth : nullptr;
       const int cascade = std::clamp(state_.mapCascade, 0, result_->cascadeFrame.count - 1);
       if (state_.view == View::ShadowMap) map = renderer_.readDepthMap(cascade);
       if (state_.view == View::Channel) {
@@ -320,12 +467,13 @@ class Viewer {
       }
       const Image* reference = reference_ ? &*reference_ : nullptr;
       DisplayImage image = composeDisplay(state_.view, *result_, reference, map ? &*map : nullptr,
-                                          referenceRowsShown_);
+                                          referenceRowsShown_, truthShown);
       if (splitResult_ && !map) {
         // The same view of the right side's render (the reference does not depend on the
         // technique), right of the divider.
         const DisplayImage right =
-            composeDisplay(state_.view, *splitResult_, reference, nullptr, referenceRowsShown_);
+            composeDisplay(state_.view, *splitResult_, reference, nullptr, referenceRowsShown_,
+                           truthShown);
         const size_t from = size_t(dividerPixel()) * 3;
         const size_t row = size_t(image.width) * 3;
         for (int y = 0; y < image.height; ++y) {
@@ -435,11 +583,16 @@ class Viewer {
         background->AddText(rightAt, IM_COL32(255, 255, 255, 255), right.c_str());
       }
     }
-    if (referenceJob_ && state_.view == View::Error && !referenceJob_->complete() &&
-        referenceJob_->failure().empty()) {
-      // While the reference computes: its progress at the scene area's bottom left.
+    const bool referenceRunning = referenceJob_ && state_.view == View::Error &&
+                                  !referenceJob_->complete() && referenceJob_->failure().empty();
+    const bool truthRunning = truthJob_ && state_.view == View::TrueError &&
+                              !truthJob_->complete() && truthJob_->failure().empty();
+    if (referenceRunning || truthRunning) {
+      // While the reference or the true shadow computes: its progress at the scene area's
+      // bottom left.
       ImDrawList* background = ImGui::GetBackgroundDrawList();
-      const char* text = state_.referenceStatus.c_str();
+      const char* text =
+          referenceRunning ? state_.referenceStatus.c_str() : state_.truthStatus.c_str();
       const ImVec2 size = ImGui::CalcTextSize(text);
       const ImVec2 at(6.0f, float(texture_.height()) - size.y - 6.0f);
       background->AddRectFilled(ImVec2(at.x - 3.0f, at.y - 2.0f),
@@ -450,8 +603,15 @@ class Viewer {
     const float below = float(state_.settings.render.height) + 8.0f;
     const float probeWidth = std::min(900.0f, float(width) - kPanelWidth - 8.0f);
     if (probe_ && float(height) - below >= 160.0f && probeWidth >= 300.0f) {
+      // In the error-against-the-truth view, the truth at the probe's pixel too.
+      std::string truthLine;
+      if (state_.view == View::TrueError && truthShown_ && truthJob_ && truthJob_->complete()) {
+        const gl::RenderResult& probed = probeOf_.right && splitResult_ ? *splitResult_ : *result_;
+        truthLine = describeTrueShadowAt(probed, {truthJob_->trace(), truthJob_->match()},
+                                         probe_->x, probe_->y);
+      }
       drawCursorProbe(*probe_, probeTechnique_, 0.0f, below, probeWidth,
-                      std::min(420.0f, float(height) - below));
+                      std::min(420.0f, float(height) - below), truthLine);
     }
     window_.drawUi();
   }
@@ -617,6 +777,16 @@ class Viewer {
   }
   std::optional<Image> reference_;
   int referenceRowsShown_ = -1;
+  // The error against the true shadow: the loaded scene's BVH (made when the view first needs
+  // it), the job tracing the last render's view, the jobs stopping (destroyed once finished).
+  gl::FrameView resultView_;  // the camera and light result_ was rendered with
+  std::shared_ptr<RaySceneSlot> raySceneSlot_;
+  std::unique_ptr<TrueShadowJob> truthJob_;
+  std::vector<std::unique_ptr<TrueShadowJob>> retiredTruthJobs_;
+  bool truthShown_ = false;  // the scene area shows truthJob_'s complete trace
+  bool truthDescribed_ = false;  // and the panel has shown its numbers since the last frame
+  int truthFrames_ = 0;      // frames drawn while it traced, and the longest
+  double longestTruthFrameMs_ = 0.0;
   Clock::time_point referenceShownAt_;
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
   double longestPendingFrameMs_ = 0.0;

@@ -37,6 +37,9 @@ struct ViewerState {
   // The window's last frames: the time each took to draw (events waited for aside), ms.
   std::deque<double> frameMs;
   std::string referenceStatus;  // the error view's reference: progress, or its time once done
+  // The error-against-the-truth view: the trace's progress, or its time, the silhouettes left
+  // out and the errors once done.
+  std::string truthStatus;
 };
 
 // What the panel changed this frame, so that only what depends on it is redone.

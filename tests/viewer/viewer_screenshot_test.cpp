@@ -18,6 +18,8 @@
 #include "penumbra/run_program.h"
 #include "penumbra/scene.h"
 #include "penumbra/technique.h"
+#include "penumbra/truth/true_shadow.h"
+#include "display_image.h"  // the viewer's colours for pixels it does not measure
 #include "run_penumbra.h"
 
 namespace penumbra::test {
@@ -510,6 +512,129 @@ TEST(Viewer, TheErrorViewOnceCompleteEqualsTheRenderersReference) {
   // a heat colour by a step where an error sits on a rounding boundary.
   EXPECT_LE(d.maxSteps, 2);
   EXPECT_LE(d.meanSteps, 0.01);
+}
+
+// The true shadow is traced on a background thread: with an area light (64 shadow rays a pixel,
+// 0.5 to 2 s at 800x450 on two cores) the window draws many frames meanwhile, none
+// of them long.
+TEST(Viewer, KeepsDrawingFramesWhileTheTrueShadowTraces) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = scratch.path() / "soft.json";
+  writeFile(settings,
+            "{\"scene\": \"penumbrae\", \"technique\": \"pcf\", \"width\": 800, "
+            "\"height\": 450, \"light\": {\"direction\": [0.3, -1, 0.2], \"size\": 0.05}}\n");
+  const fs::path shot = scratch.path() / "truth.png";
+  const RunResult run = runViewer(settings, shot, scratch.path(), {"--show", "truth-error"});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const BackgroundTiming trace = backgroundTiming(run.output, "true shadow");
+  EXPECT_GE(trace.frames, 5);
+  EXPECT_LT(trace.longestMs, trace.jobMs / 4.0);
+}
+
+// The error against the ray-traced true shadow, once traced, is the render's visibility minus
+// the truth in the report's heat map where both see the same surface, and marks the pixels where
+// they do not: on `foliage` the alpha-tested leaves' edges, which the rasteriser's filtered alpha
+// and the trace's cut differently. Computed here headless with the library (render, its camera
+// depth, the trace and the surface match) for the same settings.
+TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  constexpr int kWidth = 320, kHeight = 180;
+  const fs::path settingsPath = scratch.path() / "truth.json";
+  writeFile(settingsPath,
+            "{\"scene\": \"foliage\", \"technique\": \"pcf\", \"shadow-size\": 1024, "
+            "\"blur\": 3, \"filter\": \"bilinear\", \"width\": 320, \"height\": 180}\n");
+  const fs::path shot = scratch.path() / "truth.png";
+  const RunResult run =
+      runViewer(settingsPath, shot, scratch.path(), {"--show", "truth-error", "--hide-panel"});
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const Image window = readEncodedColorPng(shot);
+
+  gl::Settings settings;
+  gl::applySettingsFile(settingsPath, settings);
+  gl::RenderSettings render = settings.render;
+  render.technique = settings.techniques.front();
+  gl::HeadlessContext context;
+  gl::Renderer renderer(context);
+  const Scene scene = loadScene(settings.scene);
+  renderer.setScene(scene);
+  const gl::FrameView view{scene.camera, scene.light};
+  const gl::RenderResult frame = renderer.render(render, view);
+  truth::TrueShadowRequest request;
+  request.camera = scene.camera;
+  request.light = scene.light;
+  request.sceneBounds = scene.bounds();
+  request.width = kWidth;
+  request.height = kHeight;
+  request.supersample = 1;
+  const truth::RayScene rayScene(scene);
+  const truth::TrueShadow trace = truth::traceTrueShadow(rayScene, request);
+  const truth::SurfaceMatch match =
+      truth::matchRasterisedSurfaces(trace, renderer.readCameraDepth(), request);
+
+  Image coverage = litSurfaceMask(frame.lookup);
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      if (match.matched.at(x, y) == 0.0f || trace.visibility.at(x, y) < 0.0f ||
+          trace.facesLight.at(x, y) == 0.0f) {
+        coverage.at(x, y) = 0;
+      }
+    }
+  }
+  const Image error = signedVisibilityError(frame.visibility, trace.visibility, coverage);
+  Image expected(kWidth, kHeight, 3);
+  int errorPixels = 0, litGround = 0, litGroundZero = 0, marked = 0;
+  const glm::vec3 zero = errorHeatColour(0.0f, viewer::kErrorRange);
+  const auto shows = [&](int x, int y, glm::vec3 bytes) {
+    for (int i = 0; i < 3; ++i) {
+      if (std::lround(window.at(x, y, i) * 255.0f) != std::lround(bytes[i])) return false;
+    }
+    return true;
+  };
+  for (int y = 0; y < kHeight; ++y) {
+    for (int x = 0; x < kWidth; ++x) {
+      glm::vec3 bytes;
+      if (match.matched.at(x, y) == 0.0f) {
+        bytes = glm::vec3(viewer::kSilhouetteColour[0], viewer::kSilhouetteColour[1],
+                          viewer::kSilhouetteColour[2]);
+        marked += shows(x, y, bytes);
+      } else if (trace.visibility.at(x, y) < 0.0f) {
+        bytes = glm::vec3(viewer::kNoSurfaceColour[0], viewer::kNoSurfaceColour[1],
+                          viewer::kNoSurfaceColour[2]);
+      } else if (trace.facesLight.at(x, y) == 0.0f) {
+        bytes = glm::vec3(viewer::kTerminatorColour[0], viewer::kTerminatorColour[1],
+                          viewer::kTerminatorColour[2]);
+      } else {
+        bytes = glm::round(errorHeatColour(error.at(x, y), viewer::kErrorRange) * 255.0f);
+        errorPixels += std::abs(error.at(x, y)) > 0.05f;
+        // Open ground in the light: lit in the render and in the truth.
+        if (coverage.at(x, y) > 0.0f && frame.visibility.at(x, y) == 1.0f &&
+            trace.visibility.at(x, y) == 1.0f) {
+          ++litGround;
+          litGroundZero += shows(x, y, glm::round(zero * 255.0f));
+        }
+      }
+      for (int i = 0; i < 3; ++i) expected.at(x, y, i) = bytes[i] / 255.0f;
+    }
+  }
+  const Difference d = sceneAreaDifference(window, expected, kWidth, kHeight);
+  std::cout << "true-shadow error view against the library's: mean " << d.meanSteps
+            << " steps, largest " << d.maxSteps << "; " << match.excludedPixels
+            << " silhouette pixels (" << marked << " marked), " << errorPixels
+            << " pixels with an error over 0.05, " << litGround << " lit ground pixels\n";
+  // A picture worth comparing: silhouettes to mark, errors to show, open ground lit.
+  EXPECT_GT(match.excludedPixels, 50);
+  EXPECT_GT(errorPixels, kWidth * kHeight / 100);
+  EXPECT_GT(litGround, kWidth * kHeight / 5);
+  // Every silhouette pixel marked, zero error on the lit ground, the rest the heat map.
+  EXPECT_EQ(marked, match.excludedPixels);
+  EXPECT_EQ(litGroundZero, litGround);
+  EXPECT_LE(d.maxSteps, 2);
+  EXPECT_LE(d.meanSteps, 0.01);
+  EXPECT_NE(run.output.find("silhouettes: " + std::to_string(match.excludedPixels) + " pixels"),
+            std::string::npos)
+      << run.output;
 }
 
 // A split view saved by the viewer loads back with both sides: the file holds the right side
