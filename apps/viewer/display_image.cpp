@@ -144,6 +144,7 @@ DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Ima
     case View::TrueError: {
       DisplayImage out = grey(result.visibility, 0.0f, 2.0f, false);
       if (truth == nullptr) return out;
+      const Image lit = litSurfaceMask(result.lookup);
       const Image error = signedVisibilityError(result.visibility, truth->trace.visibility,
                                                 trueShadowCoverage(result, *truth));
       for (int y = 0; y < out.height; ++y) {
@@ -153,7 +154,7 @@ DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Ima
             std::copy_n(kSilhouetteColour, 3, p);
           } else if (truth->trace.visibility.at(x, y) < 0.0f) {
             std::copy_n(kNoSurfaceColour, 3, p);
-          } else if (truth->trace.facesLight.at(x, y) == 0.0f) {
+          } else if (lit.at(x, y) > 0.0f && truth->trace.facesLight.at(x, y) == 0.0f) {
             std::copy_n(kTerminatorColour, 3, p);
           } else {
             const glm::vec3 c = errorHeatColour(error.at(x, y), kErrorRange);

@@ -49,7 +49,8 @@ inline constexpr float kErrorRange = 0.5f;
 inline constexpr uint8_t kSilhouetteColour[3] = {0x1b, 0xc4, 0x4a};
 inline constexpr uint8_t kNoSurfaceColour[3] = {0x58, 0x58, 0x58};
 // Where the traced triangle does not face the light though the smooth normal the render shades
-// with does (TrueShadow::facesLight, the shadow terminator): left out as compare leaves it out.
+// with does (TrueShadow::facesLight, the shadow terminator), where the shadow test decides the
+// render's shading: left out as compare leaves it out.
 inline constexpr uint8_t kTerminatorColour[3] = {0xe0, 0xa0, 0x20};
 
 // The ray-traced truth of the render's camera, light and frame size, and where its surfaces are
