@@ -1,6 +1,6 @@
 // Recording the true shadow's rays and casting them with nothing but Embree (bare_embree_rays.h).
-// The ray formulas are src/truth/true_shadow.cpp's, restated: the recorded counts are checked
-// against the trace's own, so a drift between the two shows.
+// The rays come from src/truth/trace_rays.h, the tracer's own: the recorded counts are also
+// checked against the trace's.
 #include "bare_embree_rays.h"
 
 #include <algorithm>
@@ -13,34 +13,13 @@
 
 #include "../src/core/parallel.h"
 #include "../src/truth/ray_scene_impl.h"
-#include "../src/truth/surface_offset.h"
+#include "../src/truth/trace_rays.h"
 #include "penumbra/area_light.h"
 #include "penumbra/error.h"
 
 namespace penumbra::bench {
 namespace {
 
-constexpr float kForever = std::numeric_limits<float>::infinity();
-
-// true_shadow.cpp's gridShift, gridPoint and polarDiskPoint.
-glm::vec2 gridShift(int x, int y) {
-  uint64_t z = (uint64_t(uint32_t(x)) << 32 | uint32_t(y)) + 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return glm::vec2(float(z >> 40) * 0x1p-24f, float((z >> 8) & 0xffffffu) * 0x1p-24f);
-}
-
-glm::vec2 gridPoint(int i, int j, int side, glm::vec2 shift) {
-  const glm::vec2 p((float(i) + 0.5f) / float(side) + shift.x,
-                    (float(j) + 0.5f) / float(side) + shift.y);
-  return p - glm::floor(p);
-}
-
-glm::vec2 polarDiskPoint(glm::vec2 square) {
-  const float r = std::sqrt(square.x), phi = 2.0f * glm::pi<float>() * square.y;
-  return r * glm::vec2(std::cos(phi), std::sin(phi));
-}
 
 RecordedRay makeRay(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) {
   return {{origin.x, origin.y, origin.z}, {direction.x, direction.y, direction.z}, tnear, tfar};
@@ -50,45 +29,25 @@ RecordedRay makeRay(glm::vec3 origin, glm::vec3 direction, float tnear, float tf
 
 RecordedRays recordTrueShadowRays(const truth::RayScene& rayScene,
                                   const truth::TrueShadowRequest& request, int rowStride) {
-  const Light& light = request.light;
-  const bool soft = light.size > 0.0f;
-  if (soft && light.kind == LightKind::Point) {
-    throw Error("recording a sphere light's rays is not implemented (a disk light's only)");
-  }
   const truth::RayScene::Impl& scene = rayScene.impl();
   const int S = request.supersample;
-  const int bigWidth = request.width * S, bigHeight = request.height * S;
-  const float aspect = float(request.width) / float(request.height);
-  const glm::mat4 projection = clipFromView(request.camera, aspect, request.sceneBounds);
-  const glm::mat3 worldFromView = glm::transpose(glm::mat3(viewFromWorld(request.camera)));
-  const float farDepth = cameraFar(request.camera, request.sceneBounds);
-  const bool atInfinity = light.kind == LightKind::Directional;
-  const int side = soft ? int(std::lround(std::sqrt(double(request.lightSamples)))) : 0;
-  const LightDisk disk = soft ? lightDisk(light) : LightDisk{};
-  const glm::vec3 hardTowards = atInfinity ? -glm::normalize(light.direction) : light.position;
+  const truth::CameraRays cameraRays(request);
+  const truth::SampledLight light = truth::sampleLight(request.light, request.lightSamples);
 
   RecordedRays out;
   std::mutex keep;
-  std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
+  std::atomic<uint64_t> cameraRayCount{0}, shadowRays{0};
   detail::parallelForRows(request.height, [&](int y) {
     const bool kept = y % rowStride == 0;
     std::vector<RecordedRay> camera, shadow;
     uint64_t rowShadowRays = 0;
-    auto addShadowRay = [&](glm::vec3 origin, glm::vec3 normal, glm::vec3 direction, float reach) {
-      if (!(glm::dot(direction, normal) > 0.0f)) return;
-      ++rowShadowRays;
-      if (kept) shadow.push_back(makeRay(origin, direction, 0.0f, reach));
-    };
     for (int x = 0; x < request.width; ++x) {
       for (int sy = 0; sy < S; ++sy) {
         for (int sx = 0; sx < S; ++sx) {
           const int bx = x * S + sx, by = y * S + sy;
-          const float ndcX = (float(bx) + 0.5f) / float(bigWidth) * 2.0f - 1.0f;
-          const float ndcY = 1.0f - (float(by) + 0.5f) / float(bigHeight) * 2.0f;
-          const glm::vec3 direction =
-              worldFromView * glm::vec3(ndcX / projection[0][0], ndcY / projection[1][1], -1.0f);
+          const glm::vec3 direction = cameraRays.direction(bx, by);
           const RecordedRay cameraRay =
-              makeRay(request.camera.position, direction, kCameraNear, farDepth);
+              makeRay(cameraRays.origin, direction, cameraRays.nearDepth, cameraRays.farDepth);
           if (kept) camera.push_back(cameraRay);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
@@ -105,34 +64,20 @@ RecordedRays recordTrueShadowRays(const truth::RayScene& rayScene,
           rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-          const truth::RayMesh& mesh = scene.meshes[rayHit.hit.geomID];
-          const float u = rayHit.hit.u, v = rayHit.hit.v;
-          const auto [a, b, c] = mesh.triangle(rayHit.hit.primID);
-          const glm::vec3 position =
-              (1.0f - u - v) * mesh.positions[a] + u * mesh.positions[b] + v * mesh.positions[c];
-          const glm::vec3 front = glm::cross(mesh.positions[b] - mesh.positions[a],
-                                             mesh.positions[c] - mesh.positions[a]);
-          const glm::vec3 normal =
-              glm::normalize(glm::dot(front, direction) < 0.0f ? front : -front);
-          const glm::vec3 origin = truth::offsetRayOrigin(position, normal);
-          if (!soft) {
-            addShadowRay(origin, normal, atInfinity ? hardTowards : hardTowards - origin,
-                         atInfinity ? kForever : 1.0f);
-            continue;
-          }
-          const glm::vec2 shift = gridShift(bx, by);
-          for (int j = 0; j < side; ++j) {
-            for (int i = 0; i < side; ++i) {
-              const glm::vec2 p = polarDiskPoint(gridPoint(i, j, side, shift));
-              const glm::vec3 point = disk.centre + p.x * disk.axisA + p.y * disk.axisB;
-              addShadowRay(origin, normal, atInfinity ? point : point - origin,
-                           atInfinity ? kForever : 1.0f);
-            }
-          }
+          const truth::SurfacePoint hit =
+              truth::surfacePoint(scene.meshes[rayHit.hit.geomID], rayHit.hit.primID,
+                                  rayHit.hit.u, rayHit.hit.v, direction);
+          truth::lightVisibility(light, hit.position, hit.geometricNormal,
+                                 truth::gridShift(bx, by),
+                                 [&](glm::vec3 origin, glm::vec3 towards, float reach) {
+                                   ++rowShadowRays;
+                                   if (kept) shadow.push_back(makeRay(origin, towards, 0.0f, reach));
+                                   return true;
+                                 });
         }
       }
     }
-    cameraRays.fetch_add(uint64_t(request.width) * uint64_t(S * S), std::memory_order_relaxed);
+    cameraRayCount.fetch_add(uint64_t(request.width) * uint64_t(S * S), std::memory_order_relaxed);
     shadowRays.fetch_add(rowShadowRays, std::memory_order_relaxed);
     if (kept) {
       const std::lock_guard<std::mutex> lock(keep);
@@ -140,7 +85,7 @@ RecordedRays recordTrueShadowRays(const truth::RayScene& rayScene,
       out.shadow.insert(out.shadow.end(), shadow.begin(), shadow.end());
     }
   });
-  out.cameraRaysInFrame = cameraRays.load();
+  out.cameraRaysInFrame = cameraRayCount.load();
   out.shadowRaysInFrame = shadowRays.load();
   return out;
 }

@@ -28,7 +28,7 @@ struct RecordedRays {
 
 // The rays traceTrueShadow casts for `request`, recomputed outside it (camera hits traced here
 // untimed). Only output rows y with y % rowStride == 0 are kept, so that 64 samples per sub-pixel
-// fit in memory; the counts cover every row. Point lights with a size are not recorded (throws).
+// fit in memory; the counts cover every row.
 RecordedRays recordTrueShadowRays(const truth::RayScene& scene,
                                   const truth::TrueShadowRequest& request, int rowStride);
 

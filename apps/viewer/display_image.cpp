@@ -80,17 +80,8 @@ Image visibilityError(const gl::RenderResult& result, const Image& reference) {
 }
 
 Image trueShadowCoverage(const gl::RenderResult& result, const TrueShadowFrame& truth) {
-  Image coverage = litSurfaceMask(result.lookup);
-  const Image& visibility = truth.trace.visibility;
-  for (int y = 0; y < coverage.height(); ++y) {
-    for (int x = 0; x < coverage.width(); ++x) {
-      if (truth.match.matched.at(x, y) == 0.0f || visibility.at(x, y) < 0.0f ||
-          truth.trace.facesLight.at(x, y) == 0.0f) {
-        coverage.at(x, y) = 0.0f;
-      }
-    }
-  }
-  return coverage;
+  return penumbra::truth::measuredPixels(litSurfaceMask(result.lookup), truth.trace, truth.match)
+      .coverage;
 }
 
 VisibilityErrors measureAgainstTrueShadow(const gl::RenderResult& result,

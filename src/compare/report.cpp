@@ -615,8 +615,8 @@ Image truthPixelsImage(const ComparisonResult& r) {
     for (int x = 0; x < image.width(); ++x) {
       glm::vec3 mark(-1.0f);
       const float excluded = r.truth->exclusion.at(x, y);
-      if (excluded == TruthResult::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
-      if (excluded == TruthResult::kExcludedTerminator) mark = {0.0f, 0.8f, 0.9f};  // cyan
+      if (excluded == truth::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
+      if (excluded == truth::kExcludedTerminator) mark = {0.0f, 0.8f, 0.9f};  // cyan
       if (r.truth->referenceTooDark.at(x, y) > 0.5f) mark = {1.0f, 0.45f, 0.0f};
       if (mark.x < 0.0f) continue;
       for (int c = 0; c < 3; ++c) image.at(x, y, c) = mark[c];

@@ -1,6 +1,8 @@
 // Tracing a comparison's truth and measuring the references against it (truth_measurement.h).
 #include "truth_measurement.h"
 
+#include <utility>
+
 namespace penumbra::compare {
 
 TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& request,
@@ -28,27 +30,19 @@ TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& r
   t.cameraRays = traced.cameraRays;
   t.shadowRays = traced.shadowRays;
   t.mismatchedSubPixels = match.mismatchedSubPixels;
-  t.coverage = Image(trace.width, trace.height, 1, 0.0f);
-  t.exclusion = Image(trace.width, trace.height, 1, 0.0f);
+  truth::MeasuredPixels measured = truth::measuredPixels(frame.coverage, traced, match);
+  t.coverage = std::move(measured.coverage);
+  t.exclusion = std::move(measured.exclusion);
+  t.excludedPixels = measured.excludedPixels;
+  t.terminatorPixels = measured.terminatorPixels;
   t.referenceTooDark = Image(trace.width, trace.height, 1, 0.0f);
   const float tau = float(request.tau);
   for (int y = 0; y < trace.height; ++y) {
     for (int x = 0; x < trace.width; ++x) {
-      if (!(frame.coverage.at(x, y) > 0.5f)) continue;
-      if (match.matched.at(x, y) < 0.5f || t.visibility.at(x, y) < 0.0f) {
-        ++t.excludedPixels;
-        t.exclusion.at(x, y) = TruthResult::kExcludedSurface;
-        continue;
-      }
-      if (traced.facesLight.at(x, y) < 0.5f) {
-        ++t.terminatorPixels;
-        t.exclusion.at(x, y) = TruthResult::kExcludedTerminator;
-        continue;
-      }
-      t.coverage.at(x, y) = 1.0f;
+      if (!(t.coverage.at(x, y) > 0.5f)) continue;
       const float truth = t.visibility.at(x, y);
-      // The reference darkens a surface the geometry lights: its own artefact, not a leak of
-      // the techniques that light it.
+      // The reference darkens a surface the geometry lights: its own error, not a leak of the
+      // techniques that light it.
       if (truth >= 1.0f - tau && frame.referenceVisibility.at(x, y) < truth - tau) {
         t.referenceTooDark.at(x, y) = 1.0f;
         ++t.referenceTooDarkPixels;

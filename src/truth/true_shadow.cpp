@@ -2,18 +2,16 @@
 // ground truth's sub-pixels, shadow rays from their hits to the light's sample points.
 #include <atomic>
 #include <chrono>
-#include <glm/gtc/constants.hpp>
 #include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
 
 #include "../core/parallel.h"
-#include "penumbra/area_light.h"
 #include "penumbra/error.h"
 #include "ray_scene_impl.h"
 #include "shared/shading.h"
-#include "surface_offset.h"
+#include "trace_rays.h"
 
 namespace penumbra::truth {
 namespace {
@@ -21,73 +19,6 @@ namespace {
 constexpr glm::vec3 kSky{0.62f, 0.72f, 0.86f};  // the camera pass's clear colour
 constexpr int kMaxTraceSide = 16384;             // output pixels per side
 constexpr int64_t kMaxSubPixels = int64_t(1) << 28;
-
-// The light as the shadow rays see it: one point (or direction) for a hard light; for a disk or
-// a sphere, a side x side grid of cells over the unit square, each 1/N of the light — mapped onto
-// the disk (each point 1/N of its area, the area-light reference's weights), or onto the cone of
-// directions under which each receiver sees the sphere (1/N of its solid angle): lightVisibility.
-// Each sub-pixel shifts the grid its own way (gridShift).
-struct SampledLight {
-  Light light;
-  bool atInfinity = false;  // directional
-  int side = 0;             // 0: a hard light
-  glm::vec3 hardTowards{0.0f};  // hard: the direction to the light (directional) or its position
-  LightDisk disk{};             // a disk light's frame
-};
-
-SampledLight sampleLight(const Light& light, int samples) {
-  SampledLight s;
-  s.light = light;
-  s.atInfinity = light.kind == LightKind::Directional;
-  if (!(light.size > 0.0f)) {
-    s.hardTowards = s.atInfinity ? -glm::normalize(light.direction) : light.position;
-    return s;
-  }
-  s.side = int(std::lround(std::sqrt(double(samples))));
-  if (light.kind != LightKind::Point) s.disk = lightDisk(light);
-  return s;
-}
-
-// Sub-pixel (x, y)'s toroidal shift of the sample grid over the unit square (Cranley and
-// Patterson, "Randomization of Number Theoretic Methods for Multiple Integration", 1976): every
-// cell still holds one point, and the sub-pixels' errors, which a fixed grid repeats along an
-// edge, become independent and average out over the pixel. Two fixed pseudo-random numbers in
-// [0, 1) from the splitmix64 hash of the position, so a trace is the same on every run.
-glm::vec2 gridShift(int x, int y) {
-  uint64_t z = (uint64_t(uint32_t(x)) << 32 | uint32_t(y)) + 0x9e3779b97f4a7c15ull;
-  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-  z ^= z >> 31;
-  return glm::vec2(float(z >> 40) * 0x1p-24f, float((z >> 8) & 0xffffffu) * 0x1p-24f);
-}
-
-// One axis of a side x side grid over the unit square: each cell's centre, shifted and wrapped.
-// A grid point is (u_i, v_j), so the maps below take their trigonometry per row and column, not
-// per point.
-void gridAxis(int side, float shift, std::vector<float>& out) {
-  out.resize(size_t(side));
-  for (int k = 0; k < side; ++k) {
-    const float p = (float(k) + 0.5f) / float(side) + shift;
-    out[size_t(k)] = p - std::floor(p);
-  }
-}
-
-// Unit vectors cos(2 pi v) a + sin(2 pi v) b for each v: the azimuths of the polar maps below.
-void spokes(const std::vector<float>& v, glm::vec3 a, glm::vec3 b, std::vector<glm::vec3>& out) {
-  out.resize(v.size());
-  for (size_t k = 0; k < v.size(); ++k) {
-    const float phi = 2.0f * glm::pi<float>() * v[k];
-    out[k] = std::cos(phi) * a + std::sin(phi) * b;
-  }
-}
-
-struct Hit {
-  glm::vec3 position;
-  glm::vec3 geometricNormal;  // unit, on the side the camera sees
-  glm::vec3 shadingNormal;    // unit, flipped like the camera pass's for back faces
-  glm::vec3 baseColor;
-  float viewDepth = 0.0f;
-};
 
 // Whether the ray from `origin` along `direction` reaches `reach` (in units of direction)
 // unblocked.
@@ -106,73 +37,6 @@ bool unblocked(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float reac
   ray.mask = ~0u;
   rtcOccluded1(scene, &context, &ray);
   return ray.tfar >= 0.0f;  // Embree sets tfar to -infinity when the ray is blocked
-}
-
-// The share of the light the surface at `hit` sees from the camera's side. A light sample
-// behind that side is blocked by the surface itself (a thin surface's far side is another
-// surface); the others by an occlusion ray from the offset origin.
-float lightVisibility(RTCScene scene, const SampledLight& light, const Hit& hit, glm::vec2 shift,
-                      uint64_t& shadowRays) {
-  const glm::vec3 origin = offsetRayOrigin(hit.position, hit.geometricNormal);
-  auto seen = [&](glm::vec3 direction, float reach) {
-    if (!(glm::dot(direction, hit.geometricNormal) > 0.0f)) return 0;
-    ++shadowRays;
-    return unblocked(scene, origin, direction, reach) ? 1 : 0;
-  };
-  constexpr float kForever = std::numeric_limits<float>::infinity();
-  if (light.side == 0) {
-    // A point is reached at t = 1 (nothing lies beyond it on the way); a direction never.
-    return float(light.atInfinity ? seen(light.hardTowards, kForever)
-                                  : seen(light.hardTowards - origin, 1.0f));
-  }
-  thread_local std::vector<float> u, v;
-  thread_local std::vector<glm::vec3> azimuths;
-  gridAxis(light.side, shift.x, u);
-  gridAxis(light.side, shift.y, v);
-  int count = 0;
-  if (light.light.kind == LightKind::Point) {
-    // The cone of directions from the receiver towards the sphere of radius r at distance d, half
-    // angle alpha = asin(r / d), sampled by Archimedes' map cos(theta) = 1 - u (1 - cos(alpha)),
-    // phi = 2 pi v, which keeps area, so the grid's points are uniform in solid angle over the
-    // cone (docs/reference.md, Sphere lights); each ray must reach the sphere's near surface,
-    // d cos(theta) - sqrt(r^2 - d^2 sin^2(theta)).
-    const glm::vec3 toCentre = light.light.position - hit.position;
-    const double distance = glm::length(toCentre);
-    const double radius = 0.5 * double(light.light.size);
-    if (!(distance > radius)) return 1.0f;  // inside the light: it is all around
-    const glm::vec3 axis = toCentre / float(distance);
-    const glm::vec3 helper =
-        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 a = glm::normalize(glm::cross(axis, helper));
-    spokes(v, a, glm::cross(axis, a), azimuths);
-    const double cosAlpha =
-        std::sqrt(std::max(0.0, 1.0 - (radius * radius) / (distance * distance)));
-    for (int i = 0; i < light.side; ++i) {
-      const double cosTheta = 1.0 - double(u[size_t(i)]) * (1.0 - cosAlpha);
-      const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
-      const double across = distance * sinTheta;
-      const float reach = float(distance * cosTheta -
-                                std::sqrt(std::max(0.0, radius * radius - across * across)));
-      for (const glm::vec3& azimuth : azimuths) {
-        count += seen(float(sinTheta) * azimuth + float(cosTheta) * axis, reach);
-      }
-    }
-  } else {
-    // The disk by the polar map r = sqrt(u), phi = 2 pi v, which keeps area, so each point stands
-    // for 1/N of the disk, as the area-light reference's concentric map's do. Not the concentric
-    // map: a straight edge seen through a shifted grid under it left 2.4x the error
-    // (docs/reference.md, Ray-traced truth), since it runs along that map's rows in places,
-    // every cell along it off the same way.
-    spokes(v, light.disk.axisA, light.disk.axisB, azimuths);
-    for (int i = 0; i < light.side; ++i) {
-      const float r = std::sqrt(u[size_t(i)]);
-      for (const glm::vec3& azimuth : azimuths) {
-        const glm::vec3 point = light.disk.centre + r * azimuth;
-        count += light.atInfinity ? seen(point, kForever) : seen(point - origin, 1.0f);
-      }
-    }
-  }
-  return float(count) / float(light.side * light.side);
 }
 
 }  // namespace
@@ -213,14 +77,7 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
   const SampledLight light = sampleLight(request.light, request.lightSamples);
   const RayScene::Impl& scene = rayScene.impl();
 
-  // Camera rays in view space through each sub-pixel's centre on the image plane at view depth
-  // 1, so a hit's ray parameter is its view depth and the near and far planes bound it exactly
-  // as they clip the rasteriser.
-  const float aspect = float(request.width) / float(request.height);
-  const glm::mat4 projection = clipFromView(request.camera, aspect, request.sceneBounds);
-  const glm::mat3 worldFromView = glm::transpose(glm::mat3(viewFromWorld(request.camera)));
-  const float nearDepth = kCameraNear;
-  const float farDepth = cameraFar(request.camera, request.sceneBounds);
+  const CameraRays camera(request);
   const glm::vec3 toLightDirectional = -glm::normalize(request.light.direction);
   const bool perspectiveLight = request.light.kind != LightKind::Directional;
   const glm::vec3 spotAxis = request.light.kind == LightKind::Spot
@@ -251,21 +108,18 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
       for (int sy = 0; sy < S; ++sy) {
         for (int sx = 0; sx < S; ++sx) {
           const int bx = x * S + sx, by = y * S + sy;
-          const float ndcX = (float(bx) + 0.5f) / float(bigWidth) * 2.0f - 1.0f;
-          const float ndcY = 1.0f - (float(by) + 0.5f) / float(bigHeight) * 2.0f;
-          const glm::vec3 direction =
-              worldFromView * glm::vec3(ndcX / projection[0][0], ndcY / projection[1][1], -1.0f);
+          const glm::vec3 direction = camera.direction(bx, by);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
           RTCRayHit rayHit{};
-          rayHit.ray.org_x = request.camera.position.x;
-          rayHit.ray.org_y = request.camera.position.y;
-          rayHit.ray.org_z = request.camera.position.z;
+          rayHit.ray.org_x = camera.origin.x;
+          rayHit.ray.org_y = camera.origin.y;
+          rayHit.ray.org_z = camera.origin.z;
           rayHit.ray.dir_x = direction.x;
           rayHit.ray.dir_y = direction.y;
           rayHit.ray.dir_z = direction.z;
-          rayHit.ray.tnear = nearDepth;
-          rayHit.ray.tfar = farDepth;
+          rayHit.ray.tnear = camera.nearDepth;
+          rayHit.ray.tfar = camera.farDepth;
           rayHit.ray.mask = ~0u;
           rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
           rtcIntersect1(scene.scene, &context, &rayHit);
@@ -276,21 +130,18 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const RayMesh& mesh = scene.meshes[rayHit.hit.geomID];
           const uint32_t primitive = rayHit.hit.primID;
           const float u = rayHit.hit.u, v = rayHit.hit.v;
+          const SurfacePoint hit = surfacePoint(mesh, primitive, u, v, direction);
           const auto [a, b, c] = mesh.triangle(primitive);
-          Hit hit;
-          hit.position = (1.0f - u - v) * mesh.positions[a] + u * mesh.positions[b] +
-                         v * mesh.positions[c];
-          const glm::vec3 front = glm::cross(mesh.positions[b] - mesh.positions[a],
-                                             mesh.positions[c] - mesh.positions[a]);
-          const bool frontFacing = glm::dot(front, direction) < 0.0f;
-          hit.geometricNormal = glm::normalize(frontFacing ? front : -front);
-          const glm::vec3 shading = glm::normalize((1.0f - u - v) * mesh.normals[a] +
-                                                   u * mesh.normals[b] + v * mesh.normals[c]);
-          hit.shadingNormal = frontFacing ? shading : -shading;
-          hit.viewDepth = rayHit.ray.tfar;
-          out.subPixelViewDepth.at(bx, by) = hit.viewDepth;
-          const float visibility =
-              lightVisibility(scene.scene, light, hit, gridShift(bx, by), rowShadowRays);
+          const glm::vec3 smooth = glm::normalize((1.0f - u - v) * mesh.normals[a] +
+                                                  u * mesh.normals[b] + v * mesh.normals[c]);
+          const glm::vec3 shadingNormal = hit.frontFacing ? smooth : -smooth;
+          out.subPixelViewDepth.at(bx, by) = rayHit.ray.tfar;
+          const float visibility = lightVisibility(
+              light, hit.position, hit.geometricNormal, gridShift(bx, by),
+              [&](glm::vec3 origin, glm::vec3 towards, float reach) {
+                ++rowShadowRays;
+                return unblocked(scene.scene, origin, towards, reach);
+              });
           visibilitySum += visibility;
           ++hits;
           // Shading as the camera pass's (passes/camera.frag): Lambert with the smooth normal
@@ -301,7 +152,7 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           if (!(glm::dot(hit.geometricNormal, toLight) > shaders::kGrazingCosine)) {
             out.facesLight.at(x, y) = 0.0f;
           }
-          float lightAmount = std::max(glm::dot(hit.shadingNormal, toLight), 0.0f);
+          float lightAmount = std::max(glm::dot(shadingNormal, toLight), 0.0f);
           if (request.light.kind == LightKind::Spot) {
             lightAmount *= shaders::spotConeFalloff(glm::dot(-toLight, spotAxis), spotCosine);
           }
@@ -370,6 +221,33 @@ SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& raste
     }
   }
   return match;
+}
+
+MeasuredPixels measuredPixels(const Image& shadowTestCoverage, const TrueShadow& trace,
+                              const SurfaceMatch& match) {
+  const int width = trace.visibility.width(), height = trace.visibility.height();
+  if (shadowTestCoverage.width() != width || shadowTestCoverage.height() != height ||
+      match.matched.width() != width || match.matched.height() != height) {
+    throw Error("the frame's coverage, the trace and the surface match differ in size");
+  }
+  MeasuredPixels m;
+  m.coverage = Image(width, height, 1, 0.0f);
+  m.exclusion = Image(width, height, 1, 0.0f);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      if (!(shadowTestCoverage.at(x, y) > 0.5f)) continue;
+      if (match.matched.at(x, y) < 0.5f || trace.visibility.at(x, y) < 0.0f) {
+        m.exclusion.at(x, y) = kExcludedSurface;
+        ++m.excludedPixels;
+      } else if (trace.facesLight.at(x, y) < 0.5f) {
+        m.exclusion.at(x, y) = kExcludedTerminator;
+        ++m.terminatorPixels;
+      } else {
+        m.coverage.at(x, y) = 1.0f;
+      }
+    }
+  }
+  return m;
 }
 
 }  // namespace penumbra::truth

@@ -86,18 +86,13 @@ struct TechniqueResult {
 
 // The ray-traced true shadow of frame 0 and the shadow-map references measured against it.
 struct TruthResult {
-  static constexpr float kExcludedSurface = 1.0f;
-  static constexpr float kExcludedTerminator = 2.0f;
-
   Image visibility;  // per pixel, -1 where no surface (truth::TrueShadow::visibility)
   Image color;
-  // The pixels measured against the truth: covered (litSurfaceMask), traced, seeing the same
-  // surfaces in every sub-pixel as the rasterised frame (truth::matchRasterisedSurfaces), on
-  // triangles that face the light.
+  // The pixels measured against the truth and why the other covered ones are not
+  // (truth::measuredPixels): a sub-pixel sees another surface than the rasterised frame, or the
+  // triangle does not face the light.
   Image coverage;
-  // Per pixel, why a covered pixel is left out: 0 it is not, kExcludedSurface (a sub-pixel sees
-  // another surface than the rasterised frame, or none), kExcludedTerminator (below).
-  Image exclusion;
+  Image exclusion;  // truth::kExcludedSurface, truth::kExcludedTerminator or 0
   int excludedPixels = 0;  // covered pixels left out: a sub-pixel sees another surface
   int mismatchedSubPixels = 0;
   // Covered pixels left out where a triangle's own plane does not face the light though its

@@ -120,6 +120,22 @@ inline constexpr float kSurfaceMatchTolerance = 1e-3f;
 SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& rasterWindowDepth,
                                      const TrueShadowRequest& request);
 
+// The pixels a rasterised frame is measured on against the truth (compare, the viewer): those
+// whose shading its shadow test decides (`shadowTestCoverage`, litSurfaceMask of its lookup),
+// left out where a sub-pixel sees another surface than the rasterised frame or none
+// (kExcludedSurface), or where a traced triangle faces away from the light (kExcludedTerminator,
+// TrueShadow::facesLight).
+inline constexpr float kExcludedSurface = 1.0f;
+inline constexpr float kExcludedTerminator = 2.0f;
+struct MeasuredPixels {
+  Image coverage;   // 1: measured
+  Image exclusion;  // why a covered pixel is not: 0 (it is, or it is not covered) or a kExcluded*
+  int excludedPixels = 0;    // kExcludedSurface
+  int terminatorPixels = 0;  // kExcludedTerminator
+};
+MeasuredPixels measuredPixels(const Image& shadowTestCoverage, const TrueShadow& trace,
+                              const SurfaceMatch& match);
+
 // Embree's own description of the build (version, ISA), for reports.
 std::string embreeDescription();
 
