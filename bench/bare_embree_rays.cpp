@@ -22,7 +22,7 @@ namespace {
 
 
 RecordedRay makeRay(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) {
-  return {{origin.x, origin.y, origin.z}, {direction.x, direction.y, direction.z}, tnear, tfar};
+  return {origin, direction, tnear, tfar};
 }
 
 }  // namespace
@@ -51,17 +51,8 @@ RecordedRays recordTrueShadowRays(const truth::RayScene& rayScene,
           if (kept) camera.push_back(cameraRay);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
-          RTCRayHit rayHit{};
-          rayHit.ray.org_x = cameraRay.origin[0];
-          rayHit.ray.org_y = cameraRay.origin[1];
-          rayHit.ray.org_z = cameraRay.origin[2];
-          rayHit.ray.dir_x = direction.x;
-          rayHit.ray.dir_y = direction.y;
-          rayHit.ray.dir_z = direction.z;
-          rayHit.ray.tnear = cameraRay.tnear;
-          rayHit.ray.tfar = cameraRay.tfar;
-          rayHit.ray.mask = ~0u;
-          rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          RTCRayHit rayHit = truth::embreeRayHit(cameraRays.origin, direction,
+                                                 cameraRays.nearDepth, cameraRays.farDepth);
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
           const truth::SurfacePoint hit =
@@ -103,17 +94,7 @@ BareTiming castBare(const truth::RayScene& rayScene, const RecordedRays& rays) {
       const RecordedRay& r = rays.camera[k];
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
-      RTCRayHit rayHit{};
-      rayHit.ray.org_x = r.origin[0];
-      rayHit.ray.org_y = r.origin[1];
-      rayHit.ray.org_z = r.origin[2];
-      rayHit.ray.dir_x = r.direction[0];
-      rayHit.ray.dir_y = r.direction[1];
-      rayHit.ray.dir_z = r.direction[2];
-      rayHit.ray.tnear = r.tnear;
-      rayHit.ray.tfar = r.tfar;
-      rayHit.ray.mask = ~0u;
-      rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      RTCRayHit rayHit = truth::embreeRayHit(r.origin, r.direction, r.tnear, r.tfar);
       rtcIntersect1(scene, &context, &rayHit);
       chunkHits += rayHit.hit.geomID != RTC_INVALID_GEOMETRY_ID;
     }
@@ -126,16 +107,7 @@ BareTiming castBare(const truth::RayScene& rayScene, const RecordedRays& rays) {
       const RecordedRay& r = rays.shadow[k];
       RTCIntersectContext context;
       rtcInitIntersectContext(&context);
-      RTCRay ray{};
-      ray.org_x = r.origin[0];
-      ray.org_y = r.origin[1];
-      ray.org_z = r.origin[2];
-      ray.dir_x = r.direction[0];
-      ray.dir_y = r.direction[1];
-      ray.dir_z = r.direction[2];
-      ray.tnear = r.tnear;
-      ray.tfar = r.tfar;
-      ray.mask = ~0u;
+      RTCRay ray = truth::embreeRay(r.origin, r.direction, r.tnear, r.tfar);
       rtcOccluded1(scene, &context, &ray);
       chunkUnblocked += ray.tfar >= 0.0f;
     }

@@ -1,10 +1,11 @@
 // Embree's own speed on the true shadow's rays: the camera rays and shadow rays a trace
-// (penumbra/truth/true_shadow.h) casts, generated once into arrays by the same formulas, then
+// (penumbra/truth/true_shadow.h) casts, generated once into arrays by the tracer's own code (src/truth/trace_rays.h), then
 // cast alone by a bare loop of rtcIntersect1 / rtcOccluded1 on every core — nothing else in the
 // loop, so a trace's rays per second over this loop's is the tracer's overhead.
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <vector>
 
 #include "penumbra/truth/true_shadow.h"
@@ -12,8 +13,8 @@
 namespace penumbra::bench {
 
 struct RecordedRay {
-  float origin[3];
-  float direction[3];
+  glm::vec3 origin;
+  glm::vec3 direction;
   float tnear;
   float tfar;
 };

@@ -18,6 +18,28 @@
 
 namespace penumbra::truth {
 
+// An Embree ray from `origin` along `direction` over [tnear, tfar] (in units of direction), and
+// the same as a ray-hit record with no hit yet.
+inline RTCRay embreeRay(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) {
+  RTCRay ray{};
+  ray.org_x = origin.x;
+  ray.org_y = origin.y;
+  ray.org_z = origin.z;
+  ray.dir_x = direction.x;
+  ray.dir_y = direction.y;
+  ray.dir_z = direction.z;
+  ray.tnear = tnear;
+  ray.tfar = tfar;
+  ray.mask = ~0u;
+  return ray;
+}
+inline RTCRayHit embreeRayHit(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) {
+  RTCRayHit rayHit{};
+  rayHit.ray = embreeRay(origin, direction, tnear, tfar);
+  rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  return rayHit;
+}
+
 // Camera rays in view space through each sub-pixel's centre on the image plane at view depth 1,
 // so a hit's ray parameter is its view depth and the near and far planes bound it exactly as
 // they clip the rasteriser.

@@ -25,16 +25,7 @@ constexpr int64_t kMaxSubPixels = int64_t(1) << 28;
 bool unblocked(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float reach) {
   RTCIntersectContext context;
   rtcInitIntersectContext(&context);
-  RTCRay ray{};
-  ray.org_x = origin.x;
-  ray.org_y = origin.y;
-  ray.org_z = origin.z;
-  ray.dir_x = direction.x;
-  ray.dir_y = direction.y;
-  ray.dir_z = direction.z;
-  ray.tnear = 0.0f;
-  ray.tfar = reach;
-  ray.mask = ~0u;
+  RTCRay ray = embreeRay(origin, direction, 0.0f, reach);
   rtcOccluded1(scene, &context, &ray);
   return ray.tfar >= 0.0f;  // Embree sets tfar to -infinity when the ray is blocked
 }
@@ -111,17 +102,8 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const glm::vec3 direction = camera.direction(bx, by);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
-          RTCRayHit rayHit{};
-          rayHit.ray.org_x = camera.origin.x;
-          rayHit.ray.org_y = camera.origin.y;
-          rayHit.ray.org_z = camera.origin.z;
-          rayHit.ray.dir_x = direction.x;
-          rayHit.ray.dir_y = direction.y;
-          rayHit.ray.dir_z = direction.z;
-          rayHit.ray.tnear = camera.nearDepth;
-          rayHit.ray.tfar = camera.farDepth;
-          rayHit.ray.mask = ~0u;
-          rayHit.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+          RTCRayHit rayHit = embreeRayHit(camera.origin, direction, camera.nearDepth,
+                                          camera.farDepth);
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
             color += kSky;

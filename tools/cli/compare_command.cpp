@@ -96,6 +96,9 @@ void runCompare(const CompareOptions& o) {
   request.areaLightSamples = o.areaSamples;
   request.truth = compare::parseTruthKind(o.truth);
   request.truthLightSamples = o.truthSamples;
+  if (request.truth == compare::TruthKind::RayTraced) {
+    truth::checkTrueShadowLightSamples(request.truthLightSamples);  // before any GL work
+  }
   request.pathFrames = o.frames;
   request.tau = o.tau;
 
