@@ -98,8 +98,8 @@ std::string describeTrueShadowAt(const gl::RenderResult& result, const TrueShado
     return "true shadow: not measured (the render and the trace see different surfaces)";
   }
   if (visibility.at(x, y) < 0.0f) return "true shadow: no surface";
-  if (truth.trace.facesLight.at(x, y) == 0.0f) {
-    return "true shadow: not measured (the triangle turns away from the light: terminator)";
+  if (truth.trace.reachedByLight.at(x, y) == 0.0f) {
+    return "true shadow: not measured (the light does not reach a sub-pixel: terminator, unlit face)";
   }
   char text[128];
   if (litSurfaceMask(result.lookup).at(x, y) == 0.0f) {
@@ -145,7 +145,7 @@ DisplayImage composeDisplay(View view, const gl::RenderResult& result, const Ima
             std::copy_n(kSilhouetteColour, 3, p);
           } else if (truth->trace.visibility.at(x, y) < 0.0f) {
             std::copy_n(kNoSurfaceColour, 3, p);
-          } else if (lit.at(x, y) > 0.0f && truth->trace.facesLight.at(x, y) == 0.0f) {
+          } else if (lit.at(x, y) > 0.0f && truth->trace.reachedByLight.at(x, y) == 0.0f) {
             std::copy_n(kTerminatorColour, 3, p);
           } else {
             const glm::vec3 c = errorHeatColour(error.at(x, y), kErrorRange);

@@ -48,9 +48,9 @@ inline constexpr float kErrorRange = 0.5f;
 // different surfaces (silhouettes: truth::matchRasterisedSurfaces), and where the trace hits none.
 inline constexpr uint8_t kSilhouetteColour[3] = {0x1b, 0xc4, 0x4a};
 inline constexpr uint8_t kNoSurfaceColour[3] = {0x58, 0x58, 0x58};
-// Where the traced triangle does not face the light though the smooth normal the render shades
-// with does (TrueShadow::facesLight, the shadow terminator), where the shadow test decides the
-// render's shading: left out as compare leaves it out.
+// Where the light does not reach a sub-pixel's surface as the render lights it
+// (TrueShadow::reachedByLight: the shadow terminator, an unlit face, outside a spot's cone) and
+// the shadow test decides the render's shading: left out as compare leaves it out.
 inline constexpr uint8_t kTerminatorColour[3] = {0xe0, 0xa0, 0x20};
 
 // The ray-traced truth of the render's camera, light and frame size, and where its surfaces are

@@ -361,7 +361,7 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
       return ImVec4(float(c[0]) / 255.0f, float(c[1]) / 255.0f, float(c[2]) / 255.0f, 1.0f);
     };
     ImGui::TextColored(swatch(kSilhouetteColour), "green: silhouettes, not measured");
-    ImGui::TextColored(swatch(kTerminatorColour), "amber: terminator, not measured");
+    ImGui::TextColored(swatch(kTerminatorColour), "amber: unlit (terminator), not measured");
     ImGui::SameLine();
     ImGui::TextDisabled("grey: no surface");
     ImGui::TextWrapped("%s", state.truthStatus.c_str());

@@ -237,6 +237,10 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
                                               result.truth->coverage, request.tau);
           out.truthError = signedVisibilityError(r.visibility, result.truth->visibility,
                                                  result.truth->coverage);
+          out.filteringRmseOnTruthPixels =
+              measureVisibilityErrors(r.visibility, reference.visibility,
+                                      result.truth->coverage, request.tau)
+                  .rmse;
         }
         out.failureRatePercent = r.failureRatePercent;
         out.gpuTimes = r.gpuTimes;

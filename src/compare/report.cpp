@@ -148,15 +148,16 @@ std::string msaaNote(const ComparisonResult& r) {
          "single-sampled light pass, so the sub-texel depths MSAA adds count as error";
 }
 
-// A technique's error against the truth in its two parts (docs/reference.md): the sampling part,
-// the shadow-map reference's own distance to the truth (resolution, aliasing, the curved-receiver
-// artefact; the same for every technique), and the filtering part, the technique's distance to
-// the reference (its approximation of the step).
+// A technique's error against the truth in its two parts (docs/reference.md), all three over the
+// truth's pixels: the sampling part, the shadow-map reference's own distance to the truth
+// (resolution, aliasing, the curved-receiver artefact; the same for every technique), and the
+// filtering part, the technique's distance to the reference (its approximation of the step).
 ordered_json decompositionJson(const ComparisonResult& r, const TechniqueResult& t) {
   if (!r.truth || !t.truth) return nullptr;
   return {{"total_rmse_vs_truth", t.truth->rmse},
           {"sampling_rmse_reference_vs_truth", r.truth->referenceVsTruth.rmse},
-          {"filtering_rmse_vs_reference", t.filtered.rmse}};
+          {"filtering_rmse_vs_reference", t.filteringRmseOnTruthPixels},
+          {"pixels", t.truth->pixels}};
 }
 
 ordered_json truthJson(const ComparisonResult& r) {
@@ -169,7 +170,7 @@ ordered_json truthJson(const ComparisonResult& r) {
           {"pixels_measured", t.referenceVsTruth.pixels},
           {"excluded_pixels", t.excludedPixels},
           {"mismatched_sub_pixels", t.mismatchedSubPixels},
-          {"terminator_pixels", t.terminatorPixels},
+          {"unlit_pixels", t.unlitPixels},
           {"reference_darker_than_lit_truth_pixels", t.referenceTooDarkPixels},
           {"reference_vs_truth", errorsJson(t.referenceVsTruth)},
           {"ground_truth_vs_truth", errorsJson(t.groundTruthVsTruth)},
@@ -359,10 +360,11 @@ std::string truthNote(const ComparisonResult& r) {
        "sub-pixel; <b>"
     << t.excludedPixels
     << "</b> covered pixels where they do not (silhouettes) are left out (magenta below), and <b>"
-    << t.terminatorPixels
-    << "</b> where the triangle itself faces away from the light though its smooth shading "
-       "normal does (the shadow terminator of a tessellated surface: dark in the truth, lit by "
-       "a shadow map's normal offset; cyan below).</p>\n"
+    << t.unlitPixels
+    << "</b> where the light does not reach a sub-pixel's surface as the renderer lights it "
+       "(cyan below): the shadow terminator of a tessellated surface (the triangle turned away, "
+       "its smooth shading normal not: dark in the truth, lit by a shadow map's normal offset), "
+       "a pixel straddling a lit and an unlit face, ground outside a spot light's cone.</p>\n"
     << "<p><b>Error decomposition</b>: a technique's error against the truth = the "
        "<i>sampling</i> part, the "
     << referenceName(r) << "'s own distance to the truth (RMSE <b>" << t.referenceVsTruth.rmse
@@ -521,7 +523,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
          "ray-traced truth visibility</figcaption></figure><figure>"
          "<img src=\"images/truth_pixels.png\" alt=\"pixels measured against the truth\">"
          "<figcaption>magenta: left out (another surface in a sub-pixel); cyan: left out (the "
-         "triangle faces away from the light); orange: the "
+         "light does not reach a sub-pixel); orange: the "
       << referenceName(r) << " darker than the lit truth</figcaption></figure></div>\n";
   }
   for (const TechniqueResult& t : r.techniques) {
@@ -616,7 +618,7 @@ Image truthPixelsImage(const ComparisonResult& r) {
       glm::vec3 mark(-1.0f);
       const float excluded = r.truth->exclusion.at(x, y);
       if (excluded == truth::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
-      if (excluded == truth::kExcludedTerminator) mark = {0.0f, 0.8f, 0.9f};  // cyan
+      if (excluded == truth::kExcludedUnlit) mark = {0.0f, 0.8f, 0.9f};  // cyan
       if (r.truth->referenceTooDark.at(x, y) > 0.5f) mark = {1.0f, 0.45f, 0.0f};
       if (mark.x < 0.0f) continue;
       for (int c = 0; c < 3; ++c) image.at(x, y, c) = mark[c];

@@ -34,7 +34,7 @@ TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& r
   t.coverage = std::move(measured.coverage);
   t.exclusion = std::move(measured.exclusion);
   t.excludedPixels = measured.excludedPixels;
-  t.terminatorPixels = measured.terminatorPixels;
+  t.unlitPixels = measured.unlitPixels;
   t.referenceTooDark = Image(trace.width, trace.height, 1, 0.0f);
   const float tau = float(request.tau);
   for (int y = 0; y < trace.height; ++y) {

@@ -113,7 +113,7 @@ bool RayMesh::covers(uint32_t primitive, float u, float v) const {
 
 RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   Impl& s = *impl_;
-  std::string message;
+  std::string& message = s.deviceError;
   s.device = rtcNewDevice(nullptr);
   if (s.device == nullptr) {
     throw Error("Embree could not create a device (error " +
@@ -124,6 +124,9 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
   for (const TextureImage& t : scene.textures) s.textures.push_back(decodeTexture(t));
   s.scene = rtcNewScene(s.device);
   rtcSetSceneBuildQuality(s.scene, RTC_BUILD_QUALITY_MEDIUM);
+  // Watertight triangle tests: a ray through a shared edge or vertex hits one of the triangles
+  // (the default, faster test may let it slip between them).
+  rtcSetSceneFlags(s.scene, RTC_SCENE_FLAG_ROBUST);
   s.meshes.reserve(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes) {
     RayMesh& m = s.meshes.emplace_back();
@@ -182,7 +185,6 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     throw Error("Embree could not build the scene's BVH (" + std::to_string(s.triangles) +
                 " triangles): " + failure);
   }
-  rtcSetDeviceErrorFunction(s.device, nullptr, nullptr);
 }
 
 RayScene::~RayScene() = default;

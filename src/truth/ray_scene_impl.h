@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdint>
 #include <glm/glm.hpp>
+#include <string>
 #include <vector>
 
 #include "penumbra/scene.h"
@@ -14,8 +15,11 @@
 
 namespace penumbra::truth {
 
-// A base-colour texture as the camera pass samples it at level 0: sRGB colour decoded to linear,
-// alpha linear, bilinear between texel centres, repeating (GpuScene's sampler).
+// A base-colour texture at full resolution (level 0): sRGB colour decoded to linear, alpha
+// linear, bilinear between texel centres, repeating as GpuScene's sampler does. The passes
+// sample it trilinearly at the mip level of their own footprint, so alpha-tested edges can
+// differ by the footprint's blur; where that makes a sub-pixel see another surface, compare
+// leaves the pixel out (docs/reference.md, Ray-traced truth).
 struct RayTexture {
   int width = 0;
   int height = 0;
@@ -54,6 +58,8 @@ struct RayScene::Impl {
     if (device != nullptr) rtcReleaseDevice(device);
   }
 
+  // Embree's last error message (its error callback writes here for the device's lifetime).
+  std::string deviceError;
   RTCDevice device = nullptr;
   RTCScene scene = nullptr;
   std::vector<RayTexture> textures;

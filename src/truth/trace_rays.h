@@ -55,7 +55,7 @@ struct CameraRays {
         worldFromView(glm::transpose(glm::mat3(viewFromWorld(request.camera)))),
         subPixelsWide(request.width * request.supersample),
         subPixelsHigh(request.height * request.supersample),
-        nearDepth(kCameraNear),
+        nearDepth(cameraNear(request.camera, request.sceneBounds)),
         farDepth(cameraFar(request.camera, request.sceneBounds)) {
     const glm::mat4 projection = clipFromView(
         request.camera, float(request.width) / float(request.height), request.sceneBounds);

@@ -79,7 +79,7 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
   TrueShadow out;
   out.visibility = Image(request.width, request.height, 1, -1.0f);
   out.color = Image(request.width, request.height, 4, 0.0f);
-  out.facesLight = Image(request.width, request.height, 1, 1.0f);
+  out.reachedByLight = Image(request.width, request.height, 1, 1.0f);
   out.subPixelViewDepth =
       Image(bigWidth, bigHeight, 1, std::numeric_limits<float>::infinity());
   std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
@@ -114,8 +114,13 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const float u = rayHit.hit.u, v = rayHit.hit.v;
           const SurfacePoint hit = surfacePoint(mesh, primitive, u, v, direction);
           const auto [a, b, c] = mesh.triangle(primitive);
-          const glm::vec3 smooth = glm::normalize((1.0f - u - v) * mesh.normals[a] +
-                                                  u * mesh.normals[b] + v * mesh.normals[c]);
+          const glm::vec3 blend =
+              (1.0f - u - v) * mesh.normals[a] + u * mesh.normals[b] + v * mesh.normals[c];
+          // Opposite vertex normals can cancel: the triangle's own normal then (never NaN).
+          const glm::vec3 smooth = glm::dot(blend, blend) > 1e-12f
+                                       ? glm::normalize(blend)
+                                       : (hit.frontFacing ? hit.geometricNormal
+                                                          : -hit.geometricNormal);
           const glm::vec3 shadingNormal = hit.frontFacing ? smooth : -smooth;
           out.subPixelViewDepth.at(bx, by) = rayHit.ray.tfar;
           const float visibility = lightVisibility(
@@ -131,12 +136,15 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const glm::vec3 toLight = perspectiveLight
                                         ? glm::normalize(request.light.position - hit.position)
                                         : toLightDirectional;
-          if (!(glm::dot(hit.geometricNormal, toLight) > shaders::kGrazingCosine)) {
-            out.facesLight.at(x, y) = 0.0f;
-          }
           float lightAmount = std::max(glm::dot(shadingNormal, toLight), 0.0f);
+          float cone = 1.0f;
           if (request.light.kind == LightKind::Spot) {
-            lightAmount *= shaders::spotConeFalloff(glm::dot(-toLight, spotAxis), spotCosine);
+            cone = shaders::spotConeFalloff(glm::dot(-toLight, spotAxis), spotCosine);
+            lightAmount *= cone;
+          }
+          if (!(glm::dot(hit.geometricNormal, toLight) > shaders::kGrazingCosine) ||
+              !(cone > 0.0f)) {
+            out.reachedByLight.at(x, y) = 0.0f;
           }
           const glm::vec3 base(mesh.baseColor(primitive, u, v));
           color += shaders::shadeLambert(base, request.ambient, lightAmount, visibility);
@@ -221,9 +229,9 @@ MeasuredPixels measuredPixels(const Image& shadowTestCoverage, const TrueShadow&
       if (match.matched.at(x, y) < 0.5f || trace.visibility.at(x, y) < 0.0f) {
         m.exclusion.at(x, y) = kExcludedSurface;
         ++m.excludedPixels;
-      } else if (trace.facesLight.at(x, y) < 0.5f) {
-        m.exclusion.at(x, y) = kExcludedTerminator;
-        ++m.terminatorPixels;
+      } else if (trace.reachedByLight.at(x, y) < 0.5f) {
+        m.exclusion.at(x, y) = kExcludedUnlit;
+        ++m.unlitPixels;
       } else {
         m.coverage.at(x, y) = 1.0f;
       }

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -77,62 +78,77 @@ TEST_F(TruthComparison, TheTruthIsTheSameWhateverTheShadowMapAndTheReferencesCon
             0.75 * find(coarse, Technique::Hard).truth->rmse);
 }
 
+// Backyard near the camera, and 2CylinderEngine (assimp-testmodels) framed from 900 units away: with
+// the near plane fixed at 0.05 the depth buffer resolved its view depth only to 1e-3, and the
+// match left 90% of its lit faces out (cameraNear now scales with the scene).
 TEST_F(TruthComparison, OnlySilhouettesAreLeftOutOfTheSameSurfaceMatch) {
-  const Scene scene = makeBuiltinScene("backyard");
-  gl::RenderSettings s;
-  s.width = 160;
-  s.height = 90;
-  s.shadowMapSize = 512;
-  const int S = 2;
-  renderer->setScene(scene);
-  renderer->renderReference(s, gl::FrameView{scene.camera, scene.light}, S);
-  const Image depth = renderer->readCameraDepth();
-  truth::TrueShadowRequest t;
-  t.camera = scene.camera;
-  t.light = scene.light;
-  t.sceneBounds = scene.bounds();
-  t.width = s.width;
-  t.height = s.height;
-  t.supersample = S;
-  const truth::RayScene rays(scene);
-  const truth::TrueShadow traced = truth::traceTrueShadow(rays, t);
-  const truth::SurfaceMatch match = truth::matchRasterisedSurfaces(traced, depth, t);
-  // Every excluded pixel straddles a depth discontinuity: some pair of neighbouring rasterised
-  // sub-pixels around it differs by more than 2% in view depth (or one sees nothing).
-  const glm::mat4 projection =
-      clipFromView(scene.camera, float(s.width) / float(s.height), scene.bounds());
-  auto viewDepth = [&](int x, int y) {
-    const float w = depth.at(std::clamp(x, 0, depth.width() - 1),
-                             std::clamp(y, 0, depth.height() - 1));
-    if (!(w < 1.0f)) return 1e30;
-    return double(projection[3][2]) / (2.0 * double(w) - 1.0 + double(projection[2][2]));
-  };
-  int notAtAnEdge = 0;
-  for (int y = 0; y < s.height; ++y) {
-    for (int x = 0; x < s.width; ++x) {
-      if (match.matched.at(x, y) > 0.5f) continue;
-      double lo = 1e30, hi = 0.0;
-      for (int sy = -1; sy <= S; ++sy) {
-        for (int sx = -1; sx <= S; ++sx) {
-          const double d = viewDepth(x * S + sx, y * S + sy);
-          lo = std::min(lo, d);
-          hi = std::max(hi, d);
+  Scene engine = loadScene(
+      "/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+  engine.camera.verticalFovDegrees = 20.0f;
+  for (const Scene& scene : {makeBuiltinScene("backyard"), engine}) {
+    SCOPED_TRACE(scene.name);
+    gl::RenderSettings s;
+    s.width = 160;
+    s.height = 90;
+    s.shadowMapSize = 512;
+    const int S = 2;
+    renderer->setScene(scene);
+    renderer->renderReference(s, gl::FrameView{scene.camera, scene.light}, S);
+    const Image depth = renderer->readCameraDepth();
+    truth::TrueShadowRequest t;
+    t.camera = scene.camera;
+    t.light = scene.light;
+    t.sceneBounds = scene.bounds();
+    t.width = s.width;
+    t.height = s.height;
+    t.supersample = S;
+    const truth::RayScene rays(scene);
+    const truth::TrueShadow traced = truth::traceTrueShadow(rays, t);
+    const truth::SurfaceMatch match = truth::matchRasterisedSurfaces(traced, depth, t);
+    // Every excluded pixel straddles a depth discontinuity: some pair of neighbouring
+    // rasterised sub-pixels around it differs by more than 0.5% in view depth (or one sees
+    // nothing) — five times the match's tolerance; the engine's stacked fins step by about 1%.
+    const glm::mat4 projection =
+        clipFromView(scene.camera, float(s.width) / float(s.height), scene.bounds());
+    auto viewDepth = [&](int x, int y) {
+      const float w = depth.at(std::clamp(x, 0, depth.width() - 1),
+                               std::clamp(y, 0, depth.height() - 1));
+      if (!(w < 1.0f)) return 1e30;
+      return double(projection[3][2]) / (2.0 * double(w) - 1.0 + double(projection[2][2]));
+    };
+    int notAtAnEdge = 0;
+    for (int y = 0; y < s.height; ++y) {
+      for (int x = 0; x < s.width; ++x) {
+        if (match.matched.at(x, y) > 0.5f) continue;
+        double lo = 1e30, hi = 0.0;
+        for (int sy = -1; sy <= S; ++sy) {
+          for (int sx = -1; sx <= S; ++sx) {
+            const double d = viewDepth(x * S + sx, y * S + sy);
+            lo = std::min(lo, d);
+            hi = std::max(hi, d);
+          }
         }
+        if (!(hi > 1.005 * lo)) ++notAtAnEdge;
       }
-      if (!(hi > 1.02 * lo)) ++notAtAnEdge;
     }
+    int drawn = 0;
+    for (int y = 0; y < s.height; ++y) {
+      for (int x = 0; x < s.width; ++x) drawn += traced.visibility.at(x, y) >= 0.0f ? 1 : 0;
+    }
+    std::printf("%s: %d of %d drawn pixels left out\n", scene.name.c_str(), match.excludedPixels,
+                drawn);
+    EXPECT_GT(match.excludedPixels, 0);  // both have silhouettes
+    EXPECT_LT(match.excludedPixels, drawn / 10);
+    EXPECT_EQ(notAtAnEdge, 0);
+    // A rasterised frame one sub-pixel row off sees other surfaces along every edge: the match
+    // notices (measured on backyard: about 10x the silhouette pixels).
+    Image shifted = depth;
+    for (int y = 0; y < depth.height(); ++y) {
+      for (int x = 0; x < depth.width(); ++x) shifted.at(x, y) = depth.at(x, std::max(y - 1, 0));
+    }
+    EXPECT_GT(truth::matchRasterisedSurfaces(traced, shifted, t).excludedPixels,
+              3 * match.excludedPixels);
   }
-  EXPECT_GT(match.excludedPixels, 0);  // backyard's fence and trees have silhouettes
-  EXPECT_LT(match.excludedPixels, s.width * s.height / 50);
-  EXPECT_EQ(notAtAnEdge, 0);
-  // A rasterised frame one sub-pixel row off sees other surfaces along every edge: the match
-  // notices (measured: about 10x the silhouette pixels).
-  Image shifted = depth;
-  for (int y = 0; y < depth.height(); ++y) {
-    for (int x = 0; x < depth.width(); ++x) shifted.at(x, y) = depth.at(x, std::max(y - 1, 0));
-  }
-  EXPECT_GT(truth::matchRasterisedSurfaces(traced, shifted, t).excludedPixels,
-            3 * match.excludedPixels);
 }
 
 TEST_F(TruthComparison, OnACurvedModelTheReferencesOwnDarkeningIsSeparatedFromTheTechniques) {
@@ -144,9 +160,9 @@ TEST_F(TruthComparison, OnACurvedModelTheReferencesOwnDarkeningIsSeparatedFromTh
   const compare::ComparisonResult r = compare::runComparison(q, *renderer);
   ASSERT_TRUE(r.truth);
   const compare::TruthResult& t = *r.truth;
-  std::printf("Wuson: %d pixels measured, %d silhouette, %d terminator, %d where the reference "
+  std::printf("Wuson: %d pixels measured, %d silhouette, %d unlit, %d where the reference "
               "darkens a lit truth; reference vs truth RMSE %.4f dark share %.4f\n",
-              t.referenceVsTruth.pixels, t.excludedPixels, t.terminatorPixels,
+              t.referenceVsTruth.pixels, t.excludedPixels, t.unlitPixels,
               t.referenceTooDarkPixels, t.referenceVsTruth.rmse, t.referenceVsTruth.darkShare);
   ASSERT_GT(t.referenceVsTruth.pixels, 10000);
   // The sampling part: the filtered reference's receiver plane, extended over its kernel, lies
@@ -154,8 +170,8 @@ TEST_F(TruthComparison, OnACurvedModelTheReferencesOwnDarkeningIsSeparatedFromTh
   // triangle edges (measured at 640 x 360: dark share 0.19, RMSE 0.13).
   EXPECT_GT(t.referenceVsTruth.darkShare, 0.08);
   EXPECT_GT(t.referenceTooDarkPixels, t.referenceVsTruth.pixels / 20);
-  // The low-poly body's terminator is left out, not scored.
-  EXPECT_GT(t.terminatorPixels, 0);
+  // The low-poly body's terminator is left out (unlit), not scored.
+  EXPECT_GT(t.unlitPixels, 0);
 
   const compare::TechniqueResult& pcf = find(r, Technique::Pcf);
   const compare::TechniqueResult& vsm = find(r, Technique::Vsm);

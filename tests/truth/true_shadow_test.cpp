@@ -220,16 +220,27 @@ TEST(TrueShadow, AlphaMaskedCheckerCardCastsItsPattern) {
 }
 
 TEST(TrueShadow, PlaneUnderAGrazingLightDoesNotShadowItself) {
-  // A plane of 32 x 32 quads far from the origin (coordinates near 100 and 3.7, where a float's
-  // ulp is 8e-6 and the barycentric hit point's rounding a few of them), lit at 85 degrees from
-  // its normal: every shadow ray leaves at 5 degrees over triangles it must not hit.
+  // A plane of 32 x 32 quads far from the origin (coordinates near 100, where a float's ulp is
+  // 8e-6 and the barycentric hit point's rounding a few of them), tilted 20 degrees about an
+  // oblique axis so that no coordinate is constant over it, lit at 85 degrees from its normal:
+  // every shadow ray leaves at 5 degrees over triangles it must not hit.
   Scene scene;
   Mesh plane;
-  addGrid(plane, 90.0, 110.0, -10.0, 10.0, 3.7f, 32);
+  addGrid(plane, -10.0, 10.0, -10.0, 10.0, 0.0f, 32);
+  const glm::vec3 centre(100.0f, 3.7f, -40.0f);
+  const glm::mat3 tilt(glm::rotate(glm::mat4(1.0f), glm::radians(20.0f),
+                                   glm::normalize(glm::vec3(1.0f, 0.0f, 0.6f))));
+  for (Vertex& v : plane.vertices) {
+    v.position = centre + tilt * v.position;
+    v.normal = tilt * v.normal;
+  }
   scene.meshes = {plane};
-  scene.camera = {glm::vec3(100.0f, 9.0f, 14.0f), glm::vec3(100.0f, 3.7f, 0.0f), 60.0f};
+  const glm::vec3 normal = tilt * glm::vec3(0.0f, 1.0f, 0.0f);
+  const glm::vec3 along = glm::normalize(tilt * glm::vec3(1.0f, 0.0f, 0.3f));
   const float grazing = glm::radians(85.0f);
-  scene.light.direction = glm::vec3(std::sin(grazing), -std::cos(grazing), 0.3f * std::sin(grazing));
+  scene.light.direction = -(std::cos(grazing) * normal + std::sin(grazing) * along);
+  scene.camera = {centre + 9.0f * normal + 12.0f * (tilt * glm::vec3(0.0f, 0.0f, 1.0f)), centre,
+                  60.0f};
   const int width = 160, height = 120;
   const TrueShadow t = traceTrueShadow(RayScene(scene), requestFor(scene, width, height, 2));
   int covered = 0, selfShadowed = 0;

@@ -577,7 +577,7 @@ TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
   for (int y = 0; y < kHeight; ++y) {
     for (int x = 0; x < kWidth; ++x) {
       if (match.matched.at(x, y) == 0.0f || trace.visibility.at(x, y) < 0.0f ||
-          trace.facesLight.at(x, y) == 0.0f) {
+          trace.reachedByLight.at(x, y) == 0.0f) {
         coverage.at(x, y) = 0;
       }
     }
@@ -602,7 +602,7 @@ TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
       } else if (trace.visibility.at(x, y) < 0.0f) {
         bytes = glm::vec3(viewer::kNoSurfaceColour[0], viewer::kNoSurfaceColour[1],
                           viewer::kNoSurfaceColour[2]);
-      } else if (litSurfaceMask(frame.lookup).at(x, y) > 0.0f && trace.facesLight.at(x, y) == 0.0f) {
+      } else if (litSurfaceMask(frame.lookup).at(x, y) > 0.0f && trace.reachedByLight.at(x, y) == 0.0f) {
         bytes = glm::vec3(viewer::kTerminatorColour[0], viewer::kTerminatorColour[1],
                           viewer::kTerminatorColour[2]);
       } else {

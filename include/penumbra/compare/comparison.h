@@ -81,6 +81,9 @@ struct TechniqueResult {
   // (`filtered`: the technique against the filtered reference) and the sampling part common to
   // all (TruthResult::referenceVsTruth) — and its heat map.
   std::optional<VisibilityErrors> truth;
+  // The filtering part's RMSE over the truth's pixels, so that the decomposition's three RMSEs
+  // are over one set of pixels (`filtered` covers every lit-surface pixel).
+  double filteringRmseOnTruthPixels = 0.0;
   Image truthError;  // visibility - truth, 0 outside TruthResult::coverage
 };
 
@@ -90,14 +93,15 @@ struct TruthResult {
   Image color;
   // The pixels measured against the truth and why the other covered ones are not
   // (truth::measuredPixels): a sub-pixel sees another surface than the rasterised frame, or the
-  // triangle does not face the light.
+  // light does not reach it (truth::TrueShadow::reachedByLight).
   Image coverage;
-  Image exclusion;  // truth::kExcludedSurface, truth::kExcludedTerminator or 0
+  Image exclusion;  // truth::kExcludedSurface, truth::kExcludedUnlit or 0
   int excludedPixels = 0;  // covered pixels left out: a sub-pixel sees another surface
   int mismatchedSubPixels = 0;
-  // Covered pixels left out where a triangle's own plane does not face the light though its
-  // shading normal does (truth::TrueShadow::facesLight: the shadow terminator).
-  int terminatorPixels = 0;
+  // Covered pixels left out where the light does not reach a sub-pixel's surface as the
+  // renderer lights it (truth::TrueShadow::reachedByLight: the shadow terminator of a
+  // tessellated surface, the edge of a lit and an unlit face, outside a spot's cone).
+  int unlitPixels = 0;
   // Pixels the truth lights (>= 1 - tau) that the filtered (or area-light) reference darkens by
   // more than tau (docs/reference.md): its kernel spreading a shadow past a hard edge, its
   // receiver plane missing the curved neighbours of a surface. A technique lighter than the

@@ -72,13 +72,15 @@ struct TrueShadow {
   // RGBA, linear light, row 0 at the top: Lambert + ambient shading of each hit with the
   // camera pass's formula (shared/shading.h) and this visibility, box-averaged; sky where none.
   Image color;
-  // Per output pixel: 1 where every sub-pixel's triangle faces the light (its centre) beyond
-  // grazing (shaders::kGrazingCosine) by its own plane, 0 where one does not — the shadow
-  // terminator of a tessellated surface, where the smoothly interpolated normal the camera pass
-  // shades with still faces the light but the flat triangle does not, so the truth is dark
-  // while a shadow map's normal offset lights it: neither is wrong about its own surface, and
-  // compare leaves these pixels out (and counts them) rather than score a leak there.
-  Image facesLight;
+  // Per output pixel: 1 where the light reaches every sub-pixel's surface point as the renderer
+  // lights it: its triangle faces the light's centre beyond grazing (shaders::kGrazingCosine)
+  // by its own plane, and a spot light's cone holds it; 0 where one is not reached. Such pixels
+  // are the shadow terminator of a tessellated surface (the smoothly interpolated normal the
+  // camera pass shades with still faces the light, the flat triangle does not: the truth is
+  // dark, a shadow map's normal offset lights it), pixels straddling the edge between a lit and
+  // an unlit face (some sub-pixels on each), and ground outside a spot's cone inside its map's
+  // square; compare leaves them out (and counts them) rather than score an error there.
+  Image reachedByLight;
   // Per sub-pixel (width x supersample by height x supersample, row 0 at the top): the view
   // depth of the camera ray's first hit (distance along the camera's axis), +infinity on a miss:
   // what matchRasterisedSurfaces compares with the rasteriser's depth.
@@ -113,9 +115,9 @@ struct SurfaceMatch {
   int mismatchedSubPixels = 0;  // sub-pixels that do
 };
 // Relative view-depth difference below which two sub-pixels see the same surface: the camera
-// pass interpolates window depth in fp32 (about 1e-7 relative near 1, times far/near ~ 2000 in
-// view depth: 2e-4 where the depth buffer is coarsest), and a sub-pixel that lands on another
-// surface jumps by far more (a silhouette's depth step). 1e-3 leaves 5x room.
+// pass's fp32 window depth resolves view depth to 1.2e-4 relative at worst (cameraNear keeps
+// far / near at most 2000), and a sub-pixel that lands on another surface jumps by more — a
+// silhouette's depth step. 1e-3 leaves 8x room.
 inline constexpr float kSurfaceMatchTolerance = 1e-3f;
 SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& rasterWindowDepth,
                                      const TrueShadowRequest& request);
@@ -123,15 +125,15 @@ SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& raste
 // The pixels a rasterised frame is measured on against the truth (compare, the viewer): those
 // whose shading its shadow test decides (`shadowTestCoverage`, litSurfaceMask of its lookup),
 // left out where a sub-pixel sees another surface than the rasterised frame or none
-// (kExcludedSurface), or where a traced triangle faces away from the light (kExcludedTerminator,
-// TrueShadow::facesLight).
+// (kExcludedSurface), or where the light does not reach a sub-pixel's surface as the renderer
+// lights it (kExcludedUnlit, TrueShadow::reachedByLight).
 inline constexpr float kExcludedSurface = 1.0f;
-inline constexpr float kExcludedTerminator = 2.0f;
+inline constexpr float kExcludedUnlit = 2.0f;
 struct MeasuredPixels {
   Image coverage;   // 1: measured
   Image exclusion;  // why a covered pixel is not: 0 (it is, or it is not covered) or a kExcluded*
   int excludedPixels = 0;    // kExcludedSurface
-  int terminatorPixels = 0;  // kExcludedTerminator
+  int unlitPixels = 0;  // kExcludedUnlit
 };
 MeasuredPixels measuredPixels(const Image& shadowTestCoverage, const TrueShadow& trace,
                               const SurfaceMatch& match);
