@@ -5,6 +5,7 @@
 #pragma once
 
 #include <glm/glm.hpp>
+#include <string_view>
 #include <vector>
 
 #include "penumbra/scene.h"
@@ -15,6 +16,9 @@ namespace penumbra {
 inline constexpr int kMinAreaLightSamples = 64;
 inline constexpr int kMaxAreaLightSamples = 1024;
 
+// Throws Error naming `what` and the valid counts unless `count` is side^2 with side in
+// [minSide, maxSide]: stratified grids of side x side cells.
+void checkSquareCount(int count, int minSide, int maxSide, std::string_view what);
 // Throws Error naming the valid counts unless `count` is side^2 with side in [8, 32].
 void checkAreaLightSamples(int count);
 
@@ -27,6 +31,9 @@ std::vector<glm::vec2> stratifiedDiskSamples(int count);
 // in world units around the light's position. Directional: at unit distance from the receiver,
 // towards the light (centre = -direction), so the way a sample's light travels is
 // -normalize(point). areaLightSample builds its samples from it.
+// Two unit vectors perpendicular to the unit `axis` and to each other (a, b, axis right-handed).
+void perpendicularBasis(glm::vec3 axis, glm::vec3& a, glm::vec3& b);
+
 struct LightDisk {
   glm::vec3 centre;
   glm::vec3 axisA;

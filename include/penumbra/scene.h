@@ -153,15 +153,16 @@ inline LightView fitLightView(const Scene& scene) {
   return fitLightView(scene.light, scene.bounds());
 }
 
-// The far plane that keeps the whole scene in view, and the near plane: 1/kCameraDepthRatio of
-// the far plane, but no nearer than kMinCameraNear. A fp32 depth buffer resolves view depth z to
-// about ulp(1) z / near relative — so with far / near at most 2000, to 1.2e-4 of z even at the
-// far plane, whatever the scene's scale (a fixed 0.05 left 2CylinderEngine, framed from 900
-// units, resolved to 1e-3).
+// The far plane that keeps the whole scene in view, and the near plane: the scene's bounding
+// radius / kCameraNearPerRadius, but no nearer than kMinCameraNear — the scene's, not the
+// camera's, so that it holds still while the camera moves (cascade splits start at it). A fp32
+// depth buffer resolves view depth z to about ulp(1) z / near relative: 1.5e-4 of z at the far
+// plane of a camera framing the scene from 3 radii, 1e-3 only from 30 radii, whatever the
+// scene's scale (a fixed 0.05 left 2CylinderEngine, framed from 900 units, resolved to 1e-3).
 inline constexpr float kMinCameraNear = 0.05f;
-inline constexpr float kCameraDepthRatio = 2000.0f;
+inline constexpr float kCameraNearPerRadius = 500.0f;
 float cameraFar(const Camera& camera, const Bounds& sceneBounds);
-float cameraNear(const Camera& camera, const Bounds& sceneBounds);
+float cameraNear(const Bounds& sceneBounds);
 
 // View and projection of the scene's camera for an image of the given aspect ratio.
 glm::mat4 viewFromWorld(const Camera& camera);

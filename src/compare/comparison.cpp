@@ -214,9 +214,17 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       if (traces) {
         step("ray-traced truth");
         const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels
-        result.truth = measureTruth(*rays, request, result.scene, path[frame],
-                                    {result.coverage, depth, reference.visibility,
-                                     result.groundTruthVisibility});
+        const int traceStep = done - 1;
+        result.truth = measureTruth(
+            *rays, request, result.scene, path[frame],
+            {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
+            [&](int rows, int of) {
+              if (progress) {
+                progress(traceStep, total,
+                         "ray-traced truth, row " + std::to_string(rows) + " of " +
+                             std::to_string(of));
+              }
+            });
       }
       const Image leakCoverage = whereLeaksCount(result.coverage, result.truth);
       result.techniques.resize(request.techniques.size());

@@ -1,12 +1,15 @@
 // Tracing a comparison's truth and measuring the references against it (truth_measurement.h).
 #include "truth_measurement.h"
 
+#include <atomic>
+#include <mutex>
 #include <utility>
 
 namespace penumbra::compare {
 
 TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& request,
-                         const Scene& scene, const Camera& camera, const RasterisedFrame& frame) {
+                         const Scene& scene, const Camera& camera, const RasterisedFrame& frame,
+                         const std::function<void(int done, int of)>& onRows) {
   truth::TrueShadowRequest trace;
   trace.camera = camera;
   trace.light = scene.light;
@@ -16,7 +19,20 @@ TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& r
   trace.supersample = request.supersample;
   trace.lightSamples = scene.light.size > 0.0f ? request.truthLightSamples : 1;
   trace.ambient = request.settings.ambient;
-  const truth::TrueShadow traced = truth::traceTrueShadow(rays, trace);
+  // A soft light's trace can take minutes (4096 samples per sub-pixel): its rows feed the
+  // progress bar, one caller at a time.
+  std::atomic<int> rowsDone{0};
+  std::mutex reporting;
+  truth::TraceControl control;
+  control.rowsDone = &rowsDone;
+  if (onRows) {
+    control.stopRequested = [&] {
+      const std::lock_guard<std::mutex> lock(reporting);
+      onRows(rowsDone.load(), trace.height);
+      return false;
+    };
+  }
+  const truth::TrueShadow traced = *truth::traceTrueShadow(rays, trace, control);
   const truth::SurfaceMatch match =
       truth::matchRasterisedSurfaces(traced, frame.supersampledDepth, trace);
 

@@ -2,6 +2,8 @@
 // it (comparison.h TruthResult, docs/reference.md "Ray-traced truth").
 #pragma once
 
+#include <functional>
+
 #include "penumbra/compare/comparison.h"
 
 namespace penumbra::compare {
@@ -16,7 +18,9 @@ struct RasterisedFrame {
   const Image& groundTruthVisibility;
 };
 
+// onRows(done, of): output rows traced so far, called from the tracing threads one at a time.
 TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& request,
-                         const Scene& scene, const Camera& camera, const RasterisedFrame& frame);
+                         const Scene& scene, const Camera& camera, const RasterisedFrame& frame,
+                         const std::function<void(int done, int of)>& onRows = {});
 
 }  // namespace penumbra::compare

@@ -10,6 +10,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "shadow_map_filter.h"
+#include "shared/shading.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -171,7 +172,7 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glDisable(GL_CULL_FACE);
-  const float sky[4] = {0.62f, 0.72f, 0.86f, 1.0f};
+  const float sky[4] = {shaders::kSkyColour.r, shaders::kSkyColour.g, shaders::kSkyColour.b, 1.0f};
   const float lit[4] = {1.0f, 0.0f, 0.0f, 0.0f};
   const float nothing[4] = {-1.0f, 0.0f, 0.0f, 0.0f};
   const float zero[4] = {0.0f, 0.0f, 0.0f, 0.0f};

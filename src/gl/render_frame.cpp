@@ -209,7 +209,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   frame.shadowMapSize = settings.shadowMapSize;
   frame.lightView = fitLightView(view.light, s.sceneBounds);
   const float aspect = float(settings.width) / float(settings.height);
-  DepthRange range{cameraNear(frame.shadowCamera, s.sceneBounds),
+  DepthRange range{cameraNear(s.sceneBounds),
                    cameraFar(frame.shadowCamera, s.sceneBounds)};
   s.depthBoundsTimer.reset();
   if (fitsDepthBounds(settings)) {

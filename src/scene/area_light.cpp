@@ -11,14 +11,6 @@
 namespace penumbra {
 namespace {
 
-// Two unit vectors perpendicular to `axis` and to each other.
-void perpendicularBasis(glm::vec3 axis, glm::vec3& a, glm::vec3& b) {
-  const glm::vec3 helper =
-      std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-  a = glm::normalize(glm::cross(axis, helper));
-  b = glm::cross(axis, a);
-}
-
 // Shirley and Chiu's concentric map of [-1,1]^2 onto the unit disk.
 glm::vec2 concentricDisk(glm::vec2 square) {
   if (square.x == 0.0f && square.y == 0.0f) return glm::vec2(0.0f);
@@ -36,6 +28,13 @@ glm::vec2 concentricDisk(glm::vec2 square) {
 
 }  // namespace
 
+void perpendicularBasis(glm::vec3 axis, glm::vec3& a, glm::vec3& b) {
+  const glm::vec3 helper =
+      std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+  a = glm::normalize(glm::cross(axis, helper));
+  b = glm::cross(axis, a);
+}
+
 LightDisk lightDisk(const Light& light) {
   const float radius = 0.5f * light.size;
   glm::vec3 a, b;
@@ -48,12 +47,19 @@ LightDisk lightDisk(const Light& light) {
   return {-travel, radius * a, radius * b};
 }
 
-void checkAreaLightSamples(int count) {
+void checkSquareCount(int count, int minSide, int maxSide, std::string_view what) {
   const int side = int(std::lround(std::sqrt(double(std::max(count, 0)))));
-  if (count < kMinAreaLightSamples || count > kMaxAreaLightSamples || side * side != count) {
-    throw Error("area-light samples " + std::to_string(count) +
-                " must be a square side^2 with side in [8, 32] (64, 81, 100, ..., 1024)");
+  if (side < minSide || side > maxSide || side * side != count) {
+    auto square = [](int k) { return std::to_string(k * k); };
+    throw Error(std::string(what) + " " + std::to_string(count) +
+                " must be a square side^2 with side in [" + std::to_string(minSide) + ", " +
+                std::to_string(maxSide) + "] (" + square(minSide) + ", " + square(minSide + 1) +
+                ", " + square(minSide + 2) + ", ..., " + square(maxSide) + ")");
   }
+}
+
+void checkAreaLightSamples(int count) {
+  checkSquareCount(count, 8, 32, "area-light samples");
 }
 
 std::vector<glm::vec2> stratifiedDiskSamples(int count) {

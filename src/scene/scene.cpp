@@ -100,13 +100,13 @@ float cameraFar(const Camera& camera, const Bounds& sceneBounds) {
   return glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
 }
 
-float cameraNear(const Camera& camera, const Bounds& sceneBounds) {
-  return std::max(kMinCameraNear, cameraFar(camera, sceneBounds) / kCameraDepthRatio);
+float cameraNear(const Bounds& sceneBounds) {
+  return std::max(kMinCameraNear, sceneBounds.radius() / kCameraNearPerRadius);
 }
 
 glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
   return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect,
-                          cameraNear(camera, sceneBounds), cameraFar(camera, sceneBounds));
+                          cameraNear(sceneBounds), cameraFar(camera, sceneBounds));
 }
 
 }  // namespace penumbra

@@ -47,13 +47,10 @@ void filterCameraHit(const RTCFilterFunctionNArguments* args) {
     if (args->valid[i] != -1) continue;
     const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
     if (!mesh.doubleSided) {
-      const auto [a, b, c] = mesh.triangle(primitive);
-      const glm::vec3 front = glm::cross(mesh.positions[b] - mesh.positions[a],
-                                         mesh.positions[c] - mesh.positions[a]);
+      const glm::vec3 front = mesh.frontNormal(primitive);
       const glm::vec3 direction(RTCRayN_dir_x(args->ray, args->N, i),
                                 RTCRayN_dir_y(args->ray, args->N, i),
                                 RTCRayN_dir_z(args->ray, args->N, i));
-      // Counter-clockwise triangles face the camera when it looks against their normal.
       if (glm::dot(front, direction) >= 0.0f) {
         args->valid[i] = 0;
         continue;

@@ -42,6 +42,12 @@ struct RayMesh {
   std::array<uint32_t, 3> triangle(uint32_t primitive) const {
     return {indices[3 * primitive], indices[3 * primitive + 1], indices[3 * primitive + 2]};
   }
+  // The triangle's normal by its winding (counter-clockwise is the front, as GL's default
+  // glFrontFace), not normalised: a camera looking against it sees the front.
+  glm::vec3 frontNormal(uint32_t primitive) const {
+    const auto [a, b, c] = triangle(primitive);
+    return glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+  }
   // The base colour (factor x texture) at barycentric (u, v) of the triangle: Embree's
   // convention, the point (1 - u - v) p0 + u p1 + v p2.
   glm::vec4 baseColor(uint32_t primitive, float u, float v) const;

@@ -55,7 +55,7 @@ struct CameraRays {
         worldFromView(glm::transpose(glm::mat3(viewFromWorld(request.camera)))),
         subPixelsWide(request.width * request.supersample),
         subPixelsHigh(request.height * request.supersample),
-        nearDepth(cameraNear(request.camera, request.sceneBounds)),
+        nearDepth(cameraNear(request.sceneBounds)),
         farDepth(cameraFar(request.camera, request.sceneBounds)) {
     const glm::mat4 projection = clipFromView(
         request.camera, float(request.width) / float(request.height), request.sceneBounds);
@@ -84,8 +84,7 @@ inline SurfacePoint surfacePoint(const RayMesh& mesh, uint32_t primitive, float 
   const auto [a, b, c] = mesh.triangle(primitive);
   SurfacePoint p;
   p.position = (1.0f - u - v) * mesh.positions[a] + u * mesh.positions[b] + v * mesh.positions[c];
-  const glm::vec3 front =
-      glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+  const glm::vec3 front = mesh.frontNormal(primitive);
   p.frontFacing = glm::dot(front, direction) < 0.0f;
   p.geometricNormal = glm::normalize(p.frontFacing ? front : -front);
   return p;
@@ -187,10 +186,9 @@ float lightVisibility(const SampledLight& light, glm::vec3 position, glm::vec3 n
     const double radius = 0.5 * double(light.light.size);
     if (!(distance > radius)) return 1.0f;  // inside the light: it is all around
     const glm::vec3 axis = toCentre / float(distance);
-    const glm::vec3 helper =
-        std::abs(axis.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
-    const glm::vec3 a = glm::normalize(glm::cross(axis, helper));
-    spokes(v, a, glm::cross(axis, a), azimuths);
+    glm::vec3 a, b;
+    perpendicularBasis(axis, a, b);
+    spokes(v, a, b, azimuths);
     const double cosAlpha =
         std::sqrt(std::max(0.0, 1.0 - (radius * radius) / (distance * distance)));
     for (int i = 0; i < light.side; ++i) {

@@ -16,7 +16,6 @@
 namespace penumbra::truth {
 namespace {
 
-constexpr glm::vec3 kSky{0.62f, 0.72f, 0.86f};  // the camera pass's clear colour
 constexpr int kMaxTraceSide = 16384;             // output pixels per side
 constexpr int64_t kMaxSubPixels = int64_t(1) << 28;
 
@@ -33,11 +32,7 @@ bool unblocked(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float reac
 }  // namespace
 
 void checkTrueShadowLightSamples(int count) {
-  const int side = int(std::lround(std::sqrt(double(std::max(count, 0)))));
-  if (count < 1 || count > kMaxTrueShadowLightSamples || side * side != count) {
-    throw Error("true-shadow light samples " + std::to_string(count) +
-                " must be a square side^2 with side in [1, 64] (1, 4, 9, ..., 4096)");
-  }
+  checkSquareCount(count, 1, 64, "true-shadow light samples");
 }
 
 TrueShadow traceTrueShadow(const RayScene& rayScene, const TrueShadowRequest& request) {
@@ -106,7 +101,7 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
                                           camera.farDepth);
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
-            color += kSky;
+            color += shaders::kSkyColour;
             continue;
           }
           const RayMesh& mesh = scene.meshes[rayHit.hit.geomID];

@@ -115,9 +115,9 @@ struct SurfaceMatch {
   int mismatchedSubPixels = 0;  // sub-pixels that do
 };
 // Relative view-depth difference below which two sub-pixels see the same surface: the camera
-// pass's fp32 window depth resolves view depth to 1.2e-4 relative at worst (cameraNear keeps
-// far / near at most 2000), and a sub-pixel that lands on another surface jumps by more — a
-// silhouette's depth step. 1e-3 leaves 8x room.
+// pass's fp32 window depth resolves view depth to about 1.5e-4 relative at the far plane of a
+// camera framing the scene (cameraNear scales with it), and a sub-pixel that lands on another
+// surface jumps by more — a silhouette's depth step.
 inline constexpr float kSurfaceMatchTolerance = 1e-3f;
 SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& rasterWindowDepth,
                                      const TrueShadowRequest& request);

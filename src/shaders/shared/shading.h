@@ -11,6 +11,9 @@ PENUMBRA_BEGIN_SHARED
 // whatever the test says. The ray-traced truth holds a triangle's own plane to the same cutoff.
 const float kGrazingCosine = 0.05f;
 
+// What the camera pass shows where no surface is drawn (its clear colour), linear RGB.
+const vec3 kSkyColour = vec3(0.62f, 0.72f, 0.86f);
+
 // lightAmount: N.L times the spot cone's falloff, in [0,1]; ambient: the ambient share, [0,1].
 PENUMBRA_INLINE vec3 shadeLambert(vec3 albedo, float ambient, float lightAmount, float visibility) {
   return albedo * (ambient + (1.0f - ambient) * lightAmount * visibility);
