@@ -609,12 +609,17 @@ std::string rankingName(const ComparisonResult& r) {
   return "RMSE against the " + (r.truth ? std::string("ray-traced truth") : referenceName(r));
 }
 
-// The truth's shaded image with the pixels it does not measure marked: magenta where a sub-pixel
-// sees another surface than the rasterised frame, orange where the reference darkens a lit truth.
+// The truth's shaded image in grey (so that no model's own colour reads as a mark) with the
+// pixels it does not measure marked: magenta where a sub-pixel sees another surface than the
+// rasterised frame, cyan where the light reaches none, orange where the reference darkens a lit
+// truth.
 Image truthPixelsImage(const ComparisonResult& r) {
   Image image = r.truth->color;
   for (int y = 0; y < image.height(); ++y) {
     for (int x = 0; x < image.width(); ++x) {
+      const float grey = 0.2126f * image.at(x, y, 0) + 0.7152f * image.at(x, y, 1) +
+                         0.0722f * image.at(x, y, 2);  // Rec. 709 luminance of linear RGB
+      for (int c = 0; c < 3; ++c) image.at(x, y, c) = grey;
       glm::vec3 mark(-1.0f);
       const float excluded = r.truth->exclusion.at(x, y);
       if (excluded == truth::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
