@@ -4,7 +4,7 @@ include(CMakePackageConfigHelpers)
 
 set(PENUMBRA_INSTALL_TARGETS penumbra_core penumbra_shaders penumbra_truth)
 if(TARGET penumbra_gl)
-  list(APPEND PENUMBRA_INSTALL_TARGETS penumbra_gl penumbra_compare)
+  list(APPEND PENUMBRA_INSTALL_TARGETS penumbra_gl penumbra_compare penumbra_tune)
 endif()
 install(TARGETS ${PENUMBRA_INSTALL_TARGETS} penumbra_warnings EXPORT penumbraTargets
         ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}

@@ -12,7 +12,7 @@
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
 #include "shared/shadow_lookup.h"
-#include "truth_measurement.h"
+#include "penumbra/compare/truth_measurement.h"
 
 namespace penumbra::compare {
 namespace {
@@ -31,16 +31,6 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
     s.params.pcf = pcfMatchingPrefilter(s);
   }
   return s;
-}
-
-// The frame's reference: the area light's when the light has a size, else the filtered one.
-gl::RenderResult referenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
-                              const gl::FrameView& view, bool areaLight, int supersample) {
-  if (areaLight) {
-    return renderer.renderAreaLightReference(request.settings, view, request.areaLightSamples,
-                                             supersample);
-  }
-  return renderer.renderReference(request.settings, view, supersample);
 }
 
 // The coverage minus the pixels where the reference darkens a lit truth
@@ -68,6 +58,15 @@ VisibilityErrors errorsAgainstReference(const Image& visibility, const Image& re
 }
 
 }  // namespace
+
+gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
+                                    const gl::FrameView& view, bool areaLight, int supersample) {
+  if (areaLight) {
+    return renderer.renderAreaLightReference(request.settings, view, request.areaLightSamples,
+                                             supersample);
+  }
+  return renderer.renderReference(request.settings, view, supersample);
+}
 
 std::string_view truthKindName(TruthKind kind) {
   return kind == TruthKind::RayTraced ? "raytraced" : "none";
@@ -187,7 +186,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   for (size_t frame = 0; frame < path.size(); ++frame) {
     const gl::FrameView view{path[frame], result.scene.light};
     step("reference, frame " + std::to_string(frame + 1));
-    const gl::RenderResult reference = referenceFor(request, renderer, view, areaLight, 1);
+    const gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1);
     references.push_back(reference.visibility);
     if (frame == 0) {
       result.referenceColor = reference.color;
@@ -210,7 +209,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       result.worstRegion.clear();
       step("supersampled ground truth");
       result.groundTruthVisibility =
-          referenceFor(request, renderer, view, areaLight, request.supersample).visibility;
+          renderReferenceFor(request, renderer, view, areaLight, request.supersample).visibility;
       if (traces) {
         step("ray-traced truth");
         const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels

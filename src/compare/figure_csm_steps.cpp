@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "curve_figure_tools.h"
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "penumbra/step_shape.h"

@@ -6,7 +6,7 @@
 
 #include "curve_figure_tools.h"
 #include "figure_csm_steps.h"
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/curves.h"
 #include "penumbra/error.h"

@@ -5,7 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/metrics.h"
 #include "penumbra/scene.h"
 #include "render_figure_tools.h"

@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/depth_distribution.h"
 #include "penumbra/error.h"
 #include "penumbra/params.h"

@@ -6,7 +6,7 @@
 
 #include "figure_gumbau.h"
 #include "figure_lvsm_splits.h"
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/paper_figures.h"
 #include "penumbra/output_journal.h"

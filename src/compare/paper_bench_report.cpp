@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/csv_field.h"
 #include "penumbra/error.h"

@@ -3,7 +3,7 @@
 
 #include <fstream>
 
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/error.h"
 #include "penumbra/text_file.h"

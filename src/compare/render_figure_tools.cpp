@@ -3,10 +3,10 @@
 #include <array>
 #include <cctype>
 
-#include "html_text.h"
+#include "penumbra/compare/html_text.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
-#include "report_plots.h"
+#include "penumbra/compare/report_plots.h"
 
 namespace penumbra::compare {
 namespace {

@@ -14,8 +14,8 @@
 #include "penumbra/gl/render_record.h"
 #include "penumbra/image_io.h"
 #include "penumbra/params.h"
-#include "html_text.h"
-#include "report_plots.h"
+#include "penumbra/compare/html_text.h"
+#include "penumbra/compare/report_plots.h"
 
 namespace penumbra::compare {
 namespace fs = std::filesystem;

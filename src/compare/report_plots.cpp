@@ -1,5 +1,5 @@
 // gnuplot figures.
-#include "report_plots.h"
+#include "penumbra/compare/report_plots.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Tracing a comparison's truth and measuring the references against it (truth_measurement.h).
-#include "truth_measurement.h"
+#include "penumbra/compare/truth_measurement.h"
 
 #include <atomic>
 #include <mutex>

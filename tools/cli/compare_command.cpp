@@ -23,21 +23,10 @@
 namespace penumbra::cli {
 namespace {
 
-RenderOptions compareRenderDefaults() {
-  RenderOptions o;
-  o.shadowSize = 1024;
-  o.blurKernel = "box";
-  o.filter = "bilinear";
-  o.width = 480;
-  o.height = 270;
-  return o;
-}
-
 struct CompareOptions {
   SceneOptions scene;
   TechniqueOptions technique{"all", {}};
-  // Sized for a two-core machine without a GPU: the whole report in about 20 s.
-  RenderOptions render = compareRenderDefaults();
+  RenderOptions render = measurementRenderDefaults();
   int supersample = 4;
   int areaSamples = kMinAreaLightSamples;
   std::string truth = "raytraced";

@@ -11,6 +11,7 @@
 #include "figures_command.h"
 #include "penumbra/error.h"
 #include "render_command.h"
+#include "tune_command.h"
 
 int main(int argc, char** argv) {
   CLI::App app{"penumbra: filtered shadow maps, measured against an exact reference"};
@@ -21,6 +22,7 @@ int main(int argc, char** argv) {
   penumbra::cli::registerCurvesCommand(app);
   penumbra::cli::registerFiguresCommand(app);
   penumbra::cli::registerRenderCommand(app);
+  penumbra::cli::registerTuneCommand(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

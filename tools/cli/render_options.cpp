@@ -65,6 +65,16 @@ void addRenderOptions(CLI::App& app, RenderOptions& o) {
       ->capture_default_str();
 }
 
+RenderOptions measurementRenderDefaults() {
+  RenderOptions o;
+  o.shadowSize = 1024;
+  o.blurKernel = "box";
+  o.filter = "bilinear";
+  o.width = 480;
+  o.height = 270;
+  return o;
+}
+
 gl::RenderSettings renderSettingsOf(const RenderOptions& o) {
   gl::RenderSettings s;
   s.shadowMapSize = o.shadowSize;

@@ -33,6 +33,11 @@ struct RenderOptions {
   std::string overlay = "none";
 };
 
+// The defaults of the subcommands that measure (compare, tune): sized for a two-core machine
+// without a GPU (compare's whole report in about 20 s): 1024² maps, a box blur, bilinear
+// lookups, 480x270 frames.
+RenderOptions measurementRenderDefaults();
+
 // Adds the options with `defaults` as their defaults.
 void addRenderOptions(CLI::App& app, RenderOptions& options);
 

@@ -157,6 +157,11 @@ bool matchedPcfIsReference(const ComparisonRequest& request, bool areaLight);
 // Gaussian blur x the lookup) where the lookup allows: compare's matched PCF.
 shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings);
 
+// The frame's reference at `supersample` sub-pixels per side: the area-light reference when the
+// light has a size (`areaLight`), else the filtered reference, of `request.settings`.
+gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
+                                    const gl::FrameView& view, bool areaLight, int supersample);
+
 // step: what is being done; done/total: steps so far and in all.
 using Progress = std::function<void(int done, int total, const std::string& step)>;
 

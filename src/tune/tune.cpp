@@ -1,0 +1,137 @@
+// The request, its work units and shards (tune.h).
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+
+#include "penumbra/area_light.h"
+#include "penumbra/error.h"
+#include "penumbra/truth/true_shadow.h"
+#include "penumbra/tune/tune.h"
+
+namespace penumbra::tune {
+namespace {
+
+constexpr std::pair<ErrorMeasure, std::string_view> kMeasures[] = {
+    {ErrorMeasure::Rmse, "rmse"},
+    {ErrorMeasure::LeakWeighted, "leak-weighted"},
+    {ErrorMeasure::Flicker, "flicker"},
+};
+constexpr std::pair<Target, std::string_view> kTargets[] = {
+    {Target::RayTraced, "raytraced"},
+    {Target::Filtered, "filtered"},
+};
+
+template <typename T, size_t N>
+std::string namesOf(const std::pair<T, std::string_view> (&table)[N]) {
+  std::string list;
+  for (const auto& [value, name] : table) list += (list.empty() ? "" : ", ") + std::string(name);
+  return list;
+}
+
+void requireRange(double value, double lo, double hi, const std::string& what) {
+  if (!(value >= lo && value <= hi)) {
+    throw Error(what + " " + std::to_string(value) + " is out of range [" + std::to_string(lo) +
+                ", " + std::to_string(hi) + "]");
+  }
+}
+
+int parsePositive(std::string_view text, std::string_view whole) {
+  int value = 0;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (ec != std::errc() || end != text.data() + text.size()) {
+    throw Error("--shard '" + std::string(whole) + "' is not K/N with whole numbers");
+  }
+  return value;
+}
+
+}  // namespace
+
+std::string_view errorMeasureName(ErrorMeasure measure) {
+  for (const auto& [m, name] : kMeasures) {
+    if (m == measure) return name;
+  }
+  throw Error("unknown error measure");
+}
+
+ErrorMeasure parseErrorMeasure(std::string_view name) {
+  for (const auto& [m, n] : kMeasures) {
+    if (n == name) return m;
+  }
+  throw Error("unknown objective '" + std::string(name) + "'; valid objectives: " +
+              namesOf(kMeasures));
+}
+
+std::string_view targetName(Target target) {
+  for (const auto& [t, name] : kTargets) {
+    if (t == target) return name;
+  }
+  throw Error("unknown target");
+}
+
+Target parseTarget(std::string_view name) {
+  for (const auto& [t, n] : kTargets) {
+    if (n == name) return t;
+  }
+  throw Error("unknown truth '" + std::string(name) + "'; valid truths: " + namesOf(kTargets));
+}
+
+void validateTuneRequest(const TuneRequest& r) {
+  if (r.scenes.empty()) throw Error("tune: no scene given");
+  for (const std::string& scene : r.scenes) checkSceneSource(scene);
+  validateOverrides(r.view);
+  if (r.techniques.empty()) throw Error("tune: no technique selected");
+  requireRange(r.leakWeight, 1.0, 100.0, "--leak-weight");
+  if (r.budgetMs && !(*r.budgetMs > 0.0 && std::isfinite(*r.budgetMs))) {
+    throw Error("--budget-ms must be a positive number of milliseconds");
+  }
+  if (r.budgetMib && !(*r.budgetMib > 0.0 && std::isfinite(*r.budgetMib))) {
+    throw Error("--budget-mib must be a positive number of MiB");
+  }
+  requireRange(r.frames, 2, 32, "--frames");
+  if (r.measure == ErrorMeasure::Flicker && r.frames < 4) {
+    throw Error("--objective flicker needs two tuning frames and two held-out ones: --frames 4 "
+                "or more (" + std::to_string(r.frames) + " given)");
+  }
+  requireRange(r.supersample, 1, 8, "--supersample");
+  truth::checkTrueShadowLightSamples(r.truthLightSamples);
+  checkAreaLightSamples(r.areaLightSamples);
+  if (!(r.tau > 0.0 && r.tau < 1.0)) {
+    throw Error("--tau " + std::to_string(r.tau) + " is out of range (0, 1)");
+  }
+  requireRange(r.evaluations, 1, 10000, "--evaluations");
+  if (!(r.searchScale > 0.0 && r.searchScale <= 1.0)) {
+    throw Error("--search-scale " + std::to_string(r.searchScale) + " is out of range (0, 1]");
+  }
+}
+
+std::vector<WorkUnit> workUnits(const TuneRequest& request) {
+  std::vector<WorkUnit> units;
+  for (const std::string& scene : request.scenes) {
+    for (Technique t : request.techniques) {
+      units.push_back({int(units.size()), scene, t});
+    }
+  }
+  return units;
+}
+
+Shard parseShard(std::string_view text) {
+  const size_t slash = text.find('/');
+  if (slash == std::string_view::npos) {
+    throw Error("--shard '" + std::string(text) + "' is not K/N (e.g. 2/8)");
+  }
+  Shard s{parsePositive(text.substr(0, slash), text), parsePositive(text.substr(slash + 1), text)};
+  if (s.count < 1 || s.index < 1 || s.index > s.count) {
+    throw Error("--shard '" + std::string(text) + "': K must be in [1, N] and N at least 1");
+  }
+  return s;
+}
+
+std::vector<WorkUnit> shardUnits(const std::vector<WorkUnit>& units, const Shard& shard) {
+  std::vector<WorkUnit> mine;
+  for (const WorkUnit& u : units) {
+    if (u.index % shard.count == shard.index - 1) mine.push_back(u);
+  }
+  return mine;
+}
+
+}  // namespace penumbra::tune
