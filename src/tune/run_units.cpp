@@ -197,7 +197,7 @@ class SceneTuner {
     result.device = renderer_.deviceDescription();
     gl::RenderSettings user = request_.settings;
     user.technique = unit.technique;
-    result.space = searchSpace(unit.technique, user);
+    result.space = requestSpace(request_, unit.technique);
     const SearchSpace& space = result.space;
 
     const Objective objective = [&](const Point& point) {

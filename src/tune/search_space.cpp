@@ -232,6 +232,26 @@ SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base) {
   return space;
 }
 
+SearchSpace restrictedTo(SearchSpace space, const std::vector<std::string>& names) {
+  if (names.empty()) return space;
+  std::vector<Dimension> kept;
+  for (Dimension& d : space.dimensions) {
+    if (std::find(names.begin(), names.end(), d.name) != names.end()) {
+      kept.push_back(std::move(d));
+    } else {
+      space.fixed.push_back({d.name, "the user's", "not among --only's dimensions"});
+    }
+  }
+  space.dimensions = std::move(kept);
+  return space;
+}
+
+std::vector<std::string> dimensionNames(const SearchSpace& space) {
+  std::vector<std::string> names;
+  for (const Dimension& d : space.dimensions) names.push_back(d.name);
+  return names;
+}
+
 Point pointOf(const SearchSpace& space, const gl::RenderSettings& settings) {
   Point p;
   for (const Dimension& d : space.dimensions) {

@@ -99,9 +99,31 @@ void validateTuneRequest(const TuneRequest& r) {
     throw Error("--tau " + std::to_string(r.tau) + " is out of range (0, 1)");
   }
   requireRange(r.evaluations, 1, 10000, "--evaluations");
+  for (const std::string& name : r.only) {
+    std::string valid;
+    bool found = false;
+    for (Technique t : r.techniques) {
+      gl::RenderSettings base = r.settings;
+      base.technique = t;
+      for (const std::string& d : dimensionNames(searchSpace(t, base))) {
+        found = found || d == name;
+        if (valid.find(" " + d + ",") == std::string::npos) valid += " " + d + ",";
+      }
+    }
+    if (!found) {
+      if (!valid.empty()) valid.pop_back();
+      throw Error("--only: no selected technique searches '" + name + "'; they search:" + valid);
+    }
+  }
   if (!(r.searchScale > 0.0 && r.searchScale <= 1.0)) {
     throw Error("--search-scale " + std::to_string(r.searchScale) + " is out of range (0, 1]");
   }
+}
+
+SearchSpace requestSpace(const TuneRequest& request, Technique technique) {
+  gl::RenderSettings base = request.settings;
+  base.technique = technique;
+  return restrictedTo(searchSpace(technique, base), request.only);
 }
 
 std::vector<WorkUnit> workUnits(const TuneRequest& request) {

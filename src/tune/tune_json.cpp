@@ -32,6 +32,7 @@ json requestJson(const TuneRequest& r) {
   json base = json::parse(gl::settingsJson(settings));
   base.erase("scene");
   j["settings"] = base;
+  j["only"] = r.only;
   j["truth"] = std::string(targetName(r.target));
   j["objective"] = std::string(errorMeasureName(r.measure));
   j["leak_weight"] = r.leakWeight;

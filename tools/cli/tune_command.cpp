@@ -27,6 +27,7 @@ struct TuneOptions {
   TechniqueOptions technique{"all", {}};
   RenderOptions render = measurementRenderDefaults();
   std::string settingsFile;
+  std::vector<std::string> only;
   std::string truth = "raytraced";
   std::string objective = "rmse";
   double leakWeight = tune::kDefaultLeakWeight;
@@ -79,6 +80,7 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
   r.view = resolved.view;
   r.techniques = resolved.techniques;
   r.settings = resolved.render;
+  r.only = o.only;
   r.target = tune::parseTarget(o.truth);
   r.measure = tune::parseErrorMeasure(o.objective);
   r.leakWeight = o.leakWeight;
@@ -110,7 +112,7 @@ void printSummary(const tune::UnitResult& r) {
   } else {
     std::cout << " -> no setting within the budgets";
   }
-  std::cout << " [" << r.evaluations.size() << " evaluations, " << r.seconds << " s]\n";
+  std::cout << " [" << r.evaluations.size() << " evaluations, " << r.seconds << " s]" << std::endl;
 }
 
 void runTune(const TuneOptions& o) {
@@ -124,11 +126,7 @@ void runTune(const TuneOptions& o) {
   const bool sharded = !o.shard.empty();
   if (sharded) units = tune::shardUnits(units, tune::parseShard(o.shard));
   if (!o.quiet) {
-    for (Technique t : request.techniques) {
-      gl::RenderSettings base = request.settings;
-      base.technique = t;
-      std::cout << tune::describeSpace(tune::searchSpace(t, base));
-    }
+    for (Technique t : request.techniques) std::cout << tune::describeSpace(tune::requestSpace(request, t));
   }
 
   CommandOutput output(o.output);  // a bad --out fails before any GL work
@@ -174,6 +172,10 @@ void registerTuneCommand(CLI::App& app) {
   addRenderOptions(*cmd, o->render);
   addSettingsOption(*cmd, o->settingsFile);
   o->command = cmd;
+  cmd->add_option("--only", o->only,
+                  "search only these dimensions (parameter or render-option names, e.g. "
+                  "minVariance,normal-offset); the others keep the given values")
+      ->delimiter(',');
   cmd->add_option("--truth", o->truth,
                   "the target: raytraced (the true shadow, Embree) or filtered (the supersampled "
                   "filtered reference of the given settings)")

@@ -60,6 +60,12 @@ using Point = std::vector<std::string>;
 // size, blur width and kernel and the lookup's filter where they shape this technique's map.
 SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base);
 
+// The space with only the named dimensions searched (an empty list: all); the others are held
+// at the user's value and listed as fixed. Names none of the dimensions has are the caller's to
+// refuse (dimensionNames).
+SearchSpace restrictedTo(SearchSpace space, const std::vector<std::string>& names);
+std::vector<std::string> dimensionNames(const SearchSpace& space);
+
 // The user's own values of every dimension: the search's first point, always evaluated.
 Point pointOf(const SearchSpace& space, const gl::RenderSettings& settings);
 

@@ -51,6 +51,8 @@ struct TuneRequest {
   // The user's setting (compare's defaults unless set): the search's start, its frame size and
   // every fixed setting.
   gl::RenderSettings settings;
+  // Only these dimensions are searched (search_space.h restrictedTo); empty: every one.
+  std::vector<std::string> only;
   Target target = Target::RayTraced;
   ErrorMeasure measure = ErrorMeasure::Rmse;
   double leakWeight = kDefaultLeakWeight;  // [1, 100]
@@ -68,8 +70,12 @@ struct TuneRequest {
   double searchScale = 1.0;
 };
 
-// Throws Error for a value out of range (stating the range) or an unknown scene.
+// Throws Error for a value out of range (stating the range), an unknown scene, or an --only name
+// no selected technique's space has (listing theirs).
 void validateTuneRequest(const TuneRequest& request);
+
+// The space searched for `technique` under the request (its --only applied).
+SearchSpace requestSpace(const TuneRequest& request, Technique technique);
 
 // One unit of work: a scene and a technique.
 struct WorkUnit {
