@@ -29,10 +29,12 @@ tune_args=(--scene backyard --scene planar --technique hard,vsm,esm --evaluation
 
 start=$SECONDS
 # The cluster's own time limit, inside CTest's, so that a stuck job still gets the cluster torn
-# down (local-cluster cancels the jobs and stops the daemons on TERM).
+# down (local-cluster cancels the jobs and stops the daemons on TERM). Standard input is not a
+# terminal even when run by hand: local-cluster would give the command the foreground and defer
+# the TERM until it ends.
 timeout --signal=TERM 150 "$repo/scripts/slurm/local-cluster" run -- \
   "$repo/scripts/slurm/submit-tune" --shards 3 --out "$out/cluster" --penumbra "$penumbra" \
-  --wait -- "${tune_args[@]}"
+  --wait -- "${tune_args[@]}" < /dev/null
 echo "cluster: shards and merge in $((SECONDS - start)) s"
 cat "$out"/cluster/logs/*.log
 
