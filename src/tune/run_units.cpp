@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <sstream>
 
 #include "penumbra/area_light.h"
@@ -18,10 +19,11 @@ namespace penumbra::tune {
 namespace {
 
 constexpr double kMiB = 1024.0 * 1024.0;
-// Warm frames timed per setting during the search (one: the frames before it warmed the passes)
-// and when the user's and the returned setting are measured at the user's size (the median of
-// three, against the shared machine's noise).
-constexpr int kSearchTimedFrames = 1;
+// Warm frames timed per setting: none more during the search, whose time is the path's last
+// frame (the frames before it warmed the passes: resources allocated, shaders compiled); three
+// when the user's and the returned setting are measured at the user's size (their median,
+// against the shared machine's noise).
+constexpr int kSearchTimedFrames = 0;
 constexpr int kConfirmTimedFrames = 3;
 // How many of the best search points are measured at the user's size before giving up, when
 // the better ones exceed the time budget there (they ran at a smaller size in the search).
@@ -200,6 +202,7 @@ class SceneTuner {
     result.space = requestSpace(request_, unit.technique);
     const SearchSpace& space = result.space;
 
+    slowFrameMs_.reset();  // set by the user's setting, the first evaluation
     const Objective objective = [&](const Point& point) {
       Evaluation e;
       e.point = point;
@@ -211,8 +214,11 @@ class SceneTuner {
       } catch (const Error& error) {
         e.measurement.status = error.what();  // a combination the registry refuses
       }
+      if (!slowFrameMs_ && e.measurement.measured) {
+        slowFrameMs_ = std::max(kMinSlowFrameMs, request_.maxSlowdown * e.measurement.timeMs);
+      }
       result.evaluations.push_back(e);
-      return Trial{e.measurement.tuneError, e.measurement.eligible};
+      return Trial{e.measurement.tuneError, e.measurement.eligible, e.measurement.tooSlow};
     };
     SearchLimits limits;
     limits.maxEvaluations = request_.evaluations;
@@ -276,20 +282,31 @@ class SceneTuner {
       return m;
     }
     std::vector<Image> visibility;
+    double lastFrameMs = 0.0;
     for (size_t f = 0; f < path_.size(); ++f) {
       gl::RenderResult r = renderer_.render(settings, gl::FrameView{path_[f], scene_.light});
+      const double frameMs = frameTime(r);
+      if (f == 0 && !first && slowFrameMs_ && frameMs > *slowFrameMs_) {
+        m.tooSlow = true;
+        m.status = "too slow to search: its first frame took " + formatNumber(frameMs) +
+                   " ms (shader compilation included), over --max-slowdown " +
+                   formatNumber(request_.maxSlowdown) + " x the given setting's (limit " +
+                   formatNumber(*slowFrameMs_) + " ms)";
+        return m;
+      }
       if (f == 0 && first) {
         first->color = r.color;
         first->error = signedVisibilityError(r.visibility, targets.frames[0].visibility,
                                              targets.frames[0].mask);
       }
       visibility.push_back(std::move(r.visibility));
+      lastFrameMs = frameMs;
     }
     std::vector<double> times;
+    if (timedFrames == 0) times.push_back(lastFrameMs);
     for (int k = 0; k < timedFrames; ++k) {
       const gl::RenderResult r = renderer_.render(settings, gl::FrameView{path_[0], scene_.light});
-      times.push_back(renderer_.timerQueriesMeasureExecution() ? r.gpuTimes.total()
-                                                               : r.wallTimes.total());
+      times.push_back(frameTime(r));
     }
     m.measured = true;
     m.timeMs = median(times);
@@ -318,8 +335,14 @@ class SceneTuner {
     return m;
   }
 
+  // All passes of a frame: GPU queries where they time execution, else the wall clock.
+  double frameTime(const gl::RenderResult& r) const {
+    return renderer_.timerQueriesMeasureExecution() ? r.gpuTimes.total() : r.wallTimes.total();
+  }
+
   const TuneRequest& request_;
   gl::Renderer& renderer_;
+  std::optional<double> slowFrameMs_;  // during a search: --max-slowdown's limit
   Scene scene_;
   std::vector<Camera> path_;
   size_t tuneFrames_ = 1;

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <nlopt.hpp>
+#include <set>
 #include <stdexcept>
 
 #include "penumbra/error.h"
@@ -42,6 +43,7 @@ class Search {
     if (exhausted()) return std::numeric_limits<double>::infinity();
     const Trial t = objective_(p);
     ++evaluations_;
+    lastTooSlow_ = t.tooSlow;
     const double v =
         t.eligible && std::isfinite(t.objective) ? t.objective : std::numeric_limits<double>::infinity();
     seen_.emplace(p, v);
@@ -73,10 +75,12 @@ class Search {
     }
     Point best = current;
     for (const std::string& option : d.values) {
-      if (option == current[dim]) continue;
+      if (option == current[dim] || tooSlow_.count({dim, option})) continue;
       Point candidate = current;
       candidate[dim] = option;
+      lastTooSlow_ = false;
       const double v = value(candidate);
+      if (lastTooSlow_) tooSlow_.insert({dim, option});
       if (v < currentValue) {
         best = candidate;
         currentValue = v;
@@ -151,6 +155,8 @@ class Search {
   SearchLimits limits_;
   int roundCap_;  // evaluations allowed until the current NLopt run stops
   std::map<Point, double> seen_;
+  std::set<std::pair<size_t, std::string>> tooSlow_;  // categorical values not to try again
+  bool lastTooSlow_ = false;
   int evaluations_ = 0;
   std::optional<Point> best_;
   double bestValue_ = std::numeric_limits<double>::infinity();

@@ -99,6 +99,7 @@ void validateTuneRequest(const TuneRequest& r) {
     throw Error("--tau " + std::to_string(r.tau) + " is out of range (0, 1)");
   }
   requireRange(r.evaluations, 1, 10000, "--evaluations");
+  requireRange(r.maxSlowdown, 1.0, 1e6, "--max-slowdown");
   for (const std::string& name : r.only) {
     std::string valid;
     bool found = false;

@@ -46,6 +46,7 @@ json requestJson(const TuneRequest& r) {
   j["tau"] = r.tau;
   j["evaluations"] = r.evaluations;
   j["search_scale"] = r.searchScale;
+  j["max_slowdown"] = r.maxSlowdown;
   return j;
 }
 

@@ -140,7 +140,6 @@ void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& fold
       throw Error("--merge: " + shard.string() + " holds no " + kUnitsFolder +
                   " folder: is it a `penumbra tune --shard` output?");
     }
-    int found = 0;
     for (const fs::directory_entry& entry : fs::directory_iterator(units)) {
       if (!entry.is_directory() || entry.is_symlink()) continue;  // only what tune writes
       const json unit = readUnitJson(entry.path() / kUnitFile);
@@ -156,10 +155,10 @@ void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& fold
         throw Error("--merge: unit " + name + " is in both " + sources[name].string() + " and " +
                     entry.path().string());
       }
-      ++found;
     }
-    if (found == 0) throw Error("--merge: " + shard.string() + " holds no unit");
   }
+  // A shard may hold no unit (an array with more tasks than units); all of them together must.
+  if (sources.empty()) throw Error("--merge: the shard folders hold no unit");
   for (const auto& [name, source] : sources) {
     const fs::path target = folder / kUnitsFolder / name;
     fs::create_directories(target);

@@ -136,6 +136,27 @@ TEST(TuneSearch, KeepsToTheEvaluationCap) {
   EXPECT_EQ(r.evaluations, 7);
 }
 
+TEST(TuneSearch, DoesNotRetryAValueFoundTooSlow) {
+  // The driver's anisotropic filter takes seconds a frame on llvmpipe: once refused as too slow
+  // where the sweep of the filter dimension tried it, later rounds skip it.
+  const gl::RenderSettings base = baseFor(Technique::Vsm);
+  const SearchSpace space = searchSpace(Technique::Vsm, base);
+  int slowTries = 0;
+  const SearchResult r = searchBest(
+      space, pointOf(space, base),
+      [&](const Point& p) {
+        const gl::RenderSettings s = applyPoint(space, base, p);
+        if (s.filter == FilterMode::AnisotropicDriver) {
+          ++slowTries;
+          return Trial{0.0, false, true};
+        }
+        return Trial{syntheticVsmError(s), true};
+      },
+      {200, 4, 1e-4});
+  EXPECT_GE(r.rounds, 2);  // later rounds ran, and would have retried it
+  EXPECT_EQ(slowTries, 1);
+}
+
 TEST(TuneSpace, ScalesMapTheUnitIntervalOntoTheRangeAndBack) {
   Dimension zeroLog{"f", true, true, 0.0, 0.01, Scale::ZeroLog, {}, false, ""};
   Dimension log{"c", true, true, 0.5, 88.0, Scale::Log, {}, false, ""};

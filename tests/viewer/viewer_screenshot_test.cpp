@@ -293,6 +293,59 @@ TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
   EXPECT_LE(d.maxSteps, 2);
 }
 
+// `penumbra tune`'s best setting loads in the viewer as it renders headless, and the viewer's
+// true-shadow error view shows where the tuned setting still fails.
+TEST(Viewer, LoadsATunedSettingAndShowsWhereItStillFails) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const RunResult tuned = runPenumbra(
+      {"tune", "--scene", "contact", "--technique", "vsm", "--evaluations", "5", "--width",
+       std::to_string(kFrameWidth), "--height", std::to_string(kFrameHeight), "--shadow-size",
+       "256", "--frames", "2", "--supersample", "1", "-q", "--out", "tuned"},
+      scratch.path());
+  ASSERT_EQ(tuned.exitCode(), 0) << tuned.output;
+  const fs::path best = scratch.path() / "tuned" / "best" / "vsm.json";
+  ASSERT_TRUE(fs::exists(best));
+  const fs::path shot = scratch.path() / "viewer.png";
+  const RunResult run = runViewer(best, shot, scratch.path());
+  ASSERT_EQ(run.exitCode(), 0) << run.output;
+  const RunResult render =
+      runPenumbra({"render", "--settings", best.string(), "--out", "render"}, scratch.path());
+  ASSERT_EQ(render.exitCode(), 0) << render.output;
+  const Difference d =
+      sceneAreaDifference(readEncodedColorPng(shot),
+                          readEncodedColorPng(scratch.path() / "render" / "contact_vsm.png"),
+                          kFrameWidth, kFrameHeight);
+  EXPECT_LE(d.meanSteps, kMeanStepsTolerance);
+
+  const fs::path errorShot = scratch.path() / "error.png";
+  const RunResult error = runViewer(best, errorShot, scratch.path(),
+                                    {"--show", "truth-error", "--hide-panel"});
+  ASSERT_EQ(error.exitCode(), 0) << error.output;
+  // Some measured pixel is not the heat map's zero: the tuned VSM still errs somewhere (the
+  // contact scene's plates bleed light at any floor), and the view shows where.
+  const Image window = readEncodedColorPng(errorShot);
+  // The heat map's colours of errors of 0.1 visibility or more, either sign (0.01 apart).
+  std::vector<glm::vec3> errorColours;
+  for (int k = 10; k <= 50; ++k) {
+    for (float sign : {-1.0f, 1.0f}) errorColours.push_back(errorHeatColour(sign * 0.01f * k, viewer::kErrorRange));
+  }
+  int erring = 0;
+  for (int y = 0; y < kFrameHeight; ++y) {
+    for (int x = 0; x < kFrameWidth; ++x) {
+      const glm::vec3 bytes(window.at(x, y, 0) * 255.0f, window.at(x, y, 1) * 255.0f,
+                            window.at(x, y, 2) * 255.0f);
+      for (const glm::vec3& c : errorColours) {
+        if (glm::length(bytes - c) < 3.0f) {  // an 8-bit rounding of a palette colour
+          ++erring;
+          break;
+        }
+      }
+    }
+  }
+  EXPECT_GT(erring, 0);
+}
+
 bool haveXdotool() {
   return penumbra::runProgram({"xdotool", "version"}).started;
 }

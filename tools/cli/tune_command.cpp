@@ -21,6 +21,9 @@
 namespace penumbra::cli {
 namespace {
 
+// The library's defaults, stated once (tune::TuneRequest).
+const tune::TuneRequest kDefaults;
+
 struct TuneOptions {
   std::vector<std::string> scenes;
   SceneOptions scene;
@@ -28,18 +31,19 @@ struct TuneOptions {
   RenderOptions render = measurementRenderDefaults();
   std::string settingsFile;
   std::vector<std::string> only;
-  std::string truth = "raytraced";
-  std::string objective = "rmse";
-  double leakWeight = tune::kDefaultLeakWeight;
+  std::string truth{tune::targetName(kDefaults.target)};
+  std::string objective{tune::errorMeasureName(kDefaults.measure)};
+  double leakWeight = kDefaults.leakWeight;
   std::optional<double> budgetMs;
   std::optional<double> budgetMib;
-  int evaluations = 40;
-  int frames = 4;
-  int supersample = 4;
-  int truthSamples = 64;
-  int areaSamples = 64;
-  double tau = 0.05;
-  double searchScale = 1.0;
+  int evaluations = kDefaults.evaluations;
+  int frames = kDefaults.frames;
+  int supersample = kDefaults.supersample;
+  int truthSamples = kDefaults.truthLightSamples;
+  int areaSamples = kDefaults.areaLightSamples;
+  double tau = kDefaults.tau;
+  double searchScale = kDefaults.searchScale;
+  double maxSlowdown = kDefaults.maxSlowdown;
   std::string shard;
   std::vector<std::string> merge;
   OutputOptions output{"out/tune"};
@@ -93,6 +97,7 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
   r.tau = o.tau;
   r.evaluations = o.evaluations;
   r.searchScale = o.searchScale;
+  r.maxSlowdown = o.maxSlowdown;
   tune::validateTuneRequest(r);
   return r;
 }
@@ -134,6 +139,9 @@ void runTune(const TuneOptions& o) {
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   const std::filesystem::path staging = output.begin(interrupt);
+  // A shard's units folder exists even when the shard holds none (more array tasks than units),
+  // so --merge can tell it from a folder that is not a shard.
+  std::filesystem::create_directories(staging / "units");
   {
     ProgressBar bar(o.quiet);
     tune::runUnits(
@@ -210,6 +218,10 @@ void registerTuneCommand(CLI::App& app) {
   cmd->add_option("--search-scale", o->searchScale,
                   "the search's frame size as a share of --width x --height, (0, 1]; the result "
                   "is measured again at full size")
+      ->capture_default_str();
+  cmd->add_option("--max-slowdown", o->maxSlowdown,
+                  "a setting whose first frame takes longer than this many times the given "
+                  "setting's frame (and over 1 s) is not searched further, [1, 1e6]")
       ->capture_default_str();
   cmd->add_option("--shard", o->shard,
                   "K/N: run only the K-th of N shares of the scene x technique units (a cluster "

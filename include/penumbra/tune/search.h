@@ -27,6 +27,9 @@ struct Trial {
   // False: outside a budget or refused by the renderer; never returned, and the optimiser sees
   // a penalty instead of its objective.
   bool eligible = true;
+  // Refused as too slow to measure: when the search reached it by changing one discrete
+  // dimension, it does not try that value again in later rounds (its cost is that value's).
+  bool tooSlow = false;
 };
 
 // Evaluates one point (called once per distinct point: the search remembers what it has seen).

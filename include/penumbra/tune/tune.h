@@ -42,6 +42,9 @@ Target parseTarget(std::string_view name);
 // engines' complaints are about light bleeding, and 4 is the weight at which a tuned VSM trades
 // its bleeding for darkening on the built-in scenes).
 inline constexpr double kDefaultLeakWeight = 4.0;
+// The least first-frame time --max-slowdown refuses a setting at, ms: a first frame compiles its
+// shaders (up to a few hundred ms on llvmpipe), which must not refuse a fast setting.
+inline constexpr double kMinSlowFrameMs = 1000.0;
 
 struct TuneRequest {
   std::vector<std::string> scenes{"backyard"};  // built-in names or scene files
@@ -64,7 +67,12 @@ struct TuneRequest {
   int truthLightSamples = 64;    // the ray-traced target's light samples for a light with a size
   int areaLightSamples = 64;     // the filtered target's area-light samples for a light with a size
   double tau = 0.05;             // leak / over-darkening threshold of the reported shares
-  int evaluations = 40;          // per unit, the user's setting included, [1, 10000]
+  int evaluations = 30;          // per unit, the user's setting included, [1, 10000]
+  // A setting whose first frame takes longer than this many times the user's setting's warm
+  // frame (and at least kMinSlowFrameMs) is not searched further: tuning looks for the best
+  // setting near the user's cost (the frontier shows the trade), and on llvmpipe the driver's
+  // anisotropic filter takes 10 s a frame where bilinear takes 0.1 s. [1, 1e6].
+  double maxSlowdown = 8.0;
   // The search's frame size as a share of the user's, (0, 1]: the winner and the user's setting
   // are measured again at the user's size.
   double searchScale = 1.0;
@@ -99,6 +107,7 @@ struct Measurement {
   bool eligible = false;
   std::string status;
   bool measured = false;  // rendered (false: refused before rendering, e.g. over memory)
+  bool tooSlow = false;   // refused after its first frame by --max-slowdown
   double tuneError = 0.0;     // the request's measure on the tuning frames
   double heldOutError = 0.0;  // on the held-out frames
   double tuneRmse = 0.0;
