@@ -36,14 +36,15 @@ void plotFrontier(const std::vector<CostPoint>& points, const std::vector<std::s
       bool any = false;
       for (const CostPoint& p : points) {
         if (p.technique != t) continue;
-        out << std::max(p.cost, 1e-3) << " " << p.error << "\n";
+        out << std::max(p.cost, 1e-3) << " " << std::max(p.error, 1e-6) << "\n";
         any = true;
       }
       if (!any) out << "nan nan\n";  // keeps the block, so indices stay the techniques'
       out << "\n\n";
     }
     for (const CostPoint& p : paretoFront(points)) {
-      front << std::max(p.cost, 1e-3) << " " << p.error << " \"" << p.technique << "\"\n";
+      front << std::max(p.cost, 1e-3) << " " << std::max(p.error, 1e-6) << " \"" << p.technique
+            << "\"\n";
     }
     if (!out || !front) throw Error("cannot write the data of " + png.string());
   }
@@ -53,7 +54,9 @@ void plotFrontier(const std::vector<CostPoint>& points, const std::vector<std::s
      << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set xlabel " << gnuplotText(costLabel) << " noenhanced\n"
      << "set ylabel " << gnuplotText(errorLabel) << " noenhanced\n"
-     << "set grid\nset key outside right top\nset logscale x\n"
+     // Both axes logarithmic: costs span decades, and so do errors (a tuned setting may cut
+     // the default's several times, an outlier may be ten times worse than either).
+     << "set grid\nset key outside right top\nset logscale xy\n"
      << "set offsets graph 0.02, graph 0.1, graph 0.1, graph 0.05\n"
      << "plot ";
   for (size_t i = 0; i < techniques.size(); ++i) {

@@ -19,8 +19,8 @@ struct CostPoint {
 // (ties in cost: the lower error).
 std::vector<CostPoint> paretoFront(std::vector<CostPoint> points);
 
-// Every point coloured by technique, the frontier as a line with its points labelled; the cost
-// axis logarithmic.
+// Every point coloured by technique, the frontier as a line with its points labelled; both
+// axes logarithmic (errors must be positive).
 void plotFrontier(const std::vector<CostPoint>& points, const std::vector<std::string>& techniques,
                   const std::string& costLabel, const std::string& errorLabel,
                   const std::string& title, const std::filesystem::path& png);

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <memory>
 #include <optional>
-#include <sstream>
+#include <set>
 
 #include "penumbra/area_light.h"
 #include "penumbra/compare/comparison.h"
@@ -14,6 +14,7 @@
 #include "penumbra/metrics.h"
 #include "penumbra/tune/search.h"
 #include "penumbra/tune/tune.h"
+#include "path_error.h"
 
 namespace penumbra::tune {
 namespace {
@@ -28,26 +29,6 @@ constexpr int kConfirmTimedFrames = 3;
 // How many of the best search points are measured at the user's size before giving up, when
 // the better ones exceed the time budget there (they ran at a smaller size in the search).
 constexpr int kConfirmCandidates = 5;
-
-// One frame's target and the pixels measured against it.
-struct FrameTarget {
-  Image visibility;
-  Image mask;
-};
-
-// The frame size of a search or a confirmation, and its targets.
-struct PathTargets {
-  int width = 0;
-  int height = 0;
-  std::vector<FrameTarget> frames;
-};
-
-std::string formatNumber(double v) {
-  std::ostringstream out;
-  out.precision(4);
-  out << v;
-  return out.str();
-}
 
 // The request as compare's, for the shared reference and truth code.
 compare::ComparisonRequest comparisonRequestOf(const TuneRequest& request, int width, int height) {
@@ -64,7 +45,8 @@ compare::ComparisonRequest comparisonRequestOf(const TuneRequest& request, int w
 
 PathTargets traceTargets(const TuneRequest& request, gl::Renderer& renderer,
                          const truth::RayScene* rays, const Scene& scene,
-                         const std::vector<Camera>& path, int width, int height) {
+                         const std::vector<Camera>& path, int width, int height,
+                         const std::function<void()>& onFrame) {
   const compare::ComparisonRequest c = comparisonRequestOf(request, width, height);
   const bool areaLight = scene.light.size > 0.0f;
   PathTargets targets{width, height, {}};
@@ -93,67 +75,9 @@ PathTargets traceTargets(const TuneRequest& request, gl::Renderer& renderer,
                   "the view?): nothing to tune against");
     }
     targets.frames.push_back(std::move(t));
+    onFrame();
   }
   return targets;
-}
-
-// Squared errors of one frame, plain and leak-weighted, and their pixel count.
-struct FrameSums {
-  double squared = 0.0;
-  double weighted = 0.0;
-  long pixels = 0;
-  bool finite = true;
-};
-
-FrameSums frameSums(const Image& visibility, const FrameTarget& target, double leakWeight) {
-  FrameSums s;
-  const auto& v = visibility.data();
-  const auto& t = target.visibility.data();
-  const auto& m = target.mask.data();
-  for (size_t i = 0; i < m.size(); ++i) {
-    if (!(m[i] > 0.5f)) continue;
-    const double e = double(v[i]) - double(t[i]);
-    if (!std::isfinite(e)) s.finite = false;
-    s.squared += e * e;
-    s.weighted += (e > 0.0 ? leakWeight : 1.0) * e * e;  // e > 0: lighter than the target
-    ++s.pixels;
-  }
-  return s;
-}
-
-// The measure over frames [first, last) and their RMSE.
-struct SetError {
-  double measure = 0.0;
-  double rmse = 0.0;
-};
-
-SetError errorOver(const TuneRequest& request, const std::vector<Image>& visibility,
-                   const PathTargets& targets, size_t first, size_t last) {
-  double squared = 0.0, weighted = 0.0;
-  long pixels = 0;
-  for (size_t f = first; f < last; ++f) {
-    const FrameSums s = frameSums(visibility[f], targets.frames[f], request.leakWeight);
-    squared += s.squared;
-    weighted += s.weighted;
-    pixels += s.pixels;
-  }
-  SetError e;
-  e.rmse = std::sqrt(squared / double(pixels));
-  switch (request.measure) {
-    case ErrorMeasure::Rmse: e.measure = e.rmse; break;
-    case ErrorMeasure::LeakWeighted: e.measure = std::sqrt(weighted / double(pixels)); break;
-    case ErrorMeasure::Flicker: {
-      std::vector<Image> truths, masks;
-      for (size_t f = first; f < last; ++f) {
-        truths.push_back(targets.frames[f].visibility);
-        masks.push_back(targets.frames[f].mask);
-      }
-      const std::span<const Image> estimates(visibility.data() + first, last - first);
-      e.measure = e.rmse + temporalFlicker(estimates, truths, masks);
-      break;
-    }
-  }
-  return e;
 }
 
 // Frame 0 as rendered for the report.
@@ -164,7 +88,9 @@ struct FirstFrame {
 
 class SceneTuner {
  public:
-  SceneTuner(const TuneRequest& request, gl::Renderer& renderer, const std::string& source)
+  // onFrame: called as each frame's target is traced.
+  SceneTuner(const TuneRequest& request, gl::Renderer& renderer, const std::string& source,
+             const std::function<void()>& onFrame)
       : request_(request), renderer_(renderer) {
     scene_ = loadScene(source, request.sceneLoad);
     applyOverrides(scene_, request.view);
@@ -178,13 +104,13 @@ class SceneTuner {
         std::max(16, int(std::lround(request.settings.height * request.searchScale)));
     if (request.target == Target::RayTraced) rays_ = std::make_unique<truth::RayScene>(scene_);
     userTargets_ = traceTargets(request, renderer_, rays_.get(), scene_, path_,
-                                request.settings.width, request.settings.height);
+                                request.settings.width, request.settings.height, onFrame);
     if (searchBase_.width == request.settings.width &&
         searchBase_.height == request.settings.height) {
       searchTargets_ = &userTargets_;
     } else {
       ownSearchTargets_ = traceTargets(request, renderer_, rays_.get(), scene_, path_,
-                                       searchBase_.width, searchBase_.height);
+                                       searchBase_.width, searchBase_.height, [] {});
       searchTargets_ = &ownSearchTargets_;
     }
   }
@@ -242,7 +168,14 @@ class SceneTuner {
       return result.evaluations[size_t(a)].measurement.tuneError <
              result.evaluations[size_t(b)].measurement.tuneError;
     });
-    for (size_t k = 0; k < order.size() && k < size_t(kConfirmCandidates); ++k) {
+    // The user's setting (evaluation 0) is always among the candidates: if the better ones
+    // exceed the time budget at full size, it is what fits.
+    if (order.size() > size_t(kConfirmCandidates)) order.resize(size_t(kConfirmCandidates));
+    if (std::find(order.begin(), order.end(), 0) == order.end() &&
+        !result.evaluations.empty() && result.evaluations[0].measurement.eligible) {
+      order.push_back(0);
+    }
+    for (size_t k = 0; k < order.size(); ++k) {
       const Evaluation& e = result.evaluations[size_t(order[k])];
       const gl::RenderSettings s = applyPoint(space, user, e.point);
       step(std::string(techniqueId(unit.technique)) + ", the best setting at full size");
@@ -254,6 +187,16 @@ class SceneTuner {
       result.bestColor = first.color;
       result.bestError = first.error;
       break;
+    }
+    // At full size the user's setting may measure better than the search's winner (a search at
+    // a smaller --search-scale): then it is the answer, so the tuned setting is never worse.
+    if (result.best > 0 && result.defaultAtUserSize.eligible &&
+        result.defaultAtUserSize.tuneError <= result.bestAtUserSize->tuneError) {
+      result.best = 0;
+      result.bestAtUserSize = result.defaultAtUserSize;
+      result.bestSettings = applyPoint(space, user, result.evaluations[0].point);
+      result.bestColor = result.defaultColor;
+      result.bestError = result.defaultError;
     }
     result.seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
@@ -270,8 +213,7 @@ class SceneTuner {
     atUserSize.height = request_.settings.height;
     m.memoryBytes = gl::estimateMemory(atUserSize, scene_.light.kind).total();
     if (request_.budgetMib && double(m.memoryBytes) / kMiB > *request_.budgetMib) {
-      m.status = "over the memory budget: " + formatNumber(double(m.memoryBytes) / kMiB) +
-                 " MiB > " + formatNumber(*request_.budgetMib) + " MiB";
+      m.status = "over the memory budget";  // memory_bytes says by how much
       return m;
     }
     try {
@@ -288,10 +230,10 @@ class SceneTuner {
       const double frameMs = frameTime(r);
       if (f == 0 && !first && slowFrameMs_ && frameMs > *slowFrameMs_) {
         m.tooSlow = true;
-        m.status = "too slow to search: its first frame took " + formatNumber(frameMs) +
-                   " ms (shader compilation included), over --max-slowdown " +
-                   formatNumber(request_.maxSlowdown) + " x the given setting's (limit " +
-                   formatNumber(*slowFrameMs_) + " ms)";
+        // No measured time in the status: a report compares equal whatever the times.
+        m.status = "too slow to search: its first frame (shader compilation included) took "
+                   "longer than --max-slowdown x the given setting's";
+        m.timeMs = frameMs;
         return m;
       }
       if (f == 0 && first) {
@@ -310,8 +252,8 @@ class SceneTuner {
     }
     m.measured = true;
     m.timeMs = median(times);
-    const SetError tuning = errorOver(request_, visibility, targets, 0, tuneFrames_);
-    const SetError heldOut = errorOver(request_, visibility, targets, tuneFrames_, path_.size());
+    const SetError tuning = errorOver(request_.measure, request_.leakWeight, visibility, targets, 0, tuneFrames_);
+    const SetError heldOut = errorOver(request_.measure, request_.leakWeight, visibility, targets, tuneFrames_, path_.size());
     m.tuneError = tuning.measure;
     m.tuneRmse = tuning.rmse;
     m.heldOutError = heldOut.measure;
@@ -326,8 +268,7 @@ class SceneTuner {
       return m;
     }
     if (request_.budgetMs && m.timeMs > *request_.budgetMs) {
-      m.status = "over the time budget: " + formatNumber(m.timeMs) + " ms > " +
-                 formatNumber(*request_.budgetMs) + " ms";
+      m.status = "over the time budget";  // time_ms says by how much
       return m;
     }
     m.eligible = true;
@@ -359,21 +300,28 @@ void runUnits(const TuneRequest& request, const std::vector<WorkUnit>& units,
               gl::Renderer& renderer, const std::function<void(UnitResult)>& finished,
               const TuneProgress& progress) {
   validateTuneRequest(request);
-  // Each unit: its evaluations and up to 1 + kConfirmCandidates measurements at full size.
-  const int total = int(units.size()) * (request.evaluations + 2);
+  // Steps: each scene's frames traced, and each unit's evaluations and the two settings measured
+  // at full size (a third or more, when the best exceeds the time budget there, is not counted).
+  std::set<std::string> scenes;
+  for (const WorkUnit& u : units) scenes.insert(u.scene);
+  const int perUnit = request.evaluations + 2;
+  const int total = int(scenes.size()) * request.frames + int(units.size()) * perUnit;
   int done = 0;
   size_t next = 0;
   while (next < units.size()) {
     const std::string& source = units[next].scene;
-    if (progress) progress(done, total, "target of " + source);
-    SceneTuner tuner(request, renderer, source);
+    if (progress) progress(done, total, "the target of " + source);
+    SceneTuner tuner(request, renderer, source, [&] {
+      ++done;
+      if (progress) progress(done, total, "the target of " + source);
+    });
     for (; next < units.size() && units[next].scene == source; ++next) {
       const int unitStart = done;
       UnitResult r = tuner.tune(units[next], [&](const std::string& step) {
-        if (progress) progress(std::min(done, unitStart + request.evaluations + 1), total, step);
+        if (progress) progress(std::min(done, unitStart + perUnit - 1), total, step);
         ++done;
       });
-      done = unitStart + request.evaluations + 2;
+      done = unitStart + perUnit;
       finished(std::move(r));
     }
   }

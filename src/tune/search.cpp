@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <exception>
 #include <functional>
 #include <map>
 #include <nlopt.hpp>
@@ -62,6 +63,7 @@ class Search {
       const auto at = std::find(d.values.begin(), d.values.end(), current[dim]);
       const long start = at == d.values.end() ? 0 : long(at - d.values.begin());
       for (const long direction : {1L, -1L}) {
+        bool moved = false;
         for (long i = start + direction; i >= 0 && i < long(d.values.size()); i += direction) {
           Point candidate = current;
           candidate[dim] = d.values[size_t(i)];
@@ -69,7 +71,10 @@ class Search {
           if (!(v < currentValue)) break;  // the line stops improving
           current = candidate;
           currentValue = v;
+          moved = true;
         }
+        // Improving upward means the way down, from the start, has already been left behind.
+        if (moved) break;
       }
       return current;
     }
@@ -108,15 +113,23 @@ class Search {
       }
       return p;
     };
+    // NLopt's C++ wrapper replaces an exception thrown by the objective with its own (losing
+    // the message), so the objective's are kept here and rethrown after it stops.
     struct Context {
       Search* search;
       std::function<Point(const std::vector<double>&)> at;
-    } context{this, pointAt};
+      std::exception_ptr failure;
+    } context{this, pointAt, nullptr};
     const auto f = [](const std::vector<double>& u, std::vector<double>&, void* data) {
       auto* c = static_cast<Context*>(data);
-      if (c->search->exhausted()) throw nlopt::forced_stop();
-      const double v = c->search->value(c->at(u));
-      return std::isfinite(v) ? v : kIneligiblePenalty;
+      if (c->failure || c->search->exhausted()) throw nlopt::forced_stop();
+      try {
+        const double v = c->search->value(c->at(u));
+        return std::isfinite(v) ? v : kIneligiblePenalty;
+      } catch (...) {
+        c->failure = std::current_exception();
+        throw nlopt::forced_stop();
+      }
     };
     // BOBYQA models the objective quadratically (it needs two dimensions or more); Sbplx,
     // Nelder-Mead on subspaces, takes one.
@@ -137,11 +150,13 @@ class Search {
       // The round's share is spent.
     } catch (const nlopt::roundoff_limited&) {
       // Converged as far as floating point allows: the best point is kept below.
-    } catch (const std::runtime_error& e) {
+    } catch (const std::exception& e) {
       roundCap_ = limits_.maxEvaluations;
+      if (context.failure) std::rethrow_exception(context.failure);
       throw Error(std::string("tune: NLopt failed: ") + e.what());
     }
     roundCap_ = limits_.maxEvaluations;
+    if (context.failure) std::rethrow_exception(context.failure);
     return best_ ? *best_ : current;
   }
 
@@ -185,7 +200,11 @@ SearchResult searchBest(const SearchSpace& space, const Point& start, const Obje
     if (search.best()) current = *search.best();
     // The continuous part's share: the rest of this round's part of what remains.
     const int remaining = limits.maxEvaluations - search.evaluations();
-    const int share = std::max(1, remaining / std::max(1, limits.maxRounds - round));
+    // At least what BOBYQA needs to build its model (2n + 1 points) and take two steps from it.
+    const int continuous = int(std::count_if(space.dimensions.begin(), space.dimensions.end(),
+                                             [](const Dimension& d) { return d.continuous; }));
+    const int share = std::min(
+        remaining, std::max(2 * continuous + 3, remaining / std::max(1, limits.maxRounds - round)));
     current = search.optimiseContinuous(current, share);
     if (!(search.bestValue() < before)) break;  // a round without progress ends the search
   }

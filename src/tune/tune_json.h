@@ -22,8 +22,17 @@ std::string unitFolderName(const WorkUnit& unit);
 // shard of one run, so a merge can tell shards of different runs apart.
 nlohmann::json requestJson(const TuneRequest& request);
 
-// A unit.json, at most kMaxUnitFileBytes, of format kUnitFormat; throws Error naming the file.
+// A unit.json, a plain file (not a link) of at most kMaxUnitFileBytes, of format kUnitFormat and
+// the layout writeUnitFiles gives it (every field the report reads, of its type; the unit's
+// index, technique and folder name agreeing with its request); throws Error naming the file.
 inline constexpr std::uintmax_t kMaxUnitFileBytes = 64u << 20;
 nlohmann::json readUnitJson(const std::filesystem::path& path);
+
+// The files a unit folder holds (unit.json, best.json and the frame-1 images): --merge copies
+// these and nothing else, each at most kMaxUnitFileBytes.
+inline constexpr const char* kUnitFiles[] = {"unit.json",         "best.json",
+                                             "default_shaded.png", "default_error.png",
+                                             "tuned_shaded.png",   "tuned_error.png",
+                                             "target_visibility.png"};
 
 }  // namespace penumbra::tune

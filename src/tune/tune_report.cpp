@@ -103,8 +103,8 @@ void budgetTable(std::ostringstream& h, const std::vector<CostPoint>& front, con
   for (size_t i = 0; i < front.size(); ++i) {
     h << "<tr><td>≥ " << fixedDigits(front[i].cost, 2) << " " << unit;
     if (i + 1 < front.size()) h << " and < " << fixedDigits(front[i + 1].cost, 2) << " " << unit;
-    h << "</td><td>" << escapeHtml(front[i].technique) << " (evaluation " << front[i].evaluation
-      << ")</td><td>" << fixedDigits(front[i].error, 4) << "</td><td>"
+    h << "</td><td>" << escapeHtml(front[i].technique) << " #" << front[i].evaluation
+      << "</td><td>" << fixedDigits(front[i].error, 4) << "</td><td>"
       << fixedDigits(front[i].cost, 2) << " " << unit << "</td></tr>";
   }
   h << "</table>";
@@ -237,8 +237,8 @@ void writeTuneReport(const fs::path& folder) {
       row("default", d, d.at("eligible").get<bool>() ? "" : d.at("status").get<std::string>());
       if (b.is_null()) {
         h << "<tr><td class=l>" << escapeHtml(id)
-          << "</td><td class=l>tuned</td><td colspan=7 class=l>no setting within the budgets"
-          << "</td></tr>";
+          << "</td><td class=l>tuned</td><td colspan=7 class=l>no eligible setting (each "
+             "evaluation's status in tune.json says why)</td></tr>";
       } else {
         row("tuned", b, changedText(unit, unit.at("best").get<int>()));
       }
@@ -262,8 +262,12 @@ void writeTuneReport(const fs::path& folder) {
       plotFrontier(byMemory, techniques, "memory (MiB, log scale)", errorLabel,
                    first.at("scene_name").get<std::string>() + ": error against memory",
                    folder / "plots" / (prefix + "frontier_memory.png"));
-      h << "<h3>The quality–cost frontier</h3><p>Every setting evaluated (points, by technique) "
-           "and the frontier: for a budget, the least error any setting reaches within it.</p>"
+      h << "<h3>The quality–cost frontier</h3><p>Every eligible setting the search measured "
+           "(points, by technique): its error on the tuning frames and its time (the camera "
+           "path's last frame, warm) at the search's frame size, and its memory estimate at "
+           "the full size; the frontier is the least error any setting reaches within a budget. "
+           "#N is the technique's evaluation N in <code>tune.json</code> (#0: the given "
+           "setting).</p>"
         << "<img src=\"plots/" << prefix << "frontier_time.png\" style=\"max-width:49%\">"
         << "<img src=\"plots/" << prefix << "frontier_memory.png\" style=\"max-width:49%\">";
       h << "<h4>The best technique per time budget</h4>";

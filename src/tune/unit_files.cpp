@@ -36,6 +36,8 @@ json measurementJson(const Measurement& m) {
     j["frame0_leak_share"] = m.frame0LeakShare;
     j["frame0_dark_share"] = m.frame0DarkShare;
     j["time_ms"] = m.timeMs;
+  } else if (m.tooSlow) {
+    j["time_ms"] = m.timeMs;  // its first frame's, which refused it
   }
   j["memory_bytes"] = m.memoryBytes;
   return j;
@@ -131,6 +133,8 @@ void writeUnitFiles(const TuneRequest& request, const UnitResult& r, const fs::p
   }
 }
 
+void createUnitsFolder(const fs::path& folder) { fs::create_directories(folder / kUnitsFolder); }
+
 void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& folder) {
   std::map<std::string, fs::path> sources;  // unit folder name -> where it is
   std::optional<json> request;
@@ -162,10 +166,17 @@ void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& fold
   for (const auto& [name, source] : sources) {
     const fs::path target = folder / kUnitsFolder / name;
     fs::create_directories(target);
-    for (const fs::directory_entry& file : fs::directory_iterator(source)) {
-      // Plain files only: a link planted in a shard folder is not followed.
-      if (!file.is_regular_file() || file.is_symlink()) continue;
-      fs::copy_file(file.path(), target / file.path().filename());
+    // The files a unit has, plain and bounded: a link planted in a shard folder is not
+    // followed, nothing else in it is copied.
+    for (const char* fileName : kUnitFiles) {
+      const fs::path file = source / fileName;
+      const fs::file_status status = fs::symlink_status(file);
+      if (!fs::exists(status)) continue;  // best.json and tuned_*: only with a best setting
+      if (!fs::is_regular_file(status) || fs::file_size(file) > kMaxUnitFileBytes) {
+        throw Error("--merge: " + file.string() + " is not a plain file of at most " +
+                    std::to_string(kMaxUnitFileBytes >> 20) + " MiB");
+      }
+      fs::copy_file(file, target / fileName);
     }
   }
 }

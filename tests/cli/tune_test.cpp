@@ -4,6 +4,7 @@
 // to seconds.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <nlohmann/json.hpp>
 
 #include "run_penumbra.h"
@@ -116,34 +117,74 @@ TEST(TuneCli, MergedShardsGiveTheSingleRunsReport) {
   EXPECT_NE(mixed.output.find("different tune request"), std::string::npos) << mixed.output;
 }
 
-TEST(TuneCli, NoReturnedSettingExceedsABudget) {
-  ScratchFolder dir;
-  // 24 MiB: below the user's 1024² setting's estimate at 160x90 in some techniques' storage,
-  // above a 512² map's, so the budget decides between evaluated settings.
-  const double budgetMib = 12.0;
-  const RunResult r = runPenumbra(
-      tuneArgs({"--scene", "planar", "--technique", "vsm,evsm4", "--evaluations", "10",
-                "--budget-mib", "12", "--budget-ms", "5000", "--out", "t"}),
-      dir.path());
-  ASSERT_EQ(r.exitCode(), 0) << r.output;
-  const json report = readJson(dir.path() / "t" / "tune.json");
+// The settings a budget refused and checks that no eligible one, and no returned one, exceeds it.
+struct BudgetCheck {
   int refused = 0;
+  int eligible = 0;
+};
+
+BudgetCheck checkBudget(const json& report, const char* key, double limit, double scale) {
+  BudgetCheck c;
   for (const json& unit : report.at("units")) {
     for (const json& e : unit.at("evaluations")) {
-      const double mib = e.at("memory_bytes").get<double>() / (1024.0 * 1024.0);
       if (e.at("eligible").get<bool>()) {
-        EXPECT_LE(mib, budgetMib);
-        EXPECT_LE(e.at("time_ms").get<double>(), 5000.0);
-      } else if (mib > budgetMib) {
-        ++refused;
+        ++c.eligible;
+        EXPECT_LE(e.at(key).get<double>() * scale, limit);
+      } else if (e.at("status").get<std::string>().rfind("over the", 0) == 0) {
+        ++c.refused;
+        EXPECT_GT(e.at(key).get<double>() * scale, limit);
       }
     }
     if (!unit.at("best").is_null()) {
-      EXPECT_LE(unit.at("best_at_user_size").at("memory_bytes").get<double>() / (1024.0 * 1024.0),
-                budgetMib);
+      EXPECT_LE(unit.at("best_at_user_size").at(key).get<double>() * scale, limit);
     }
   }
-  EXPECT_GT(refused, 0);  // the budget did refuse settings the search tried
+  return c;
+}
+
+TEST(TuneCli, NoReturnedSettingExceedsABudget) {
+  ScratchFolder dir;
+  const std::vector<std::string> request{"--scene", "planar", "--technique", "vsm,evsm4",
+                                         "--evaluations", "10"};
+  auto with = [&](std::vector<std::string> extra) {
+    std::vector<std::string> args = request;
+    args.insert(args.end(), extra.begin(), extra.end());
+    return tuneArgs(args);
+  };
+  // Unbudgeted first: its settings' times and memory place budgets that refuse some of them.
+  const RunResult unbudgeted = runPenumbra(with({"--out", "free"}), dir.path());
+  ASSERT_EQ(unbudgeted.exitCode(), 0) << unbudgeted.output;
+  std::vector<double> times, mibs;
+  const json report = readJson(dir.path() / "free" / "tune.json");
+  for (const json& unit : report.at("units")) {
+    for (const json& e : unit.at("evaluations")) {
+      if (!e.at("eligible").get<bool>()) continue;
+      times.push_back(e.at("time_ms").get<double>());
+      mibs.push_back(e.at("memory_bytes").get<double>() / (1024.0 * 1024.0));
+    }
+  }
+  ASSERT_GE(times.size(), 4u);
+  std::sort(times.begin(), times.end());
+  std::sort(mibs.begin(), mibs.end());
+  // The medians: about half of what the search tries lies above each.
+  const double budgetMs = times[times.size() / 2];
+  const double budgetMib = mibs[mibs.size() / 2];
+
+  const RunResult timed =
+      runPenumbra(with({"--budget-ms", std::to_string(budgetMs), "--out", "timed"}), dir.path());
+  ASSERT_EQ(timed.exitCode(), 0) << timed.output;
+  const BudgetCheck t = checkBudget(readJson(dir.path() / "timed" / "tune.json"), "time_ms",
+                                    budgetMs, 1.0);
+  EXPECT_GT(t.refused, 0);  // the budget did refuse settings the search tried
+  EXPECT_GT(t.eligible, 0);
+
+  const RunResult sized = runPenumbra(
+      with({"--budget-mib", std::to_string(budgetMib), "--out", "sized"}), dir.path());
+  ASSERT_EQ(sized.exitCode(), 0) << sized.output;
+  const BudgetCheck m = checkBudget(readJson(dir.path() / "sized" / "tune.json"), "memory_bytes",
+                                    budgetMib, 1.0 / (1024.0 * 1024.0));
+  EXPECT_GT(m.refused, 0);
+  EXPECT_GT(m.eligible, 0);
 
   // A budget nothing meets: no setting is returned, and no best file written.
   const RunResult none = runPenumbra(

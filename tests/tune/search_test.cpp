@@ -6,6 +6,7 @@
 #include <set>
 
 #include "penumbra/error.h"
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/params.h"
 #include "penumbra/tune/search.h"
 #include "penumbra/tune/tune.h"
@@ -194,12 +195,31 @@ TEST(TuneSpace, EveryRegistryParameterButTheSplitListIsSearched) {
   }
 }
 
-TEST(TuneSpace, ContinuousValuesSurviveTheSettingsFileText) {
-  // A returned value is written as text and read back by compare: it must be the evaluated float.
-  for (double v : {1.234567891e-5, 0.3000000119, 7.77777777}) {
-    const float once = std::stof(continuousText(v));
-    EXPECT_EQ(std::stof(continuousText(once)), once);
+TEST(TuneSpace, AnEvaluatedSettingIsTheSavedOne) {
+  // A point's continuous values are text (6 digits); applied, saved as a settings file and read
+  // back as compare --settings reads it, the floats must be the evaluated ones, bit for bit.
+  const gl::RenderSettings base = baseFor(Technique::Msm);
+  const SearchSpace space = searchSpace(Technique::Msm, base);
+  Point p = pointOf(space, base);
+  int changed = 0;
+  for (size_t i = 0; i < space.dimensions.size(); ++i) {
+    const Dimension& d = space.dimensions[i];
+    if (d.continuous) {
+      p[i] = continuousText(valueAt(d, 0.123456789 + 0.1 * changed++));
+    }
   }
+  ASSERT_GE(changed, 3);  // momentBias, depthBias, bleedReduction, normal-offset
+  gl::Settings saved;
+  saved.scene = "backyard";
+  saved.techniques = {Technique::Msm};
+  saved.render = applyPoint(space, base, p);
+  gl::Settings loaded;
+  gl::applySettingsJson(gl::settingsJson(saved), "saved", loaded);
+  EXPECT_EQ(pointOf(space, loaded.render), p);
+  EXPECT_EQ(loaded.render.params.msm.momentBias, saved.render.params.msm.momentBias);
+  EXPECT_EQ(loaded.render.params.msm.depthBias, saved.render.params.msm.depthBias);
+  EXPECT_EQ(loaded.render.params.msm.bleedReduction, saved.render.params.msm.bleedReduction);
+  EXPECT_EQ(loaded.render.normalOffsetTexels, saved.render.normalOffsetTexels);
 }
 
 TEST(TuneUnits, ShardsCoverEveryUnitOnce) {

@@ -31,8 +31,6 @@ struct CompareOptions {
   int areaSamples = kMinAreaLightSamples;
   std::string truth = "raytraced";
   int truthSamples = truth::kDefaultTrueShadowLightSamples;
-  bool filterGiven = false;  // --filter on the command line
-  bool blurGiven = false;    // --blur
   int frames = 4;
   double tau = 0.05;
   OutputOptions output{"out/compare"};
@@ -73,14 +71,7 @@ void runCompare(const CompareOptions& o) {
     }
   }
   request.settings = resolved.render;
-  // Soft shadows of the filterable techniques widen their filter by mip level: without a
-  // --filter, a light size makes the lookups trilinear (bilinear ones cannot widen).
-  // The area-light reference has no prefilter either: without a --blur, the penumbra alone sets
-  // the filter's width. A settings file's values are the user's: they are kept as given.
-  if (request.view.lightSize && *request.view.lightSize > 0.0f && o.settingsFile.empty()) {
-    if (!o.filterGiven) request.settings.filter = FilterMode::Trilinear;
-    if (!o.blurGiven) request.settings.blur.radius = 0;
-  }
+  applySoftShadowMeasurementDefaults(*o.command, o.settingsFile, request.view, request.settings);
   request.supersample = o.supersample;
   request.areaLightSamples = o.areaSamples;
   request.truth = compare::parseTruthKind(o.truth);
@@ -146,11 +137,7 @@ void registerCompareCommand(CLI::App& app) {
       ->capture_default_str();
   addOutputOptions(*cmd, o->output, "the report");
   cmd->add_flag("-q,--quiet", o->quiet, "no progress bar and no summary");
-  cmd->callback([o, cmd] {
-    o->filterGiven = cmd->get_option("--filter")->count() > 0;
-    o->blurGiven = cmd->get_option("--blur")->count() > 0;
-    runCompare(*o);
-  });
+  cmd->callback([o] { runCompare(*o); });
 }
 
 }  // namespace penumbra::cli

@@ -50,4 +50,11 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
   return s;
 }
 
+void applySoftShadowMeasurementDefaults(const CLI::App& command, const std::string& settingsFile,
+                                        const SceneOverrides& view, gl::RenderSettings& settings) {
+  if (!view.lightSize || !(*view.lightSize > 0.0f) || !settingsFile.empty()) return;
+  if (command.get_option("--filter")->count() == 0) settings.filter = FilterMode::Trilinear;
+  if (command.get_option("--blur")->count() == 0) settings.blur.radius = 0;
+}
+
 }  // namespace penumbra::cli

@@ -21,4 +21,12 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
                              const SceneOptions& scene, const TechniqueOptions& technique,
                              const RenderOptions& render);
 
+// compare's and tune's rule for soft shadows: with a light size (view.lightSize > 0) and no
+// settings file, a --filter not given becomes trilinear (the filterable techniques widen their
+// filter by mip level; bilinear cannot) and a --blur not given becomes none (the penumbra alone
+// sets the filter's width, as the area-light reference has no prefilter). A settings file's
+// values are the user's and are kept.
+void applySoftShadowMeasurementDefaults(const CLI::App& command, const std::string& settingsFile,
+                                        const SceneOverrides& view, gl::RenderSettings& settings);
+
 }  // namespace penumbra::cli

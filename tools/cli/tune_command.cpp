@@ -84,6 +84,7 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
   r.view = resolved.view;
   r.techniques = resolved.techniques;
   r.settings = resolved.render;
+  applySoftShadowMeasurementDefaults(*o.command, o.settingsFile, r.view, r.settings);
   r.only = o.only;
   r.target = tune::parseTarget(o.truth);
   r.measure = tune::parseErrorMeasure(o.objective);
@@ -115,7 +116,7 @@ void printSummary(const tune::UnitResult& r) {
               << r.bestAtUserSize->heldOutError << "), " << r.bestAtUserSize->timeMs << " ms, "
               << double(r.bestAtUserSize->memoryBytes) / (1024.0 * 1024.0) << " MiB";
   } else {
-    std::cout << " -> no setting within the budgets";
+    std::cout << " -> no eligible setting (tune.json says why)";
   }
   std::cout << " [" << r.evaluations.size() << " evaluations, " << r.seconds << " s]" << std::endl;
 }
@@ -139,9 +140,7 @@ void runTune(const TuneOptions& o) {
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   const std::filesystem::path staging = output.begin(interrupt);
-  // A shard's units folder exists even when the shard holds none (more array tasks than units),
-  // so --merge can tell it from a folder that is not a shard.
-  std::filesystem::create_directories(staging / "units");
+  tune::createUnitsFolder(staging);
   {
     ProgressBar bar(o.quiet);
     tune::runUnits(
@@ -156,7 +155,7 @@ void runTune(const TuneOptions& o) {
   output.finish(interrupt);
   if (!o.quiet) {
     std::cout << "wrote "
-              << (output.target() / (sharded ? "units" : "index.html")).string() << "\n";
+              << (sharded ? output.target() : output.target() / "index.html").string() << "\n";
   }
 }
 

@@ -14,7 +14,9 @@
 #include <string>
 #include <vector>
 
+#include "penumbra/area_light.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/truth/true_shadow.h"
 #include "penumbra/scene.h"
 #include "penumbra/tune/search_space.h"
 
@@ -37,10 +39,9 @@ enum class Target {
 std::string_view targetName(Target target);  // "raytraced", "filtered"
 Target parseTarget(std::string_view name);
 
-// A leak costs this many over-darkenings of the same size under leak-weighted (docs/tune.md: a
-// shadow that lets light through reads as a bug, one a little too dark as a softer shadow; the
-// engines' complaints are about light bleeding, and 4 is the weight at which a tuned VSM trades
-// its bleeding for darkening on the built-in scenes).
+// A leak's squared error counts this many times under leak-weighted, so a leak costs as much as
+// an over-darkening twice its size (docs/tune.md: light through an occluder reads as a defect, a
+// shadow a little too dark as a softer shadow — a judgement, not a measurement; --leak-weight).
 inline constexpr double kDefaultLeakWeight = 4.0;
 // The least first-frame time --max-slowdown refuses a setting at, ms: a first frame compiles its
 // shaders (up to a few hundred ms on llvmpipe), which must not refuse a fast setting.
@@ -64,14 +65,17 @@ struct TuneRequest {
   // Camera-path frames, [2, 32]: the first half (rounded up) tunes, the rest is held out.
   int frames = 4;
   int supersample = 4;           // the target's sub-pixels per side, [1, 8]
-  int truthLightSamples = 64;    // the ray-traced target's light samples for a light with a size
-  int areaLightSamples = 64;     // the filtered target's area-light samples for a light with a size
+  // The ray-traced target's light samples for a light with a size, and the filtered target's
+  // area-light samples: compare's defaults.
+  int truthLightSamples = truth::kDefaultTrueShadowLightSamples;
+  int areaLightSamples = kMinAreaLightSamples;
   double tau = 0.05;             // leak / over-darkening threshold of the reported shares
   int evaluations = 30;          // per unit, the user's setting included, [1, 10000]
   // A setting whose first frame takes longer than this many times the user's setting's warm
   // frame (and at least kMinSlowFrameMs) is not searched further: tuning looks for the best
   // setting near the user's cost (the frontier shows the trade), and on llvmpipe the driver's
-  // anisotropic filter takes 10 s a frame where bilinear takes 0.1 s. [1, 1e6].
+  // anisotropic filter takes 12-14 s for a first VSM frame at 2048² where bilinear takes 0.2 s
+  // (docs/results/tune-llvmpipe-2026-12-03.md). [1, 1e6].
   double maxSlowdown = 8.0;
   // The search's frame size as a share of the user's, (0, 1]: the winner and the user's setting
   // are measured again at the user's size.
@@ -145,11 +149,11 @@ struct UnitResult {
   double seconds = 0.0;  // wall time of the unit, the target's tracing included
 };
 
-// step: what is being done; done/total: evaluations (and frames traced) so far and in all.
+// step: what is being done; done/total: frames traced and settings measured, so far and in all.
 using TuneProgress = std::function<void(int done, int total, const std::string& step)>;
 
-// Runs `units` (all of one request), calling `finished` as each completes (so a long run keeps
-// what it has). Scenes are loaded and their targets traced once for all their techniques.
+// Runs `units` (all of one request), calling `finished` as each completes (the command writes
+// its folder then). Scenes are loaded and their targets traced once for all their techniques.
 void runUnits(const TuneRequest& request, const std::vector<WorkUnit>& units,
               gl::Renderer& renderer, const std::function<void(UnitResult)>& finished,
               const TuneProgress& progress = {});

@@ -17,9 +17,14 @@ namespace penumbra::tune {
 void writeUnitFiles(const TuneRequest& request, const UnitResult& result,
                     const std::filesystem::path& folder);
 
+// `folder`/units, empty: a shard's output even when it holds no unit (more array tasks than
+// units), so --merge can tell it from a folder that is not a shard.
+void createUnitsFolder(const std::filesystem::path& folder);
+
 // Copies the unit folders of shard outputs (each a `tune --shard` output folder) into
-// `folder`/units. Throws Error, before copying anything, when a folder holds no units, when two
-// hold the same unit, or when their requests differ.
+// `folder`/units: their known files only, plain and bounded. Throws Error, before copying
+// anything, when a folder is not a shard output, when none holds a unit, when two hold the same
+// unit, when their requests differ or a unit file is not as penumbra writes it.
 void gatherUnits(const std::vector<std::filesystem::path>& shardFolders,
                  const std::filesystem::path& folder);
 
