@@ -287,7 +287,7 @@ std::string describeSpace(const SearchSpace& space) {
     out << "  " << (d.isParam ? "param " : "") << d.name << ": ";
     if (d.continuous) {
       out << "[" << continuousText(d.min) << ", " << continuousText(d.max) << "] "
-          << (d.scale == Scale::Linear ? "linear" : d.scale == Scale::Log ? "log" : "log above 0");
+          << (d.scale == Scale::Linear ? "linear" : d.scale == Scale::Log ? "log" : "zero-log");
     } else {
       for (size_t i = 0; i < d.values.size(); ++i) out << (i ? (d.ordinal ? ", " : " | ") : "") << d.values[i];
     }

@@ -9,6 +9,7 @@
 #include "frontier.h"
 #include "penumbra/compare/html_text.h"
 #include "penumbra/error.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/text_file.h"
 #include "penumbra/tune/tune_files.h"
 #include "tune_json.h"
@@ -174,10 +175,11 @@ void writeTuneReport(const fs::path& folder) {
       fs::path target = fs::path("best");
       if (scenes.size() > 1) target /= sceneFolder(int(sceneIndex), scenes[sceneIndex]);
       target /= unit.at("unit").at("technique").get<std::string>() + ".json";
-      fs::create_directories(folder / target.parent_path());
+      createOutputDirectory(folder / target.parent_path());
       const fs::path source = unitsDir / unitFolderName({index, "", parseTechnique(
                                   unit.at("unit").at("technique").get<std::string>())}) /
                               kBestFile;
+      recordOutput(folder / target);  // listed before it exists (output_journal.h)
       fs::copy_file(source, folder / target, fs::copy_options::overwrite_existing);
       units[k]["best_settings_file"] = target.generic_string();
     }
@@ -187,7 +189,7 @@ void writeTuneReport(const fs::path& folder) {
   writeTextFile(folder / "tune.json", all.dump(2) + "\n");
 
   // index.html and the frontier plots.
-  fs::create_directories(folder / "plots");
+  createOutputDirectory(folder / "plots");
   std::ostringstream h;
   h << "<!doctype html><html><head><meta charset=utf-8><title>penumbra tune</title><style>"
        "body{font-family:sans-serif;margin:2em;max-width:1400px}table{border-collapse:collapse;"

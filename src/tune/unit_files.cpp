@@ -9,6 +9,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/settings_json.h"
 #include "penumbra/image_io.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/text_file.h"
 #include "penumbra/tune/tune_files.h"
 #include "tune_json.h"
@@ -86,7 +87,7 @@ Image displayableVisibility(const Image& visibility) {
 
 void writeUnitFiles(const TuneRequest& request, const UnitResult& r, const fs::path& folder) {
   const fs::path dir = folder / kUnitsFolder / unitFolderName(r.unit);
-  fs::create_directories(dir);
+  createOutputDirectory(dir);
   json j;
   j["format"] = kUnitFormat;
   j["request"] = requestJson(request);
@@ -133,7 +134,7 @@ void writeUnitFiles(const TuneRequest& request, const UnitResult& r, const fs::p
   }
 }
 
-void createUnitsFolder(const fs::path& folder) { fs::create_directories(folder / kUnitsFolder); }
+void createUnitsFolder(const fs::path& folder) { createOutputDirectory(folder / kUnitsFolder); }
 
 void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& folder) {
   std::map<std::string, fs::path> sources;  // unit folder name -> where it is
@@ -165,7 +166,7 @@ void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& fold
   if (sources.empty()) throw Error("--merge: the shard folders hold no unit");
   for (const auto& [name, source] : sources) {
     const fs::path target = folder / kUnitsFolder / name;
-    fs::create_directories(target);
+    createOutputDirectory(target);
     // The files a unit has, plain and bounded: a link planted in a shard folder is not
     // followed, nothing else in it is copied.
     for (const char* fileName : kUnitFiles) {
@@ -176,6 +177,7 @@ void gatherUnits(const std::vector<fs::path>& shardFolders, const fs::path& fold
         throw Error("--merge: " + file.string() + " is not a plain file of at most " +
                     std::to_string(kMaxUnitFileBytes >> 20) + " MiB");
       }
+      recordOutput(target / fileName);  // listed before it exists (output_journal.h)
       fs::copy_file(file, target / fileName);
     }
   }
