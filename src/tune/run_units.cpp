@@ -97,7 +97,7 @@ class SceneTuner {
     requireCascadableLight(request.settings.cascades, scene_.light);
     renderer_.setScene(scene_);
     path_ = scene_.cameraPath(request.frames);
-    tuneFrames_ = size_t((request.frames + 1) / 2);
+    tuneFrames_ = size_t(tuningFrames(request));
     searchBase_ = request.settings;
     searchBase_.width = std::max(16, int(std::lround(request.settings.width * request.searchScale)));
     searchBase_.height =

@@ -39,7 +39,7 @@ json requestJson(const TuneRequest& r) {
   j["budget_ms"] = r.budgetMs ? json(*r.budgetMs) : json(nullptr);
   j["budget_mib"] = r.budgetMib ? json(*r.budgetMib) : json(nullptr);
   j["frames"] = r.frames;
-  j["tuning_frames"] = (r.frames + 1) / 2;
+  j["tuning_frames"] = tuningFrames(r);
   j["supersample"] = r.supersample;
   j["truth_samples"] = r.truthLightSamples;
   j["area_samples"] = r.areaLightSamples;

@@ -82,6 +82,10 @@ struct TuneRequest {
   double searchScale = 1.0;
 };
 
+// The camera-path frames that tune, the first ones: half of them, rounded up; the rest are
+// held out.
+inline int tuningFrames(const TuneRequest& request) { return (request.frames + 1) / 2; }
+
 // Throws Error for a value out of range (stating the range), an unknown scene, or an --only name
 // no selected technique's space has (listing theirs).
 void validateTuneRequest(const TuneRequest& request);
