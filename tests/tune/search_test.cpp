@@ -66,6 +66,25 @@ TEST(TuneSearch, FindsAKnownOptimumThroughTheRegistrysDimensions) {
   EXPECT_LE(r.evaluations, 200);
 }
 
+TEST(TuneSearch, ImprovesTheContinuousPartWithinTheCommandsDefaultEvaluations) {
+  // `penumbra tune`'s own limits (30 settings, 3 rounds): the discrete walk takes most of them,
+  // NLopt still gets enough to build BOBYQA's model and move the floor and the reduction most of
+  // the way to their optimum from the defaults (1e-5 and 0: 1.5 decades and 0.3 away).
+  const gl::RenderSettings base = baseFor(Technique::Vsm);
+  const SearchSpace space = searchSpace(Technique::Vsm, base);
+  const TuneRequest defaults;
+  SearchLimits limits;
+  limits.maxEvaluations = defaults.evaluations;
+  const SearchResult r = searchBest(space, pointOf(space, base), [&](const Point& p) {
+    return Trial{syntheticVsmError(applyPoint(space, base, p)), true};
+  }, limits);
+  ASSERT_TRUE(r.best);
+  const gl::RenderSettings best = applyPoint(space, base, *r.best);
+  EXPECT_LT(std::abs(std::log10(best.params.vsm.minVariance) - std::log10(3e-4)), 0.75);
+  EXPECT_LT(std::abs(best.params.vsm.bleedReduction - 0.3), 0.15);
+  EXPECT_EQ(r.evaluations, defaults.evaluations);
+}
+
 TEST(TuneSearch, FindsAMinimumAtTheRegistrysLowerBound) {
   // VSM's floor only bleeds light on a receiver the occluders do not bound (the planar scene's
   // optimum): the best floor is the registry's lower bound, 0, reachable on the zero-log scale.
