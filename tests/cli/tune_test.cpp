@@ -166,9 +166,10 @@ TEST(TuneCli, NoReturnedSettingExceedsABudget) {
   ASSERT_GE(times.size(), 4u);
   std::sort(times.begin(), times.end());
   std::sort(mibs.begin(), mibs.end());
-  // The medians: about half of what the search tries lies above each.
-  const double budgetMs = times[times.size() / 2];
-  const double budgetMib = mibs[mibs.size() / 2];
+  // A third of the way up: about two thirds of what the search tries lie above each, so a run
+  // on a machine busier or quieter than the first by a good margin still meets and misses them.
+  const double budgetMs = times[times.size() / 3];
+  const double budgetMib = mibs[mibs.size() / 3];
 
   const RunResult timed =
       runPenumbra(with({"--budget-ms", std::to_string(budgetMs), "--out", "timed"}), dir.path());
