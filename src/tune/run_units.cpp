@@ -125,7 +125,7 @@ class SceneTuner {
     result.device = renderer_.deviceDescription();
     gl::RenderSettings user = request_.settings;
     user.technique = unit.technique;
-    result.space = requestSpace(request_, unit.technique);
+    result.space = requestSpace(request_, unit.technique, scene_.light.kind);
     const SearchSpace& space = result.space;
 
     slowFrameMs_.reset();  // set by the user's setting, the first evaluation

@@ -21,6 +21,7 @@ constexpr const char* kBlur = "blur";
 constexpr const char* kBlurKernel = "blur-kernel";
 constexpr const char* kFilter = "filter";
 constexpr const char* kNormalOffset = "normal-offset";
+constexpr const char* kCascades = "cascades";
 
 // Shadow-map sizes tried besides the user's: the range engines ship (a 2048² map is the usual
 // top; 4096² costs 16x a 1024² light pass).
@@ -107,6 +108,7 @@ std::string renderValue(const gl::RenderSettings& s, const std::string& name) {
   if (name == kBlurKernel) return std::string(gl::blurKernelName(s.blur.kernel));
   if (name == kFilter) return std::string(filterModeName(s.filter));
   if (name == kNormalOffset) return continuousText(s.normalOffsetTexels);
+  if (name == kCascades) return formatInt(s.cascades.count);
   throw Error("tune: unknown render dimension '" + name + "'");
 }
 
@@ -123,6 +125,8 @@ void applyRenderValue(gl::RenderSettings& s, const std::string& name, const std:
     s.blur.kernel = gl::parseBlurKernel(value);
   } else if (name == kFilter) {
     s.filter = parseFilterMode(value);
+  } else if (name == kCascades) {
+    s.cascades.count = parseInt(value);
   } else if (name == kNormalOffset) {
     s.normalOffsetTexels = std::stof(value);
   } else {
@@ -166,7 +170,7 @@ double unitOf(const Dimension& d, double value) {
   return std::clamp(t, 0.0, 1.0);
 }
 
-SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base) {
+SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base, LightKind light) {
   SearchSpace space;
   space.technique = technique;
   for (const ParamSpec& spec : techniqueParamSpecs(technique)) {
@@ -222,10 +226,16 @@ SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base) {
   offset.max = gl::kMaxNormalOffsetTexels;
   offset.description = "normal-offset bias, shadow-map texels";
   space.dimensions.push_back(offset);
-  space.fixed.push_back(
-      {"cascades", formatInt(base.cascades.count),
-       "the cascade layout decides which pixels the shadow test covers, so errors under two "
-       "layouts are not over one set of pixels"});
+  if (light == LightKind::Directional) {
+    // The cascades split the view's depth range; every layout is measured on the same pixels
+    // (the target's, fixed by the given setting), so one that leaves pixels unshadowed pays.
+    space.dimensions.push_back(renderDimension(kCascades, "cascaded shadow maps (1: one map)",
+                                               ordinalValues({1, 2, 4, base.cascades.count}),
+                                               true));
+  } else {
+    space.fixed.push_back({kCascades, formatInt(base.cascades.count),
+                           "cascades split a directional light's view; this light is not one"});
+  }
   space.fixed.push_back({"width, height", formatInt(base.width) + "x" + formatInt(base.height),
                          "the frame measured"});
   space.fixed.push_back({"ambient", continuousText(base.ambient), "shading, not the shadow"});

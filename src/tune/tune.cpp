@@ -106,7 +106,8 @@ void validateTuneRequest(const TuneRequest& r) {
     for (Technique t : r.techniques) {
       gl::RenderSettings base = r.settings;
       base.technique = t;
-      for (const std::string& d : dimensionNames(searchSpace(t, base))) {
+      // A directional light's space holds every dimension another light's has.
+      for (const std::string& d : dimensionNames(searchSpace(t, base, LightKind::Directional))) {
         found = found || d == name;
         if (valid.find(" " + d + ",") == std::string::npos) valid += " " + d + ",";
       }
@@ -121,10 +122,10 @@ void validateTuneRequest(const TuneRequest& r) {
   }
 }
 
-SearchSpace requestSpace(const TuneRequest& request, Technique technique) {
+SearchSpace requestSpace(const TuneRequest& request, Technique technique, LightKind light) {
   gl::RenderSettings base = request.settings;
   base.technique = technique;
-  return restrictedTo(searchSpace(technique, base), request.only);
+  return restrictedTo(searchSpace(technique, base, light), request.only);
 }
 
 std::vector<WorkUnit> workUnits(const TuneRequest& request) {

@@ -214,6 +214,26 @@ TEST(TuneSpace, EveryRegistryParameterButTheSplitListIsSearched) {
   }
 }
 
+TEST(TuneSpace, SearchesCascadesForDirectionalLightsOnly) {
+  const gl::RenderSettings base = baseFor(Technique::Evsm4);
+  const auto has = [](const SearchSpace& space, const std::string& name) {
+    const std::vector<std::string> names = dimensionNames(space);
+    return std::find(names.begin(), names.end(), name) != names.end();
+  };
+  const SearchSpace sun = searchSpace(Technique::Evsm4, base, LightKind::Directional);
+  EXPECT_TRUE(has(sun, "cascades"));
+  const gl::RenderSettings cascaded = applyPoint(sun, base, [&] {
+    Point p = pointOf(sun, base);
+    for (size_t i = 0; i < p.size(); ++i) {
+      if (sun.dimensions[i].name == "cascades") p[i] = "4";
+    }
+    return p;
+  }());
+  EXPECT_EQ(cascaded.cascades.count, 4);
+  EXPECT_FALSE(has(searchSpace(Technique::Evsm4, base, LightKind::Spot), "cascades"));
+  EXPECT_FALSE(has(searchSpace(Technique::Evsm4, base, LightKind::Point), "cascades"));
+}
+
 TEST(TuneSpace, AnEvaluatedSettingIsTheSavedOne) {
   // A point's continuous values are text (6 digits); applied, saved as a settings file and read
   // back as compare --settings reads it, the floats must be the evaluated ones, bit for bit.

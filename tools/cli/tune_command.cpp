@@ -104,6 +104,7 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
 }
 
 void printSummary(const tune::UnitResult& r) {
+  std::cout << tune::describeSpace(r.space);
   std::cout << r.sceneName << " " << techniqueId(r.unit.technique) << ": ";
   const tune::Measurement& d = r.defaultAtUserSize;
   if (d.measured) {
@@ -131,9 +132,6 @@ void runTune(const TuneOptions& o) {
   std::vector<tune::WorkUnit> units = tune::workUnits(request);
   const bool sharded = !o.shard.empty();
   if (sharded) units = tune::shardUnits(units, tune::parseShard(o.shard));
-  if (!o.quiet) {
-    for (Technique t : request.techniques) std::cout << tune::describeSpace(tune::requestSpace(request, t));
-  }
 
   CommandOutput output(o.output);  // a bad --out fails before any GL work
   InterruptCleanup interrupt;      // before the GL context: its driver threads inherit the mask

@@ -55,10 +55,12 @@ struct SearchSpace {
 // One value per dimension, as text; a continuous parameter's default may be "auto".
 using Point = std::vector<std::string>;
 
-// The space for `technique` around `base` (the user's render settings and parameters): every
-// Real parameter continuous, every Integer and Choice parameter enumerated, and the shadow-map
-// size, blur width and kernel and the lookup's filter where they shape this technique's map.
-SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base);
+// The space for `technique` around `base` (the user's render settings and parameters) under a
+// light of kind `light`: every Real parameter continuous, every Integer and Choice parameter
+// enumerated, and the shadow-map size, MSAA, normal offset, the blur's width and kernel and the
+// lookup's filter where they shape this technique's map, and a directional light's cascades.
+SearchSpace searchSpace(Technique technique, const gl::RenderSettings& base,
+                        LightKind light = LightKind::Directional);
 
 // The space with only the named dimensions searched (an empty list: all); the others are held
 // at the user's value and listed as fixed. Names none of the dimensions has are the caller's to

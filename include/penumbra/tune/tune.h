@@ -90,8 +90,9 @@ inline int tuningFrames(const TuneRequest& request) { return (request.frames + 1
 // no selected technique's space has (listing theirs).
 void validateTuneRequest(const TuneRequest& request);
 
-// The space searched for `technique` under the request (its --only applied).
-SearchSpace requestSpace(const TuneRequest& request, Technique technique);
+// The space searched for `technique` under the request (its --only applied) for a scene whose
+// light is of kind `light`.
+SearchSpace requestSpace(const TuneRequest& request, Technique technique, LightKind light);
 
 // One unit of work: a scene and a technique.
 struct WorkUnit {
