@@ -67,7 +67,7 @@ TEST(TuneSearch, FindsAKnownOptimumThroughTheRegistrysDimensions) {
 }
 
 TEST(TuneSearch, ImprovesTheContinuousPartWithinTheCommandsDefaultEvaluations) {
-  // `penumbra tune`'s own limits (30 settings, 3 rounds): the discrete walk takes most of them,
+  // `penumbra tune`'s own limits (24 settings, 3 rounds): the discrete walk takes most of them,
   // NLopt still gets enough to build BOBYQA's model and move the floor and the reduction most of
   // the way to their optimum from the defaults (1e-5 and 0: 1.5 decades and 0.3 away).
   const gl::RenderSettings base = baseFor(Technique::Vsm);

@@ -70,13 +70,13 @@ struct TuneRequest {
   int truthLightSamples = truth::kDefaultTrueShadowLightSamples;
   int areaLightSamples = kMinAreaLightSamples;
   double tau = 0.05;             // leak / over-darkening threshold of the reported shares
-  int evaluations = 30;          // per unit, the user's setting included, [1, 10000]
+  int evaluations = 24;          // per unit, the user's setting included, [1, 10000]
   // A setting whose first frame takes longer than this many times the user's setting's warm
   // frame (and at least kMinSlowFrameMs) is not searched further: tuning looks for the best
   // setting near the user's cost (the frontier shows the trade), and on llvmpipe the driver's
   // anisotropic filter takes 12-14 s for a first VSM frame at 2048² where bilinear takes 0.2 s
   // (docs/results/tune-llvmpipe-2026-12-03.md). [1, 1e6].
-  double maxSlowdown = 8.0;
+  double maxSlowdown = 4.0;
   // The search's frame size as a share of the user's, (0, 1]: the winner and the user's setting
   // are measured again at the user's size.
   double searchScale = 1.0;
