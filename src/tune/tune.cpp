@@ -28,6 +28,26 @@ std::string namesOf(const std::pair<T, std::string_view> (&table)[N]) {
   return list;
 }
 
+// A name table's name for `value`, and the value of `name` (Error listing the valid names as
+// "valid <what>s").
+template <typename T, size_t N>
+std::string_view nameIn(const std::pair<T, std::string_view> (&table)[N], T value) {
+  for (const auto& [v, name] : table) {
+    if (v == value) return name;
+  }
+  throw Error("tune: a value outside its name table");
+}
+
+template <typename T, size_t N>
+T valueIn(const std::pair<T, std::string_view> (&table)[N], std::string_view name,
+          const std::string& what) {
+  for (const auto& [v, n] : table) {
+    if (n == name) return v;
+  }
+  throw Error("unknown " + what + " '" + std::string(name) + "'; valid " + what + "s: " +
+              namesOf(table));
+}
+
 void requireRange(double value, double lo, double hi, const std::string& what) {
   if (!(value >= lo && value <= hi)) {
     throw Error(what + " " + std::to_string(value) + " is out of range [" + std::to_string(lo) +
@@ -46,34 +66,15 @@ int parsePositive(std::string_view text, std::string_view whole) {
 
 }  // namespace
 
-std::string_view errorMeasureName(ErrorMeasure measure) {
-  for (const auto& [m, name] : kMeasures) {
-    if (m == measure) return name;
-  }
-  throw Error("unknown error measure");
-}
+std::string_view errorMeasureName(ErrorMeasure measure) { return nameIn(kMeasures, measure); }
 
 ErrorMeasure parseErrorMeasure(std::string_view name) {
-  for (const auto& [m, n] : kMeasures) {
-    if (n == name) return m;
-  }
-  throw Error("unknown objective '" + std::string(name) + "'; valid objectives: " +
-              namesOf(kMeasures));
+  return valueIn(kMeasures, name, "objective");
 }
 
-std::string_view targetName(Target target) {
-  for (const auto& [t, name] : kTargets) {
-    if (t == target) return name;
-  }
-  throw Error("unknown target");
-}
+std::string_view targetName(Target target) { return nameIn(kTargets, target); }
 
-Target parseTarget(std::string_view name) {
-  for (const auto& [t, n] : kTargets) {
-    if (n == name) return t;
-  }
-  throw Error("unknown truth '" + std::string(name) + "'; valid truths: " + namesOf(kTargets));
-}
+Target parseTarget(std::string_view name) { return valueIn(kTargets, name, "truth"); }
 
 void validateTuneRequest(const TuneRequest& r) {
   if (r.scenes.empty()) throw Error("tune: no scene given");
