@@ -757,7 +757,7 @@ class Viewer {
 
   const ViewerOptions& options_;
   ViewerWindow& window_;
-  gl::CurrentContext context_;
+  gl::CurrentContext context_{gl::GlErrors::Report};  // penumbra's own window: its errors are ours
   gl::Renderer renderer_;
   ViewerState state_;
   // Shared with the background jobs (the reference, the probe), which read them as they were.

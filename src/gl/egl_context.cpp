@@ -1,5 +1,5 @@
 // EGL display selection (device platform, Mesa surfaceless, default), GL 4.5 core context, and
-// the GL error path.
+// the GL error path with its per-thread policy (whose errors they are).
 #include <dlfcn.h>
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include "penumbra/error.h"
@@ -19,6 +20,10 @@ namespace {
 
 std::mutex gDebugMutex;
 std::string gDebugErrors;  // high-severity KHR_debug messages since the last checkErrors
+
+// Per thread, as a context is current on one thread. A thread where penumbra made no context
+// object runs on someone else's context: its errors are the host's.
+thread_local GlErrors tErrors = GlErrors::LeaveToHost;
 
 void GLAPIENTRY onDebugMessage(GLenum, GLenum type, GLuint, GLenum severity, GLsizei,
                                const GLchar* message, const void*) {
@@ -112,6 +117,7 @@ struct HeadlessContext::State {
   EGLDisplay display = EGL_NO_DISPLAY;
   EGLContext context = EGL_NO_CONTEXT;
   EGLSurface surface = EGL_NO_SURFACE;
+  GlErrors previousErrors = GlErrors::LeaveToHost;
 };
 
 HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
@@ -174,6 +180,7 @@ HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
                   " context; penumbra needs 4.5 core");
     }
     routeDebugMessages();
+    state_->previousErrors = std::exchange(tErrors, GlErrors::Report);
     return;
   }
   throw Error("cannot create a headless OpenGL 4.5 core context through EGL" +
@@ -184,6 +191,7 @@ HeadlessContext::HeadlessContext() : state_(std::make_unique<State>()) {
 
 HeadlessContext::~HeadlessContext() {
   if (state_->display == EGL_NO_DISPLAY) return;
+  tErrors = state_->previousErrors;
   eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   if (state_->surface != EGL_NO_SURFACE) eglDestroySurface(state_->display, state_->surface);
   eglDestroyContext(state_->display, state_->context);
@@ -194,7 +202,7 @@ std::string HeadlessContext::description() const {
   return currentDescription();
 }
 
-CurrentContext::CurrentContext() {
+CurrentContext::CurrentContext(GlErrors errors) : previous_(tErrors) {
   GLint profile = 0;
   glGetIntegerv(GL_CONTEXT_PROFILE_MASK, &profile);
   if (epoxy_gl_version() < 45 || (profile & GL_CONTEXT_CORE_PROFILE_BIT) == 0) {
@@ -203,7 +211,12 @@ CurrentContext::CurrentContext() {
                 ((profile & GL_CONTEXT_CORE_PROFILE_BIT) ? " core" : " (not core)") +
                 "; penumbra needs 4.5 core (" + currentDescription() + ")");
   }
-  routeDebugMessages();
+  if (errors == GlErrors::Report) routeDebugMessages();
+  tErrors = errors;
+}
+
+CurrentContext::~CurrentContext() {
+  tErrors = previous_;
 }
 
 std::string CurrentContext::description() const {
@@ -211,6 +224,7 @@ std::string CurrentContext::description() const {
 }
 
 void checkErrors(const char* where) {
+  if (tErrors == GlErrors::LeaveToHost) return;
   std::string errors;
   for (GLenum e = glGetError(); e != GL_NO_ERROR; e = glGetError()) {
     errors += "GL error 0x" + [e] {
@@ -228,6 +242,7 @@ void checkErrors(const char* where) {
 }
 
 void discardPendingErrors() {
+  if (tErrors == GlErrors::LeaveToHost) return;
   while (glGetError() != GL_NO_ERROR) {
   }
   std::lock_guard lock(gDebugMutex);

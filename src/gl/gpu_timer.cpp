@@ -5,22 +5,28 @@
 
 namespace penumbra::gl {
 
-GpuTimer::GpuTimer() {
-  glCreateQueries(GL_TIME_ELAPSED, 1, &query_);
+GpuTimer::~GpuTimer() {
+  if (query_ != 0) glDeleteQueries(1, &query_);
 }
 
-GpuTimer::~GpuTimer() {
-  glDeleteQueries(1, &query_);
+void GpuTimer::setEnabled(bool enabled) {
+  if (enabled != enabled_) reset();  // no time from before the switch reads as current
+  enabled_ = enabled;
 }
 
 void GpuTimer::begin() {
+  if (!enabled_) return;
+  if (query_ == 0) glCreateQueries(GL_TIME_ELAPSED, 1, &query_);
   glFinish();
   start_ = std::chrono::steady_clock::now();
   glBeginQuery(GL_TIME_ELAPSED, query_);
   used_ = true;
+  running_ = true;
 }
 
 void GpuTimer::end() {
+  if (!running_) return;
+  running_ = false;
   glEndQuery(GL_TIME_ELAPSED);
   glFinish();
   wallMilliseconds_ =
@@ -33,7 +39,7 @@ void GpuTimer::reset() {
 }
 
 double GpuTimer::gpuMilliseconds() const {
-  if (!used_) return 0.0;
+  if (!enabled_ || !used_) return 0.0;
   GLuint64 nanoseconds = 0;
   glGetQueryObjectui64v(query_, GL_QUERY_RESULT, &nanoseconds);
   return double(nanoseconds) * 1e-6;
