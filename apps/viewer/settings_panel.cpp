@@ -15,7 +15,7 @@
 #include "penumbra/filter_mode.h"
 #include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
-#include "shared/filter_weights.h"
+#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra::viewer {
 namespace {

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "penumbra/image.h"
-#include "shared/layer_placement.h"
+#include "penumbra/shared/layer_placement.h"
 
 namespace penumbra {
 

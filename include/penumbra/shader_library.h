@@ -48,6 +48,9 @@ class ShaderLibrary {
 
   // Throws Error for a missing file or include, a `#version` line in a file, or include cycles.
   ExpandedShader expand(std::string_view path, std::span<const ShaderDefine> defines = {}) const;
+  // The file with every include pasted in once, without #version or #line: resolver-free GLSL
+  // a host pastes into its own shader (the installed penumbra_<technique>.glsl files).
+  std::string amalgamate(std::string_view path) const;
 
  private:
   std::map<std::string, std::string, std::less<>> files_;

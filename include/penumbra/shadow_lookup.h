@@ -14,7 +14,7 @@
 #include "penumbra/image.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/technique.h"
-#include "shared/soft_shadow.h"
+#include "penumbra/shared/soft_shadow.h"
 
 namespace penumbra {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <string_view>
 
-#include "shared/technique_params.h"
+#include "penumbra/shared/technique_params.h"
 
 namespace penumbra {
 

@@ -11,7 +11,7 @@
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/shared/shadow_lookup.h"
 #include "penumbra/compare/truth_measurement.h"
 
 namespace penumbra::compare {

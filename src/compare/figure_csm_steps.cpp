@@ -13,7 +13,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "penumbra/step_shape.h"
-#include "shared/csm.h"
+#include "penumbra/shared/csm.h"
 
 namespace penumbra::compare {
 namespace {

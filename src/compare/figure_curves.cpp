@@ -12,7 +12,7 @@
 #include "penumbra/error.h"
 #include "penumbra/output_journal.h"
 #include "penumbra/params.h"
-#include "shared/csm.h"
+#include "penumbra/shared/csm.h"
 
 namespace penumbra::compare {
 namespace {

@@ -10,8 +10,8 @@
 #include "penumbra/params.h"
 #include "penumbra/scene.h"
 #include "render_figure_tools.h"
-#include "shared/layers.h"
-#include "shared/light_depth.h"
+#include "penumbra/shared/layers.h"
+#include "penumbra/shared/light_depth.h"
 
 namespace penumbra::compare {
 namespace {

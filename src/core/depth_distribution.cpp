@@ -9,7 +9,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/storage_format.h"
-#include "shared/channel_reduction.h"
+#include "penumbra/shared/channel_reduction.h"
 
 namespace penumbra {
 namespace {

@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "penumbra/error.h"
-#include "shared/lookup_footprint.h"
+#include "penumbra/shared/lookup_footprint.h"
 
 namespace penumbra {
 namespace {

@@ -7,9 +7,9 @@
 
 #include "parallel.h"
 #include "penumbra/error.h"
-#include "shared/channel_reduction.h"
-#include "shared/filter_weights.h"
-#include "shared/mip_span.h"
+#include "penumbra/shared/channel_reduction.h"
+#include "penumbra/shared/filter_weights.h"
+#include "penumbra/shared/mip_span.h"
 
 namespace penumbra {
 namespace {

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shared/layer_placement.h"
+#include "penumbra/shared/layer_placement.h"
 
 namespace penumbra {
 namespace {

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "penumbra/error.h"
-#include "shared/technique_params.h"
+#include "penumbra/shared/technique_params.h"
 
 namespace penumbra {
 namespace {

@@ -12,8 +12,8 @@
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
-#include "shared/filtered_reference.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/shared/filtered_reference.h"
+#include "penumbra/shared/shadow_lookup.h"
 
 namespace penumbra {
 

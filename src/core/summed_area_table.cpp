@@ -7,7 +7,7 @@
 #include <limits>
 
 #include "parallel.h"
-#include "shared/summed_area.h"
+#include "penumbra/shared/summed_area.h"
 
 namespace penumbra {
 

@@ -8,7 +8,7 @@
 #include <type_traits>
 
 #include "penumbra/error.h"
-#include "shared/technique_dispatch.h"
+#include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra {
 namespace {

@@ -11,9 +11,9 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/renderer.h"
 #include "renderer_state.h"
-#include "shared/light_depth.h"
-#include "shared/point_light_faces.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/shared/light_depth.h"
+#include "penumbra/shared/point_light_faces.h"
+#include "penumbra/shared/shadow_lookup.h"
 
 namespace penumbra::gl {
 namespace {

@@ -3,11 +3,10 @@
 
 #include <epoxy/gl.h>
 
-#include "light_pass.h"
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
 #include "shadow_map_filter.h"
-#include "shared/constants.h"
+#include "penumbra/shared/constants.h"
 
 namespace penumbra::gl {
 namespace {
@@ -19,20 +18,19 @@ unsigned groups(int n) {
 }  // namespace
 
 void ZmaxPyramid::build(ProgramCache& programs, const ParameterBlock& parameters,
-                        const LightPass& light) {
-  const LightPassShape& shape = light.shape();
-  if (!built() || size_ != shape.size || layers_ != shape.cascades) {
-    size_ = shape.size;
-    layers_ = shape.cascades;
+                        const LinearDepthMaps& depth) {
+  if (!built() || size_ != depth.size || layers_ != depth.layers) {
+    size_ = depth.size;
+    layers_ = depth.layers;
     levels_ = mipLevelCount(size_, size_);
     texture_ = Texture(GL_TEXTURE_2D_ARRAY);
     glTextureStorage3D(texture_.id(), levels_, GL_R32F, size_, size_, layers_);
   }
   const Program& base =
-      programs.compute("passes/zmax_base.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
+      programs.compute("passes/zmax_base.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
   glProgramUniform2i(base.id(), glGetUniformLocation(base.id(), "size"), size_, size_);
-  base.set("sampleCount", shape.samples);
-  glBindTextureUnit(0, light.depthTexture());
+  base.set("sampleCount", depth.samples);
+  glBindTextureUnit(0, depth.texture);
   glBindImageTexture(0, texture_.id(), 0, GL_TRUE, 0, GL_WRITE_ONLY, GL_R32F);
   base.dispatch(groups(size_), groups(size_), unsigned(layers_));
   const ChannelLayout depthOnly{1, 1, 1, StorageFormat::Float32};
@@ -65,10 +63,10 @@ void LloydPlacement::release() {
   rowSums_.reset();
 }
 
-shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPass& light,
+shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LinearDepthMaps& depth,
                                            const shaders::LvsmParams& lvsm) {
-  const int size = light.shape().size;
-  const int layers = light.shape().cascades;
+  const int size = depth.size;
+  const int layers = depth.layers;
   if (!samples_ || size_ != size || layers_ != layers) {
     size_ = size;
     layers_ = layers;
@@ -76,9 +74,9 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LightPa
     rowSums_.emplace(lloydRowSumBytes(size, layers));
   }
   const Program& samples =
-      programs.compute("passes/split_samples.comp", {{"MSAA", light.multisampled() ? "1" : "0"}});
+      programs.compute("passes/split_samples.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
-  glBindTextureUnit(0, light.depthTexture());
+  glBindTextureUnit(0, depth.texture);
   samples_->bindStorage(1);
   samples.dispatch(groups(size), groups(size), unsigned(layers));
   // Each step's sums are gathered on the GPU, row by row (every cascade's rows in turn); the CPU

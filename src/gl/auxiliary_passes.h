@@ -5,6 +5,7 @@
 #include <optional>
 #include <vector>
 
+#include "linear_depth_maps.h"
 #include "mip_chain_pass.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/layer_placement.h"
@@ -12,12 +13,11 @@
 
 namespace penumbra::gl {
 
-class LightPass;
-
 // The largest depth under each texel of each mip level, one layer per cascade.
 class ZmaxPyramid {
  public:
-  void build(ProgramCache& programs, const ParameterBlock& parameters, const LightPass& light);
+  void build(ProgramCache& programs, const ParameterBlock& parameters,
+             const LinearDepthMaps& depth);
   void release();
   bool built() const { return texture_.id() != 0; }
   const Texture& texture() const { return texture_; }
@@ -34,7 +34,7 @@ class ZmaxPyramid {
 // cascade's depth map (one depth metric for all cascades, so one placement serves them all).
 class LloydPlacement {
  public:
-  shaders::LayerSplits place(ProgramCache& programs, const LightPass& light,
+  shaders::LayerSplits place(ProgramCache& programs, const LinearDepthMaps& depth,
                              const shaders::LvsmParams& lvsm);
   void release();
   bool placed() const { return samples_.has_value(); }

@@ -5,66 +5,18 @@
 
 #include <cmath>
 
-#include "light_pass.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
-#include "shadow_map_filter.h"
-#include "shared/shading.h"
+#include "shadow_filter_state.h"
+#include "penumbra/shared/shading.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
 namespace {
 
-void setChannelSampling(const Texture& channels, int levels, const RenderSettings& settings) {
-  const FilterMode mode = settings.filter;
-  const GLuint t = channels.id();
-  glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(t, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-  glTextureParameteri(t, GL_TEXTURE_MAG_FILTER, mode == FilterMode::Point ? GL_NEAREST : GL_LINEAR);
-  GLint minFilter = GL_LINEAR;
-  if (mode == FilterMode::Point) minFilter = GL_NEAREST;
-  if (levels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
-  glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
-  // Only the driver's kernel needs the sampler's anisotropy: the modelled probes are textureLod.
-  const float anisotropy =
-      mode == FilterMode::AnisotropicDriver ? float(settings.anisotropy) : 1.0f;
-  glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
-}
-
 GLint location(const Program& p, const char* name) {
   return glGetUniformLocation(p.id(), name);
-}
-
-// The lookup's settings (shared/lookup_footprint.h LookupSettings, per cascade) and its textures
-// beyond the channels: the light pass's depth (ESM's fallback, the reference) and blur weights.
-void setLookupUniforms(const Program& program, const RenderSettings& settings,
-                       const ShadowMaps& maps, bool reference) {
-  const ChannelShape& shape = maps.filter.shape();
-  program.set("filterMode", int(settings.filter));
-  program.set("shadowMapSize", shape.size);
-  // The reference follows the technique's lookup over every level the lookup may use.
-  const int levels =
-      reference && usesMips(settings.filter) ? mipLevelCount(shape.size, shape.size) : shape.levels;
-  program.set("channelLevels", levels);
-  program.set("anisotropy", settings.anisotropy);
-  program.set("blurKernel", blurKernelId(settings.blur.kernel));
-  std::vector<int> radii;
-  std::vector<float> sigmas;
-  for (const BlurSpec& b : maps.cascadeBlurs) {
-    radii.push_back(b.radius);
-    sigmas.push_back(b.sigma);
-  }
-  glProgramUniform1iv(program.id(), location(program, "blurRadius"), GLsizei(radii.size()),
-                      radii.data());
-  glProgramUniform1fv(program.id(), location(program, "blurSigma"), GLsizei(sigmas.size()),
-                      sigmas.data());
-  program.set("zmaxLevels", maps.zmaxLevels);
-  program.set("layersPerCascade", shape.layout.layers);
-  program.set("channelsPerCascade", shape.layout.channels);
-  if (maps.light.multisampled()) program.set("lightSamples", maps.light.shape().samples);
-  glBindTextureUnit(2, maps.light.depthTexture());
-  maps.blurCumulative.bindStorage(4);
 }
 
 void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
@@ -79,9 +31,6 @@ void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
   }
   glProgramUniform1fv(program.id(), location(program, "cascadeTexelWorldSize"), c.count,
                       texel.data());
-  std::vector<float> kernelScale;
-  for (int i = 0; i < c.count; ++i) kernelScale.push_back(c.kernelScale(i, frame.shadowMapSize));
-  glProgramUniform1fv(program.id(), location(program, "kernelScale"), c.count, kernelScale.data());
   program.set("cascadeStart", c.start);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds0"), 1, &c.ends[0]);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds1"), 1, &c.ends[4]);
@@ -125,20 +74,15 @@ void CameraPass::prepare(int width, int height) {
   checkErrors("allocating the camera pass");
 }
 
-void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters,
-                        const GpuScene& scene, const RenderSettings& settings,
-                        const FrameGeometry& frame, const ShadowMaps& maps, bool reference) {
-  const bool summedArea =
-      !reference && settings.filter == FilterMode::SummedArea && maps.filter.hasSummedAreaTable();
-  const bool zmax = !reference && maps.zmax != nullptr;
-  const Program& program = programs.graphics("passes/camera.vert", "passes/camera.frag",
-                                             {{"SUMMED_AREA", summedArea ? "1" : "0"},
-                                              {"ZMAX", zmax ? "1" : "0"},
-                                              {"MSAA", maps.light.multisampled() ? "1" : "0"},
-                                              {"REFERENCE", reference ? "1" : "0"}});
-  setLookupUniforms(program, settings, maps, reference);
+void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
+                        const RenderSettings& settings, const FrameGeometry& frame,
+                        const ShadowFilter& shadows, bool reference) {
+  // The lookup's variant and bindings are the filter's, as a host's shader gets them.
+  std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), reference);
+  defines.push_back({"REFERENCE", reference ? "1" : "0"});
+  const Program& program = programs.graphics("passes/camera.vert", "passes/camera.frag", defines);
   setCascadeUniforms(program, frame);
-  parameters.bind();
+  shadows.bind();
   const float aspect = float(width_) / float(height_);
   const glm::mat4 view = viewFromWorld(frame.camera);
   program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.sceneBounds) * view);
@@ -159,13 +103,6 @@ void CameraPass::render(ProgramCache& programs, const ParameterBlock& parameters
   program.set("lightSize", frame.light.size);
   program.set("ambient", settings.ambient);
   program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
-  setChannelSampling(maps.filter.channels(), maps.filter.shape().levels, settings);
-  glBindTextureUnit(0, maps.filter.channels().id());
-  if (zmax) glBindTextureUnit(1, maps.zmax->id());
-  if (summedArea) {
-    maps.filter.summedAreaStats().bindStorage(2);
-    maps.filter.summedAreaSums().bindStorage(3);
-  }
   program.use();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width_, height_);

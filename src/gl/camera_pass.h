@@ -11,22 +11,10 @@
 #include "penumbra/filters.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/gl/shadow_filter.h"
 #include "program_cache.h"
 
 namespace penumbra::gl {
-
-class ShadowMapFilter;
-class LightPass;
-
-// What the camera pass reads besides the scene: the shadow maps and how they were made.
-struct ShadowMaps {
-  const LightPass& light;
-  const ShadowMapFilter& filter;
-  const Texture* zmax = nullptr;  // ESM's Z-max pyramid, when built
-  int zmaxLevels = 0;
-  const Buffer& blurCumulative;  // per cascade, cumulativeBlurWeights (2 * kMaxBlurRadius + 1)
-  std::span<const BlurSpec> cascadeBlurs;
-};
 
 // The frame's geometry: camera, light and the cascades (one map: count 1 with an identity box).
 struct FrameGeometry {
@@ -52,9 +40,9 @@ class CameraPass {
   CameraPass& operator=(const CameraPass&) = delete;
 
   void prepare(int width, int height);
-  void render(ProgramCache& programs, const ParameterBlock& parameters, const GpuScene& scene,
-              const RenderSettings& settings, const FrameGeometry& frame, const ShadowMaps& maps,
-              bool reference);
+  // The shadow maps are the filter's last filter() (or prepareRawDepth() for the reference).
+  void render(ProgramCache& programs, const GpuScene& scene, const RenderSettings& settings,
+              const FrameGeometry& frame, const ShadowFilter& shadows, bool reference);
 
   // Row 0 at the top.
   Image readColor() const;

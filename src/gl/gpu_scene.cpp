@@ -9,7 +9,7 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/scene_buffers.h"
-#include "shared/alpha_mask.h"
+#include "penumbra/shared/alpha_mask.h"
 
 namespace penumbra::gl {
 namespace {

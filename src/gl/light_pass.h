@@ -8,6 +8,7 @@
 
 #include "gpu_scene.h"
 #include "gpu_timer.h"
+#include "linear_depth_maps.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/image.h"
 #include "penumbra/scene.h"
@@ -47,6 +48,9 @@ class LightPass {
   bool multisampled() const { return shape_.samples > 1; }
   // The R32F linear depth: GL_TEXTURE_2D_ARRAY, or _2D_MULTISAMPLE_ARRAY under MSAA.
   unsigned depthTexture() const { return depth_.id(); }
+  LinearDepthMaps linearDepth() const {
+    return {depth_.id(), shape_.size, shape_.cascades, shape_.samples};
+  }
   // One layer's depth (refused under MSAA), row 0 at the bottom.
   Image readDepth(int layer) const;
   // One layer's depth samples, one image channel per sample (MSAA or not), row 0 at the bottom.

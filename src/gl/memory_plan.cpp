@@ -10,7 +10,7 @@
 #include "penumbra/gl/scene_buffers.h"
 #include "penumbra/point_light.h"
 #include "penumbra/scene.h"
-#include "shared/constants.h"
+#include "penumbra/shared/constants.h"
 
 namespace penumbra::gl {
 namespace {

@@ -5,7 +5,7 @@
 
 #include <cstring>
 
-#include "shared/technique_dispatch.h"
+#include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra::gl {
 namespace {
@@ -60,9 +60,9 @@ void ParameterBlock::upload(Technique technique, const TechniqueParams& params) 
   valid_ = true;
 }
 
-void ParameterBlock::bind() const {
-  buffer_.bindUniform(0);
-  ranges_.bindUniform(1);
+void ParameterBlock::bind(int parameterBinding, int rangeBinding) const {
+  buffer_.bindUniform(unsigned(parameterBinding));
+  ranges_.bindUniform(unsigned(rangeBinding));
 }
 
 }  // namespace penumbra::gl

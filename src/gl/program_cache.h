@@ -35,7 +35,9 @@ class ParameterBlock {
  public:
   ParameterBlock();
   void upload(Technique technique, const TechniqueParams& params);
-  void bind() const;
+  // Binds the parameters and the texel-layer ranges to these uniform-block bindings.
+  void bind(int parameterBinding = 0, int rangeBinding = 1) const;
+  uint64_t bytes() const { return buffer_.size() + ranges_.size(); }
 
  private:
   Buffer buffer_;

@@ -16,11 +16,11 @@
 #include "penumbra/point_light.h"
 #include "penumbra/shadow_lookup.h"
 #include "renderer_state.h"
-#include "shared/cascade_selection.h"
-#include "shared/point_light_faces.h"
-#include "shared/shading.h"
-#include "shared/soft_shadow.h"
-#include "shared/summed_area.h"
+#include "penumbra/shared/cascade_selection.h"
+#include "penumbra/shared/point_light_faces.h"
+#include "penumbra/shared/shading.h"
+#include "penumbra/shared/soft_shadow.h"
+#include "penumbra/shared/summed_area.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -184,21 +184,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   State& s = *state_;
   if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
   s.settings = settings;
-  s.params = settings.params;
-  // EVSM's exponents as its storage holds them (the shaders clamp them the same way), so the
-  // result reports what was used.
-  s.params.evsm.positiveExponent =
-      shaders::evsmClampExponent(s.params.evsm.positiveExponent, s.params.evsm.storage);
-  s.params.evsm.negativeExponent =
-      shaders::evsmClampExponent(s.params.evsm.negativeExponent, s.params.evsm.storage);
-  if (settings.technique == Technique::Lvsm &&
-      s.params.lvsm.placement == shaders::kLayerPlacementUniform) {
-    s.params.lvsm.splits = shaders::uniformLayerSplits(s.params.lvsm.splits.layerCount);
-  }
   s.programs.setTechnique(settings.technique);
-  // Lloyd placement uploads the parameters once it has moved the splits.
-  if (reference || !placesLayersByLloyd(settings))
-    s.parameters.upload(settings.technique, s.params);
 
   // Where the frame is seen from, and the cascades that cover it.
   FrameGeometry& frame = s.frame;
@@ -255,7 +241,6 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     s.cascadeBlurs.push_back(
         cascadeBlur(settings.blur, frame.cascades.kernelScale(c, settings.shadowMapSize)));
   }
-  s.uploadBlurWeights(s.cascadeBlurs);
 
   // Light pass: one layer per cascade.
   s.light.prepare({settings.shadowMapSize, reference ? 1 : settings.msaaSamples, count});
@@ -273,38 +258,36 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   s.light.render(s.programs, *s.scene, layers);
 
-  bool fused = false;
-  if (!reference) {
-    s.auxiliaryTimer.begin();
-    if (buildsZmaxPyramid(settings)) {
-      s.zmax.build(s.programs, s.parameters, s.light);
-    } else {
-      s.zmax.release();
+  // The filter: the renderer is a host of the public filtering API like any other.
+  FilterSettings filterSettings;
+  filterSettings.technique = settings.technique;
+  filterSettings.params = settings.params;
+  filterSettings.blur = settings.blur;
+  filterSettings.filter = settings.filter;
+  filterSettings.anisotropy = settings.anisotropy;
+  filterSettings.fusePrefilter = settings.fusePrefilter;
+  if (frame.cascaded) {
+    filterSettings.layerBlurs = s.cascadeBlurs;
+    for (int c = 0; c < count; ++c) {
+      filterSettings.layerKernelScales.push_back(
+          frame.cascades.kernelScale(c, settings.shadowMapSize));
     }
-    if (placesLayersByLloyd(settings)) {
-      s.params.lvsm.splits = s.lloyd.place(s.programs, s.light, s.params.lvsm);
-      s.parameters.upload(settings.technique, s.params);
-    } else {
-      s.lloyd.release();
-    }
-    s.auxiliaryTimer.end();
-    s.filter.prepare(channelShapeFor(settings, count));
-    fused = fusesPrefilter(settings, s.cascadeBlurs);
-    s.filter.prefilter(s.programs, s.parameters, s.light.depthTexture(), s.light.shape().samples,
-                       settings.technique, s.params, s.cascadeBlurs, fused);
-  } else {
-    s.zmax.release();
-    s.lloyd.release();
-    // The reference reads raw depth only, but the camera pass takes the map's size and levels
-    // from the channel shape (and binds the texture): keep it this frame's (a no-op when equal).
-    s.filter.prepare(channelShapeFor(settings, count));
   }
+  DepthInput depth;
+  depth.texture = s.light.depthTexture();
+  depth.size = settings.shadowMapSize;
+  depth.layers = count;
+  depth.samples = s.light.shape().samples;
+  depth.encoding = DepthEncoding::LinearDepth;
+  if (reference) {
+    s.shadows.prepareRawDepth(depth, filterSettings);
+  } else {
+    s.shadows.filter(depth, filterSettings);
+  }
+  const bool fused = s.shadows.state().fused;
 
   s.camera.prepare(settings.width, settings.height);
-  const ShadowMaps maps{
-      s.light,         s.filter,          s.zmax.built() ? &s.zmax.texture() : nullptr,
-      s.zmax.levels(), *s.blurCumulative, s.cascadeBlurs};
-  s.camera.render(s.programs, s.parameters, *s.scene, settings, frame, maps, reference);
+  s.camera.render(s.programs, *s.scene, settings, frame, s.shadows, reference);
 
   RenderResult result;
   result.color = s.camera.readColor();
@@ -317,7 +300,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   result.cascadeFrame = frame.cascades;
   result.cascadeBlurs = s.cascadeBlurs;
   result.depthBounds = range;
-  result.params = s.params;
+  result.params = s.shadows.params();
   result.fusedPrefilter = fused;
   auto times = [&](auto read) {
     PassTimes t;
@@ -325,10 +308,11 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     t.camera = read(s.camera.timer);
     t.depthBounds = read(s.depthBoundsTimer);
     if (!reference) {
-      t.encode = read(s.filter.encodeTimer);
-      t.prefilter = read(s.filter.prefilterTimer);
-      t.mipsOrSat = read(s.filter.mipsTimer);
-      t.auxiliary = read(s.auxiliaryTimer);
+      const ShadowFilter::State& f = s.shadows.state();
+      t.encode = read(f.maps.encodeTimer);
+      t.prefilter = read(f.maps.prefilterTimer);
+      t.mipsOrSat = read(f.maps.mipsTimer);
+      t.auxiliary = read(f.auxiliaryTimer);
     }
     return t;
   };
@@ -377,17 +361,26 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   validate(single);
   State& s = *state_;
   s.settings = single;
-  s.params = single.params;
-  s.programs.setTechnique(single.technique);
-  s.parameters.upload(single.technique, s.params);
   s.uploadedDepth.emplace(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height(), 1);
   glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,
                       GL_FLOAT, depth.data().data());
-  s.filter.prepare(channelShapeFor(single, 1));
-  s.cascadeBlurs.assign(1, single.blur);
-  s.filter.prefilter(s.programs, s.parameters, s.uploadedDepth->id(), 1, single.technique, s.params,
-                     s.cascadeBlurs, fusesPrefilter(single, s.cascadeBlurs));
+  FilterSettings filterSettings;
+  filterSettings.technique = single.technique;
+  filterSettings.params = single.params;
+  // The parity path filters with the splits given: Lloyd's placement is the frames' to test.
+  if (filterSettings.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
+    filterSettings.params.lvsm.placement = shaders::kLayerPlacementFixed;
+  }
+  filterSettings.blur = single.blur;
+  filterSettings.filter = single.filter;
+  filterSettings.anisotropy = single.anisotropy;
+  filterSettings.fusePrefilter = single.fusePrefilter;
+  DepthInput input;
+  input.texture = s.uploadedDepth->id();
+  input.size = depth.width();
+  input.encoding = DepthEncoding::LinearDepth;
+  s.shadows.filter(input, filterSettings);
 }
 
 Image Renderer::readDepthMap(int cascade) const {
@@ -403,15 +396,15 @@ Image Renderer::readDepthSamples(int cascade) const {
 }
 
 int Renderer::channelMipLevels() const {
-  return state_->filter.shape().levels;
+  return state_->shadows.channelMipLevels();
 }
 
 uint64_t Renderer::measuredChannelTextureBytes() const {
   const State& s = *state_;
   uint64_t bytes = 0;
-  for (int level = 0; level < s.filter.shape().levels; ++level) {
+  for (int level = 0; level < s.shadows.state().maps.shape().levels; ++level) {
     GLint width = 0, height = 0, depth = 0, bits = 0;
-    const GLuint t = s.filter.channels().id();
+    const GLuint t = s.shadows.state().maps.channels().id();
     glGetTextureLevelParameteriv(t, level, GL_TEXTURE_WIDTH, &width);
     glGetTextureLevelParameteriv(t, level, GL_TEXTURE_HEIGHT, &height);
     glGetTextureLevelParameteriv(t, level, GL_TEXTURE_DEPTH, &depth);
@@ -429,7 +422,7 @@ uint64_t Renderer::measuredChannelTextureBytes() const {
 
 Image Renderer::readChannels(int level, int cascade) const {
   const State& s = *state_;
-  const ChannelShape& shape = s.filter.shape();
+  const ChannelShape& shape = s.shadows.state().maps.shape();
   checkRange("mip level", level, 0, shape.levels - 1);
   checkRange("cascade", cascade, 0, shape.cascades - 1);
   const int size = std::max(1, shape.size >> level);
@@ -438,7 +431,7 @@ Image Renderer::readChannels(int level, int cascade) const {
   // Every cascade's layers come back, cascade by cascade; channel c of a cascade is component
   // c of its layers (4 per layer when there are several).
   Image all =
-      readTexture(s.filter.channels().id(), level, size, size, layout.layers * shape.cascades,
+      readTexture(s.shadows.state().maps.channels().id(), level, size, size, layout.layers * shape.cascades,
                   layout.componentsPerTexel, formats[layout.componentsPerTexel], false);
   Image trimmed(size, size, layout.channels);
   for (int y = 0; y < size; ++y) {
@@ -453,10 +446,11 @@ Image Renderer::readChannels(int level, int cascade) const {
 
 Image Renderer::readZmaxLevel(int level) const {
   const State& s = *state_;
-  if (!s.zmax.built()) throw Error("no Z-max pyramid: render ESM with classifier=zmax first");
-  checkRange("Z-max level", level, 0, s.zmax.levels() - 1);
+  const ZmaxPyramid& zmax = s.shadows.state().zmax;
+  if (!zmax.built()) throw Error("no Z-max pyramid: render ESM with classifier=zmax first");
+  checkRange("Z-max level", level, 0, zmax.levels() - 1);
   const int size = std::max(1, s.light.shape().size >> level);
-  Image all = readTexture(s.zmax.texture().id(), level, size, size, s.light.shape().cascades, 1,
+  Image all = readTexture(zmax.texture().id(), level, size, size, s.light.shape().cascades, 1,
                           GL_RED, false);
   Image first(size, size, 1);
   for (int y = 0; y < size; ++y) {
@@ -466,27 +460,27 @@ Image Renderer::readZmaxLevel(int level) const {
 }
 
 std::vector<SplitSample> Renderer::readSplitSamples() const {
-  if (!state_->lloyd.placed())
+  if (!state_->shadows.state().lloyd.placed())
     throw Error("no Lloyd samples: render LVSM with placement=lloyd first");
-  return state_->lloyd.readSamples();
+  return state_->shadows.state().lloyd.readSamples();
 }
 
 double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
   const State& s = *state_;
-  if (!s.filter.hasSummedAreaTable()) {
+  if (!s.shadows.state().maps.hasSummedAreaTable()) {
     throw Error("no summed-area table: render with the 'sat' filter first");
   }
-  const int size = s.filter.shape().size;
+  const int size = s.shadows.state().maps.shape().size;
   struct Stats {
     double centre, step;
   };
-  std::vector<Stats> stats(size_t(s.filter.shape().layout.channels * s.filter.shape().cascades));
-  s.filter.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
+  std::vector<Stats> stats(size_t(s.shadows.state().maps.shape().layout.channels * s.shadows.state().maps.shape().cascades));
+  s.shadows.state().maps.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
   auto prefix = [&](int x, int y) -> uint64_t {
     if (x < 0 || y < 0) return 0;
     uint64_t v = 0;
     const size_t index = (size_t(channel) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
-    glGetNamedBufferSubData(s.filter.summedAreaSums().id(), GLintptr(index * 8), 8, &v);
+    glGetNamedBufferSubData(s.shadows.state().maps.summedAreaSums().id(), GLintptr(index * 8), 8, &v);
     return v;
   };
   const uint64_t wrapped =

@@ -17,8 +17,8 @@
 #include "penumbra/gl/render_setting_values.h"
 #include "penumbra/params.h"
 #include "renderer_state.h"
-#include "shared/cascade_selection.h"
-#include "shared/filter_weights.h"
+#include "penumbra/shared/cascade_selection.h"
+#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra::gl {
 namespace {
@@ -144,26 +144,14 @@ std::string memoryShortfall(const RenderSettings& settings, const MemoryBudget& 
 
 }  // namespace
 
-void Renderer::State::uploadBlurWeights(const std::vector<BlurSpec>& blurs) {
-  constexpr size_t kStride = 2 * shaders::kMaxBlurRadius + 1;
-  std::vector<float> all(kStride * blurs.size(), 0.0f);
-  for (size_t c = 0; c < blurs.size(); ++c) {
-    const std::vector<float> cumulative = cumulativeBlurWeights(blurs[c]);
-    std::copy(cumulative.begin(), cumulative.end(), all.begin() + std::ptrdiff_t(c * kStride));
-  }
-  if (all == blurCumulativeUploaded) return;
-  if (!blurCumulative) blurCumulative.emplace(kStride * shaders::kMaxCascades * sizeof(float));
-  glNamedBufferSubData(blurCumulative->id(), 0, GLsizeiptr(all.size() * sizeof(float)), all.data());
-  blurCumulativeUploaded = std::move(all);
-}
-
 MemoryReport Renderer::State::memory() const {
   MemoryReport m;
   m.lightPass = light.bytes();
-  m.technique = filter.channelBytes();
-  m.summedArea = filter.summedAreaBytes();
-  m.scratch = filter.scratchBytes();
-  m.auxiliary = zmax.bytes() + lloyd.bytes();
+  const FilterMemory f = shadows.memory();
+  m.technique = f.channels;
+  m.summedArea = f.summedArea;
+  m.scratch = f.scratch;
+  m.auxiliary = f.auxiliary;
   m.frame = camera.bytes() + depthBounds.bytes();
   m.geometry = scene ? scene->bytes() : 0;
   return m;
@@ -183,6 +171,8 @@ Renderer::Renderer(const Context& context) : state_(std::make_unique<State>()) {
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
   limits.maxStorageBlock = maxBlock;
   limits.halfRounding = probeHalfRounding(*state_);
+  // The renderer reports each pass's time (RenderResult::wallTimes): its own frames wait.
+  state_->shadows.setTiming(true);
   checkErrors("creating the renderer");
 }
 

@@ -16,6 +16,7 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/storage_format.h"
 #include "program_cache.h"
+#include "shadow_filter_state.h"
 #include "shadow_map_filter.h"
 
 namespace penumbra::gl {
@@ -38,7 +39,6 @@ struct Renderer::State {
   DeviceLimits limits;
   uint64_t memoryLimit = 0;  // Renderer::limitMemory; 0: none
   ProgramCache programs;
-  ParameterBlock parameters;
 
   std::unique_ptr<GpuScene> scene;
   uint64_t sceneFingerprint = 0;
@@ -47,23 +47,17 @@ struct Renderer::State {
 
   DepthBoundsPass depthBounds;
   LightPass light;
-  ZmaxPyramid zmax;
-  LloydPlacement lloyd;
-  ShadowMapFilter filter;
+  // Encode, prefilter, mips or summed-area table, ESM's Z-max pyramid, LVSM's placement: the
+  // public filtering API, the renderer its first host (penumbra/gl/shadow_filter.h).
+  ShadowFilter shadows;
   CameraPass camera;
-  // Per cascade, the prefilter's cumulative weights (camera pass, binding 4).
-  std::optional<Buffer> blurCumulative;
-  std::vector<float> blurCumulativeUploaded;
   std::optional<Texture> uploadedDepth;  // filterDepthMap's input
-  GpuTimer auxiliaryTimer, depthBoundsTimer;
+  GpuTimer depthBoundsTimer;
 
   RenderSettings settings;  // of the last frame
-  TechniqueParams params;   // in use (LVSM splits placed)
   FrameGeometry frame;      // of the last frame
   std::vector<BlurSpec> cascadeBlurs;
 
-  // Uploads the cumulative blur weights of each cascade when they changed.
-  void uploadBlurWeights(const std::vector<BlurSpec>& blurs);
   MemoryReport memory() const;
 };
 

@@ -9,8 +9,8 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "shared/cascade_selection.h"
-#include "shared/filter_weights.h"
+#include "penumbra/shared/cascade_selection.h"
+#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra {
 namespace {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "penumbra/error.h"
-#include "shared/point_light_faces.h"
+#include "penumbra/shared/point_light_faces.h"
 
 namespace penumbra {
 

@@ -1,6 +1,7 @@
 // Include resolution, #line mapping and variant prefixes for the embedded GLSL.
 #include "penumbra/shader_library.h"
 
+#include <algorithm>
 #include <regex>
 #include <sstream>
 
@@ -36,7 +37,10 @@ std::string normalise(const std::string& path) {
 
 class Expander {
  public:
-  explicit Expander(const std::map<std::string, std::string, std::less<>>& files) : files_(files) {}
+  // amalgamate: each file once (they all have include guards), marked by a comment instead of
+  // #line, for hosts that paste the text into their own shaders.
+  Expander(const std::map<std::string, std::string, std::less<>>& files, bool amalgamate)
+      : files_(files), amalgamate_(amalgamate) {}
 
   void expandFile(const std::string& path, int depth, const std::string& includer, int line) {
     if (depth > kMaxIncludeDepth) {
@@ -49,8 +53,16 @@ class Expander {
           (includer.empty() ? std::string("shader") : includer + ":" + std::to_string(line)) +
           ": cannot find '" + path + "'");
     }
+    if (amalgamate_ && std::find(files_in_order_.begin(), files_in_order_.end(), path) !=
+                           files_in_order_.end()) {
+      return;
+    }
     const int fileIndex = indexOf(path);
-    out_ << "#line 1 " << fileIndex << "\n";
+    if (amalgamate_) {
+      out_ << "// ---- penumbra: " << path << " ----\n";
+    } else {
+      out_ << "#line 1 " << fileIndex << "\n";
+    }
     static const std::regex includeLine(R"re(^\s*#\s*include\s+"([^"]+)"\s*$)re");
     static const std::regex versionLine(R"(^\s*#\s*version\b.*)");
     std::istringstream in(found->second);
@@ -61,7 +73,7 @@ class Expander {
       std::smatch match;
       if (std::regex_match(text, match, includeLine)) {
         expandFile(resolve(path, match[1].str()), depth + 1, path, lineNumber);
-        out_ << "#line " << lineNumber + 1 << " " << fileIndex << "\n";
+        if (!amalgamate_) out_ << "#line " << lineNumber + 1 << " " << fileIndex << "\n";
       } else if (std::regex_match(text, versionLine)) {
         throw Error(path + ":" + std::to_string(lineNumber) +
                     ": '#version' belongs to the loader; remove it from the file");
@@ -91,6 +103,7 @@ class Expander {
   }
 
   const std::map<std::string, std::string, std::less<>>& files_;
+  const bool amalgamate_;
   std::ostringstream out_;
   std::vector<std::string> files_in_order_;
 };
@@ -121,9 +134,15 @@ ExpandedShader ShaderLibrary::expand(std::string_view path,
                                      std::span<const ShaderDefine> defines) const {
   std::string prefix = "#version 450 core\n";
   for (const ShaderDefine& d : defines) prefix += "#define " + d.name + " " + d.value + "\n";
-  Expander expander(files_);
+  Expander expander(files_, false);
   expander.expandFile(normalise(std::string(path)), 0, "", 0);
   return expander.result(std::move(prefix));
+}
+
+std::string ShaderLibrary::amalgamate(std::string_view path) const {
+  Expander expander(files_, true);
+  expander.expandFile(normalise(std::string(path)), 0, "", 0);
+  return expander.result("").source;
 }
 
 std::string ExpandedShader::translateLog(std::string_view log) const {

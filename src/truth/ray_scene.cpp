@@ -8,7 +8,7 @@
 #include "penumbra/error.h"
 #include "penumbra/srgb.h"
 #include "ray_scene_impl.h"
-#include "shared/alpha_mask.h"
+#include "penumbra/shared/alpha_mask.h"
 
 namespace penumbra::truth {
 namespace {

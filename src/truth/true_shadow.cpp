@@ -10,7 +10,7 @@
 #include "../core/parallel.h"
 #include "penumbra/error.h"
 #include "ray_scene_impl.h"
-#include "shared/shading.h"
+#include "penumbra/shared/shading.h"
 #include "trace_rays.h"
 
 namespace penumbra::truth {

@@ -6,7 +6,7 @@
 
 #include "penumbra/cascades.h"
 #include "penumbra/error.h"
-#include "shared/cascade_selection.h"
+#include "penumbra/shared/cascade_selection.h"
 
 namespace penumbra {
 namespace {

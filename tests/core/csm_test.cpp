@@ -9,7 +9,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "region_helpers.h"
-#include "shared/csm.h"
+#include "penumbra/shared/csm.h"
 
 namespace penumbra {
 namespace {

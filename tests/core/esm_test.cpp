@@ -9,7 +9,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "region_helpers.h"
-#include "shared/esm.h"
+#include "penumbra/shared/esm.h"
 
 namespace penumbra {
 namespace {

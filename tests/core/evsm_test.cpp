@@ -7,7 +7,7 @@
 
 #include "penumbra/depth_distribution.h"
 #include "region_helpers.h"
-#include "shared/evsm.h"
+#include "penumbra/shared/evsm.h"
 
 namespace penumbra {
 namespace {

@@ -4,7 +4,7 @@
 #include "penumbra/depth_distribution.h"
 #include "penumbra/params.h"
 #include "region_helpers.h"
-#include "shared/lvsm.h"
+#include "penumbra/shared/lvsm.h"
 
 namespace penumbra {
 namespace {

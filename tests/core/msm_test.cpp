@@ -10,7 +10,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "region_helpers.h"
-#include "shared/msm.h"
+#include "penumbra/shared/msm.h"
 
 namespace penumbra {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "shared/pcf.h"
+#include "penumbra/shared/pcf.h"
 
 namespace penumbra {
 namespace {

@@ -8,7 +8,7 @@
 
 #include "penumbra/error.h"
 #include "penumbra/point_light.h"
-#include "shared/point_light_faces.h"
+#include "penumbra/shared/point_light_faces.h"
 
 namespace penumbra {
 namespace {

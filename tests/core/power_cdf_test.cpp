@@ -7,7 +7,7 @@
 #include "penumbra/depth_distribution.h"
 #include "penumbra/params.h"
 #include "region_helpers.h"
-#include "shared/power_cdf.h"
+#include "penumbra/shared/power_cdf.h"
 
 namespace penumbra {
 namespace {

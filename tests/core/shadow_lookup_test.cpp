@@ -8,8 +8,8 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "penumbra/shadow_lookup.h"
-#include "shared/lookup_footprint.h"
-#include "shared/vsm.h"
+#include "penumbra/shared/lookup_footprint.h"
+#include "penumbra/shared/vsm.h"
 
 namespace penumbra {
 namespace {

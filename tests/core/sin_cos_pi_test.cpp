@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "shared/sin_cos_pi.h"
+#include "penumbra/shared/sin_cos_pi.h"
 
 namespace penumbra {
 namespace {

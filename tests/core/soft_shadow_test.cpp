@@ -13,7 +13,7 @@
 #include "penumbra/error.h"
 #include "penumbra/params.h"
 #include "penumbra/shadow_lookup.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/shared/shadow_lookup.h"
 
 namespace penumbra {
 namespace {

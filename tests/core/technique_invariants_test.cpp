@@ -11,8 +11,8 @@
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "region_helpers.h"
-#include "shared/layers.h"
-#include "shared/technique_dispatch.h"
+#include "penumbra/shared/layers.h"
+#include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra {
 namespace {

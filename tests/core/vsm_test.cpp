@@ -4,7 +4,7 @@
 
 #include "penumbra/depth_distribution.h"
 #include "region_helpers.h"
-#include "shared/vsm.h"
+#include "penumbra/shared/vsm.h"
 
 namespace penumbra {
 namespace {

@@ -16,8 +16,8 @@
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
-#include "shared/channel_reduction.h"
-#include "shared/shadow_lookup.h"
+#include "penumbra/shared/channel_reduction.h"
+#include "penumbra/shared/shadow_lookup.h"
 
 namespace penumbra {
 namespace {

@@ -16,7 +16,7 @@
 #include "penumbra/gl/program.h"
 #include "penumbra/params.h"
 #include "penumbra/shader_library.h"
-#include "shared/technique_dispatch.h"
+#include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra {
 namespace {

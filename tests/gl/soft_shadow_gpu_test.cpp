@@ -21,7 +21,7 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/params.h"
 #include "penumbra/shadow_lookup.h"
-#include "shared/soft_shadow.h"
+#include "penumbra/shared/soft_shadow.h"
 
 namespace penumbra {
 namespace {

@@ -12,3 +12,7 @@ run(${CMAKE_COMMAND} -S ${CONSUMER} -B ${SCRATCH}/build -G Ninja -DCMAKE_PREFIX_
     "-DCMAKE_CXX_FLAGS=${CONSUMER_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_FLAGS}")
 run(${CMAKE_COMMAND} --build ${SCRATCH}/build)
 run(${SCRATCH}/build/consumer)
+# The GL consumer, when the package has penumbra::gl.
+if(EXISTS ${SCRATCH}/build/gl_consumer)
+  run(${SCRATCH}/build/gl_consumer)
+endif()

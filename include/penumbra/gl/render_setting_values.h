@@ -8,7 +8,7 @@
 #include <string_view>
 
 #include "penumbra/gl/renderer.h"
-#include "shared/filter_weights.h"
+#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra::gl {
 

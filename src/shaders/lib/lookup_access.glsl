@@ -1,5 +1,6 @@
 // The GPU's side of the shared lookup (shared/lookup_access.h): the shadow map's textures as
-// samplers and buffers, and the lookup's settings as uniforms. Everything else of the lookup and
+// samplers and buffers, and the lookup's settings as a uniform block (shared/lookup_block.h,
+// written by ShadowFilter), each at a binding a host may move. Everything else of the lookup and
 // the filtered reference is shared/shadow_lookup.h and shared/filtered_reference.h.
 #ifndef PENUMBRA_LIB_LOOKUP_ACCESS_GLSL
 #define PENUMBRA_LIB_LOOKUP_ACCESS_GLSL
@@ -8,68 +9,81 @@
 #include "../shared/filtered_reference.h"
 #include "../shared/shadow_lookup.h"
 
+#include "../shared/lookup_block.h"
+
+// Bindings: a host moves them with these macros (ShadowBindings, ShadowFilter::shaderPreamble).
+#ifndef PENUMBRA_CHANNEL_UNIT
+#define PENUMBRA_CHANNEL_UNIT 0
+#endif
+#ifndef PENUMBRA_ZMAX_UNIT
+#define PENUMBRA_ZMAX_UNIT 1
+#endif
+#ifndef PENUMBRA_DEPTH_UNIT
+#define PENUMBRA_DEPTH_UNIT 2
+#endif
+#ifndef PENUMBRA_LOOKUP_BLOCK
+#define PENUMBRA_LOOKUP_BLOCK 2
+#endif
+#ifndef PENUMBRA_SAT_STATS_BUFFER
+#define PENUMBRA_SAT_STATS_BUFFER 2
+#endif
+#ifndef PENUMBRA_SAT_SUMS_BUFFER
+#define PENUMBRA_SAT_SUMS_BUFFER 3
+#endif
+#ifndef PENUMBRA_BLUR_WEIGHTS_BUFFER
+#define PENUMBRA_BLUR_WEIGHTS_BUFFER 4
+#endif
+
 // Every cascade's layers: cascade c's channel layer l is layer c * layersPerCascade + l.
-layout(binding = 0) uniform sampler2DArray channelMap;
+layout(binding = PENUMBRA_CHANNEL_UNIT) uniform sampler2DArray channelMap;
 #if ZMAX
-layout(binding = 1) uniform sampler2DArray zmaxMap;
+layout(binding = PENUMBRA_ZMAX_UNIT) uniform sampler2DArray zmaxMap;
 #endif
 #if MSAA
-layout(binding = 2) uniform sampler2DMSArray lightDepthMap;
-uniform int lightSamples;
+layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DMSArray lightDepthMap;
 #else
-layout(binding = 2) uniform sampler2DArray lightDepthMap;
+layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DArray lightDepthMap;
 #endif
 #if SUMMED_AREA
 #include "summed_area.glsl"
-layout(std430, binding = 2) readonly buffer SatStats { SatChannelStats satStats[]; };
-layout(std430, binding = 3) readonly buffer SatSums { uint64_t satSums[]; };
+layout(std430, binding = PENUMBRA_SAT_STATS_BUFFER) readonly buffer SatStats {
+  SatChannelStats satStats[];
+};
+layout(std430, binding = PENUMBRA_SAT_SUMS_BUFFER) readonly buffer SatSums { uint64_t satSums[]; };
 #endif
 // Per cascade, the prefilter's blur weights summed up to each tap (see blurCumulativeWeight).
-layout(std430, binding = 4) readonly buffer BlurCumulative { float blurCumulative[]; };
-
-uniform int filterMode;
-uniform int shadowMapSize;
-uniform int channelLevels;
-uniform int anisotropy;
-uniform int blurKernel;
-uniform int blurRadius[kMaxCascades];  // per cascade: the kernel is constant in world units
-uniform float blurSigma[kMaxCascades];
-uniform float kernelScale[kMaxCascades];  // cascade 0's texel over cascade c's
-uniform int zmaxLevels;
-uniform int layersPerCascade;
-uniform int channelsPerCascade;
+layout(std430, binding = PENUMBRA_BLUR_WEIGHTS_BUFFER) readonly buffer BlurCumulative {
+  float blurCumulative[];
+};
+// The lookup's settings (shared/lookup_block.h), written by ShadowFilter.
+layout(std140, binding = PENUMBRA_LOOKUP_BLOCK) uniform PenumbraLookupBlock {
+  LookupBlock penumbraLookup;
+};
 
 LookupSettings lookupSettings(int cascade) {
-  LookupSettings s;
-  s.filterMode = filterMode;
-  s.shadowMapSize = shadowMapSize;
-  s.channelLevels = channelLevels;
-  s.anisotropy = anisotropy;
-  s.blurKernel = blurKernel;
-  s.blurRadius = blurRadius[cascade];
-  s.blurSigma = blurSigma[cascade];
-  s.zmaxLevels = zmaxLevels;
-  s.kernelScale = kernelScale[cascade];
-  return s;
+  return lookupSettingsFromBlock(penumbraLookup, cascade);
+}
+
+int channelLayer(LookupSources s, int layer) {
+  return s.cascade * penumbraLookup.layersPerCascade + layer;
 }
 
 vec4 channelTexel(LookupSources s, int layer, ivec2 texel, int level) {
-  return texelFetch(channelMap, ivec3(texel, s.cascade * layersPerCascade + layer), level);
+  return texelFetch(channelMap, ivec3(texel, channelLayer(s, layer)), level);
 }
 
 vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
-  return textureLod(channelMap, vec3(uv, float(s.cascade * layersPerCascade + layer)), lod);
+  return textureLod(channelMap, vec3(uv, float(channelLayer(s, layer))), lod);
 }
 
 vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy) {
-  return textureGrad(channelMap, vec3(uv, float(s.cascade * layersPerCascade + layer)), uvDx,
-                     uvDy);
+  return textureGrad(channelMap, vec3(uv, float(channelLayer(s, layer))), uvDx, uvDy);
 }
 
 float lightDepthTexel(LookupSources s, ivec2 texel) {
 #if MSAA
   float z = 1.0f;
-  for (int i = 0; i < lightSamples; ++i) {
+  for (int i = 0; i < penumbraLookup.depthSamples; ++i) {
     z = min(z, texelFetch(lightDepthMap, ivec3(texel, s.cascade), i).x);
   }
   return z;
@@ -87,22 +101,24 @@ float zmaxTexel(LookupSources s, ivec2 texel, int level) {
 }
 
 float blurCumulativeWeight(LookupSources s, int u) {
-  return blurCumulative[s.cascade * (2 * kMaxBlurRadius + 1) + u + blurRadius[s.cascade]];
+  int radius = int(penumbraLookup.layerKernel[s.cascade].x);
+  return blurCumulative[s.cascade * (2 * kMaxBlurRadius + 1) + u + radius];
 }
 
 #if SUMMED_AREA
 // Each cascade's channels are consecutive channels of one table (lib/summed_area.glsl).
 uint64_t summedAreaPrefix(LookupSources s, int channel, int x, int y) {
   if (x < 0 || y < 0) return 0UL;
-  return satSums[satIndex(s.cascade * channelsPerCascade + channel, x, y, ivec2(shadowMapSize))];
+  return satSums[satIndex(s.cascade * penumbraLookup.channelsPerCascade + channel, x, y,
+                           ivec2(penumbraLookup.shadowMapSize))];
 }
 
 double summedAreaCentre(LookupSources s, int channel) {
-  return satStats[s.cascade * channelsPerCascade + channel].centre;
+  return satStats[s.cascade * penumbraLookup.channelsPerCascade + channel].centre;
 }
 
 double summedAreaStep(LookupSources s, int channel) {
-  return satStats[s.cascade * channelsPerCascade + channel].step;
+  return satStats[s.cascade * penumbraLookup.channelsPerCascade + channel].step;
 }
 #endif
 

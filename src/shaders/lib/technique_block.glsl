@@ -3,10 +3,20 @@
 #define PENUMBRA_LIB_TECHNIQUE_BLOCK_GLSL
 #include "../shared/technique_dispatch.h"
 
-layout(std140, binding = 0) uniform TechniqueBlock { TechniqueParams params; };
+#ifndef PENUMBRA_PARAMETER_BLOCK
+#define PENUMBRA_PARAMETER_BLOCK 0
+#endif
+#ifndef PENUMBRA_LAYER_RANGE_BLOCK
+#define PENUMBRA_LAYER_RANGE_BLOCK 1
+#endif
+layout(std140, binding = PENUMBRA_PARAMETER_BLOCK) uniform TechniqueBlock {
+  TechniqueParams params;
+};
 // The encode's per-texel-layer ranges (texelLayerRangeTable), read from the block by the layer's
 // index: computed in every invocation they cost LVSM's encode 7x a copy on llvmpipe.
-layout(std140, binding = 1) uniform TexelLayerRangeBlock { TexelLayerRangeTable rangeTable; };
+layout(std140, binding = PENUMBRA_LAYER_RANGE_BLOCK) uniform TexelLayerRangeBlock {
+  TexelLayerRangeTable rangeTable;
+};
 // The renderer compiles one variant per technique, so the dispatcher folds to one branch.
 #ifdef TECHNIQUE_ID
 const int technique = TECHNIQUE_ID;

@@ -125,7 +125,8 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
   light.farDistance = lightFar;
   light.texelWorldSize = cascadeTexelWorldSize[cascade];
   light.maxWidthTexels =
-      pointLight != 0 ? pointLightSoftWidthTexels(shadowMapSize) : kMaxSoftWidthTexels;
+      pointLight != 0 ? pointLightSoftWidthTexels(penumbraLookup.shadowMapSize)
+                      : kMaxSoftWidthTexels;
   ShadowSample shadow = shadowLookup(sources, settings, technique, params, uv, receiver, uvDx,
                                      uvDy, depthPerTexel, light);
   return vec2(shadow.visibility, shadow.diagnostic);
@@ -184,7 +185,7 @@ void main() {
   vec2 uv = cascadeUv(plane, box, 0);
   vec2 uvDx = cascadeUv(planeDx, box, 1);
   vec2 uvDy = cascadeUv(planeDy, box, 1);
-  vec2 depthPerTexel = cascadeDepthPerTexel(depthPerUnit, box, shadowMapSize);
+  vec2 depthPerTexel = cascadeDepthPerTexel(depthPerUnit, box, penumbraLookup.shadowMapSize);
 
   float visibility = 1.0f;
   float diagnostic = 0.0f;
@@ -204,7 +205,8 @@ void main() {
       vec4 next = cascadeBoxes[cascade + 1];
       vec2 blended = cascadeVisibility(cascade + 1, cascadeUv(plane, next, 0),
                                        cascadeUv(planeDx, next, 1), cascadeUv(planeDy, next, 1),
-                                       cascadeDepthPerTexel(depthPerUnit, next, shadowMapSize),
+                                       cascadeDepthPerTexel(depthPerUnit, next,
+                                                            penumbraLookup.shadowMapSize),
                                        receiver);
       visibility = visibility < 0.0f || blended.x < 0.0f
                        ? -1.0f

@@ -1,7 +1,7 @@
 // Uses the installed API and the installed shared header directly, as an engine would.
 #include <penumbra/depth_distribution.h>
 #include <penumbra/technique.h>
-#include <shared/vsm.h>
+#include <penumbra/shared/vsm.h>
 
 #include <cstdio>
 #include <vector>

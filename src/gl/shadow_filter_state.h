@@ -1,0 +1,57 @@
+// ShadowFilter's GL objects and what the last filter() made, for the renderer's passes and
+// read-backs (the renderer is ShadowFilter's first host).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "auxiliary_passes.h"
+#include "gpu_timer.h"
+#include "linear_depth_maps.h"
+#include "penumbra/gl/program.h"
+#include "penumbra/gl/shadow_filter.h"
+#include "penumbra/shader_library.h"
+#include "penumbra/shared/lookup_block.h"
+#include "program_cache.h"
+#include "shadow_map_filter.h"
+
+namespace penumbra::gl {
+
+struct ShadowFilter::State {
+  ProgramCache programs;
+  ParameterBlock parameters;
+  ShadowMapFilter maps;
+  ZmaxPyramid zmax;
+  LloydPlacement lloyd;
+  Buffer lookupBlock{sizeof(shaders::LookupBlock)};
+  std::optional<shaders::LookupBlock> lookupUploaded;  // a warm frame uploads nothing unchanged
+  // Per layer, the prefilter's cumulative weights (2 * kMaxBlurRadius + 1 each).
+  Buffer blurCumulative{(2 * shaders::kMaxBlurRadius + 1) * shaders::kMaxCascades * sizeof(float)};
+  std::vector<float> blurCumulativeUploaded;
+  Texture importedDepth;  // the host's depth as linear R32F layers, when it needs converting
+  int importedSize = 0, importedLayers = 0;
+  unsigned rawSampler = 0;  // nearest, no depth comparison: reads a host's depth texels as stored
+  LinearDepthMaps depth;    // the unfiltered depth of the last filter()
+  bool filtered = false;    // false: nothing made yet, or prepareRawDepth (no channels)
+
+  FilterSettings settings;  // of the last filter()
+  DepthInput input;
+  TechniqueParams params;  // in effect (EVSM's exponents clamped, LVSM's splits placed)
+  std::vector<BlurSpec> layerBlurs;
+  bool fused = false;
+
+  bool timing = false;
+  GpuTimer importTimer, auxiliaryTimer;
+
+  State();
+  ~State();
+};
+
+// The defines a shader sampling the last filtered map needs besides the technique's
+// (TECHNIQUE_ID, which ProgramCache adds): the summed-area table, the Z-max pyramid and
+// multisampled depth (lib/lookup_access.glsl). `reference`: the filtered reference reads raw depth
+// only.
+std::vector<ShaderDefine> lookupVariantDefines(const ShadowFilter::State& s, bool reference);
+
+}  // namespace penumbra::gl

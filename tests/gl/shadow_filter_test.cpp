@@ -1,0 +1,318 @@
+// ShadowFilter, the filtering API over a host's own depth texture: what it imports, what a
+// host's shader samples through the installed (amalgamated) GLSL with its own bindings, the
+// state it leaves, and the inputs it refuses.
+#include <epoxy/gl.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <sstream>
+
+#include "gl_state.h"
+#include "gl_test_context.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/program.h"
+#include "penumbra/gl/renderer.h"
+#include "penumbra/gl/shadow_filter.h"
+#include "shadow_filter_state.h"
+
+namespace penumbra::gl {
+namespace {
+
+using penumbra::testing::GlTest;
+
+// A host's depth texture: GL_DEPTH_COMPONENT32F, `size` square, filled column by column.
+struct HostDepth {
+  Texture texture{GL_TEXTURE_2D};
+  int size = 0;
+  HostDepth(int n, const std::vector<float>& windowDepth) : size(n) {
+    glTextureStorage2D(texture.id(), 1, GL_DEPTH_COMPONENT32F, n, n);
+    glTextureSubImage2D(texture.id(), 0, 0, 0, n, n, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        windowDepth.data());
+    // A host sampling it with sampler2DShadow has comparison on: the filter must read texels.
+    glTextureParameteri(texture.id(), GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+  }
+  DepthInput input() const {
+    DepthInput d;
+    d.texture = texture.id();
+    d.size = size;
+    return d;
+  }
+};
+
+// Left half an occluder at window depth 0.3, right half nothing (the far plane).
+std::vector<float> halfOccluded(int n) {
+  std::vector<float> depth(size_t(n) * size_t(n));
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) depth[size_t(y * n + x)] = x < n / 2 ? 0.3f : 1.0f;
+  }
+  return depth;
+}
+
+std::string readText(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+// Bindings a host with its own resources on the low units might choose.
+ShadowBindings movedBindings() {
+  ShadowBindings b;
+  b.channelUnit = 5;
+  b.zmaxUnit = 6;
+  b.depthUnit = 7;
+  b.parameterBlock = 3;
+  b.layerRangeBlock = 4;
+  b.lookupBlock = 5;
+  b.satStatsBuffer = 6;
+  b.satSumsBuffer = 7;
+  b.blurWeightsBuffer = 8;
+  return b;
+}
+
+// The host's shader: its own #version, the filter's preamble, the installed amalgamated file
+// for the technique, then its code: visibility at the given shadow coordinates.
+std::vector<float> sampleAsHost(const ShadowFilter& filter, Technique technique,
+                                const ShadowBindings& bindings,
+                                const std::vector<glm::vec3>& coords) {
+  const std::string glsl = readText(std::string(PENUMBRA_GLSL_BUILD_DIR) + "/penumbra_" +
+                                    std::string(techniqueId(technique)) + ".glsl");
+  EXPECT_FALSE(glsl.empty());
+  ShaderLibrary library;
+  library.addFile("host/probe.comp",
+                  "#define PENUMBRA_NO_DERIVATIVES 1\n" + filter.shaderPreamble(bindings) + glsl +
+                      "layout(local_size_x = 1) in;\n"
+                      "layout(std430, binding = 9) buffer Io { vec4 io[]; };\n"
+                      "void main() {\n"
+                      "  uint i = gl_GlobalInvocationID.x;\n"
+                      "  io[i].w = penumbraShadow(0, io[i].xyz, vec2(0.0f), vec2(0.0f),\n"
+                      "                           vec2(0.0f));\n"
+                      "}\n");
+  const Program program = Program::compute(library, "host/probe.comp");
+  std::vector<glm::vec4> io;
+  for (const glm::vec3& c : coords) io.emplace_back(c, -1.0f);
+  Buffer buffer(std::as_bytes(std::span(io)));
+  buffer.bindStorage(9);
+  filter.bind(bindings);
+  program.dispatch(unsigned(io.size()));
+  buffer.read(std::as_writable_bytes(std::span(io)));
+  std::vector<float> visibility;
+  for (const glm::vec4& v : io) visibility.push_back(v.w);
+  return visibility;
+}
+
+TEST_F(GlTest, ShadowFilterHostShaderSeesOccluderThroughEveryTechnique) {
+  const int n = 64;
+  HostDepth depth(n, halfOccluded(n));
+  ShadowFilter filter;
+  for (Technique t : allTechniques()) {
+    SCOPED_TRACE(std::string(techniqueId(t)));
+    FilterSettings settings;
+    settings.technique = t;
+    filter.filter(depth.input(), settings);
+    // Receivers at window depth 0.7, a quarter of the map from the edge (the 5-tap kernel
+    // reaches 2 texels): behind the occluder on the left, in front of nothing on the right.
+    const std::vector<float> v =
+        sampleAsHost(filter, t, movedBindings(), {{0.25f, 0.5f, 0.7f}, {0.75f, 0.5f, 0.7f}});
+    // Each technique's error at a lone step 0.4 deep is well under 0.05 (ESM: exp(-80 * 0.4),
+    // moments: no variance, CSM: its ringing at that distance); 0.05 still tells 0 from 1.
+    EXPECT_LT(v[0], 0.05f);
+    EXPECT_GT(v[1], 0.95f);
+  }
+}
+
+TEST_F(GlTest, ShadowFilterMatchesTheRendererBitForBit) {
+  // The renderer's own path (linear depth, used as it is) and a host's D32F window depth of
+  // an orthographic light (imported) must give the same channels: the import copies exactly.
+  const int n = 64;
+  std::vector<float> values(size_t(n) * size_t(n));
+  for (int i = 0; i < n * n; ++i) values[size_t(i)] = 0.2f + 0.6f * float((i * 37) % 101) / 101.0f;
+  Image image(n, n, 1);
+  std::copy(values.begin(), values.end(), image.data().begin());
+  Renderer renderer(*context);
+  RenderSettings rs;
+  rs.technique = Technique::Msm;
+  rs.blur = {BlurKernel::Box, 2, 1.0f};
+  rs.filter = FilterMode::Bilinear;
+  renderer.filterDepthMap(image, rs);
+  const Image expected = renderer.readChannels(0);
+
+  HostDepth depth(n, values);
+  ShadowFilter filter;
+  FilterSettings settings;
+  settings.technique = Technique::Msm;
+  settings.blur = rs.blur;
+  settings.filter = rs.filter;
+  filter.filter(depth.input(), settings);
+  const ChannelShape& shape = filter.state().maps.shape();
+  std::vector<float> got(size_t(n) * size_t(n) * 4);
+  glGetTextureImage(filter.state().maps.channels().id(), 0, GL_RGBA, GL_FLOAT,
+                    GLsizei(got.size() * sizeof(float)), got.data());
+  ASSERT_EQ(shape.layout.channels, 4);
+  int differing = 0;
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      for (int c = 0; c < 4; ++c) {
+        differing += got[size_t((y * n + x) * 4 + c)] != expected.at(x, y, c);
+      }
+    }
+  }
+  EXPECT_EQ(differing, 0);
+}
+
+TEST_F(GlTest, ShadowFilterLinearisesPerspectiveWindowDepth) {
+  // A spot light's projection (near 1, far 11) puts a surface 6 units down its axis at
+  // hyperbolic window depth; penumbra's metric is (6 - 1) / (11 - 1) = 0.5 there.
+  const float nearDistance = 1.0f, farDistance = 11.0f;
+  const glm::mat4 projection =
+      glm::perspective(glm::radians(60.0f), 1.0f, nearDistance, farDistance);
+  const glm::vec4 clip = projection * glm::vec4(0.0f, 0.0f, -6.0f, 1.0f);
+  const float window = clip.z / clip.w * 0.5f + 0.5f;
+  const int n = 16;
+  HostDepth depth(n, std::vector<float>(size_t(n * n), window));
+  DepthInput input = depth.input();
+  input.perspective = true;
+  input.nearDistance = nearDistance;
+  input.farDistance = farDistance;
+  ShadowFilter filter;
+  FilterSettings settings;
+  settings.technique = Technique::Hard;
+  filter.filter(input, settings);
+  std::vector<float> linear(size_t(n * n));
+  glGetTextureImage(filter.state().depth.texture, 0, GL_RED, GL_FLOAT,
+                    GLsizei(linear.size() * sizeof(float)), linear.data());
+  // fp32 window depth near 0.9 resolves 6e-8; the inverse map's slope there is z^2/(n f)
+  // (about 3.3) over (f - n): a few 1e-8 in the metric, 1e-6 leaves room for the division.
+  EXPECT_NEAR(linear[0], 0.5f, 1e-6f);
+  EXPECT_NEAR(linear[size_t(n * n - 1)], 0.5f, 1e-6f);
+  // A receiver 5.9 units down the axis is in front of that surface, one at 6.1 behind it:
+  // the host's shadowCoord.z is its own window depth, linearised the same way.
+  auto windowAt = [&](float z) {
+    const glm::vec4 c = projection * glm::vec4(0.0f, 0.0f, -z, 1.0f);
+    return c.z / c.w * 0.5f + 0.5f;
+  };
+  const std::vector<float> v =
+      sampleAsHost(filter, Technique::Hard, ShadowBindings{},
+                   {{0.5f, 0.5f, windowAt(5.9f)}, {0.5f, 0.5f, windowAt(6.1f)}});
+  EXPECT_EQ(v[0], 1.0f);
+  EXPECT_EQ(v[1], 0.0f);
+}
+
+// Host state a guest must not disturb: non-default everywhere penumbra's passes reach.
+struct HostState {
+  Texture textures[4] = {Texture(GL_TEXTURE_2D), Texture(GL_TEXTURE_2D), Texture(GL_TEXTURE_2D),
+                         Texture(GL_TEXTURE_2D_ARRAY)};
+  Buffer buffer{256};
+  GLuint vao = 0, framebuffer = 0;
+  HostState() {
+    for (int i = 0; i < 3; ++i) glTextureStorage2D(textures[i].id(), 1, GL_RGBA8, 4, 4);
+    glTextureStorage3D(textures[3].id(), 1, GL_R32F, 4, 4, 2);
+    for (unsigned unit = 0; unit < 3; ++unit) glBindTextureUnit(unit, textures[unit].id());
+    glBindTextureUnit(4, textures[3].id());
+    glBindImageTexture(0, textures[0].id(), 0, GL_FALSE, 0, GL_READ_WRITE, GL_RGBA8);
+    glBindBufferRange(GL_UNIFORM_BUFFER, 0, buffer.id(), 0, 64);
+    glBindBufferRange(GL_UNIFORM_BUFFER, 2, buffer.id(), 0, 128);
+    glBindBufferRange(GL_SHADER_STORAGE_BUFFER, 1, buffer.id(), 0, 128);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, buffer.id());
+    glCreateVertexArrays(1, &vao);
+    glBindVertexArray(vao);
+    glCreateFramebuffers(1, &framebuffer);
+    glNamedFramebufferTexture(framebuffer, GL_COLOR_ATTACHMENT0, textures[1].id(), 0);
+    glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+    glViewport(1, 2, 3, 4);
+    glEnable(GL_BLEND);
+    glEnable(GL_CULL_FACE);
+    glDisable(GL_DEPTH_TEST);
+    glActiveTexture(GL_TEXTURE3);
+  }
+  ~HostState() {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &framebuffer);
+    glBindVertexArray(0);
+    glDeleteVertexArrays(1, &vao);
+    glActiveTexture(GL_TEXTURE0);
+    glDisable(GL_BLEND);
+    glDisable(GL_CULL_FACE);
+  }
+};
+
+TEST_F(GlTest, ShadowFilterLeavesTheHostsStateAsItWas) {
+  HostDepth depth(64, halfOccluded(64));
+  HostState host;
+  ShadowFilter filter;
+  struct Case {
+    Technique technique;
+    FilterMode mode;
+    const char* param;
+  };
+  // Every pass: import, encode, fused and separate blur, mips, the summed-area table, ESM's
+  // Z-max pyramid, LVSM's Lloyd placement.
+  for (auto [technique, mode, fused] :
+       {std::tuple{Technique::Hard, FilterMode::Bilinear, true},
+        std::tuple{Technique::Vsm, FilterMode::Trilinear, true},
+        std::tuple{Technique::Evsm4, FilterMode::Trilinear, false},
+        std::tuple{Technique::Esm, FilterMode::Bilinear, true},
+        std::tuple{Technique::Msm, FilterMode::SummedArea, false},
+        std::tuple{Technique::Lvsm, FilterMode::Trilinear, true},
+        std::tuple{Technique::PowerCdf, FilterMode::Trilinear, true}}) {
+    SCOPED_TRACE(std::string(techniqueId(technique)));
+    FilterSettings settings;
+    settings.technique = technique;
+    settings.filter = mode;
+    settings.fusePrefilter = fused;
+    settings.params.esm.classifier = shaders::kEsmClassifyZmax;
+    settings.params.lvsm.placement = shaders::kLayerPlacementLloyd;
+    const GlStateSnapshot before = GlStateSnapshot::capture(16);
+    filter.filter(depth.input(), settings);
+    const GlStateSnapshot after = GlStateSnapshot::capture(16);
+    EXPECT_TRUE(before == after) << before.differences(after);
+  }
+}
+
+TEST_F(GlTest, ShadowFilterRebindsNothingItDeleted) {
+  // A host binds the map, then the next frame's map has another size: the old textures are
+  // gone, and restoring the host's bindings must not name them (GL_INVALID_OPERATION).
+  ShadowFilter filter;
+  FilterSettings settings;
+  settings.technique = Technique::Vsm;
+  settings.filter = FilterMode::Trilinear;
+  HostDepth small(32, halfOccluded(32)), large(64, halfOccluded(64));
+  filter.filter(small.input(), settings);
+  filter.bind();
+  filter.filter(large.input(), settings);
+  EXPECT_NO_THROW(checkErrors("filtering after the host bound the last map"));
+}
+
+TEST_F(GlTest, ShadowFilterRefusesInputsItCannotRead) {
+  ShadowFilter filter;
+  const FilterSettings settings;
+  Texture colour(GL_TEXTURE_2D);
+  glTextureStorage2D(colour.id(), 1, GL_RGBA8, 32, 32);
+  DepthInput d;
+  d.texture = colour.id();
+  d.size = 32;
+  auto message = [&](const DepthInput& input) {
+    try {
+      filter.filter(input, settings);
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message(d).find("depth-format texture"), std::string::npos) << message(d);
+  HostDepth depth(32, halfOccluded(32));
+  DepthInput wrongSize = depth.input();
+  wrongSize.size = 64;
+  EXPECT_NE(message(wrongSize).find("is 32x32"), std::string::npos) << message(wrongSize);
+  DepthInput none;
+  none.size = 32;
+  EXPECT_NE(message(none).find("not a GL texture"), std::string::npos) << message(none);
+  DepthInput reversed = depth.input();
+  reversed.perspective = true;
+  reversed.nearDistance = 0.0f;
+  EXPECT_NE(message(reversed).find("near > 0"), std::string::npos) << message(reversed);
+}
+
+}  // namespace
+}  // namespace penumbra::gl
