@@ -38,6 +38,18 @@ CascadeFrame singleMap(const LightView& view) {
   return one;
 }
 
+// What the filter takes of the renderer's settings (the rest shapes the frame, not the map).
+FilterSettings filterSettingsFor(const RenderSettings& s) {
+  FilterSettings f;
+  f.technique = s.technique;
+  f.params = s.params;
+  f.blur = s.blur;
+  f.filter = s.filter;
+  f.anisotropy = s.anisotropy;
+  f.fusePrefilter = s.fusePrefilter;
+  return f;
+}
+
 double failureRatePercent(const Image& diagnostic) {
   size_t drawn = 0, failed = 0;
   for (float v : diagnostic.data()) {
@@ -259,13 +271,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   s.light.render(s.programs, *s.scene, layers);
 
   // The filter: the renderer is a host of the public filtering API like any other.
-  FilterSettings filterSettings;
-  filterSettings.technique = settings.technique;
-  filterSettings.params = settings.params;
-  filterSettings.blur = settings.blur;
-  filterSettings.filter = settings.filter;
-  filterSettings.anisotropy = settings.anisotropy;
-  filterSettings.fusePrefilter = settings.fusePrefilter;
+  FilterSettings filterSettings = filterSettingsFor(settings);
   if (frame.cascaded) {
     filterSettings.layerBlurs = s.cascadeBlurs;
     for (int c = 0; c < count; ++c) {
@@ -365,17 +371,11 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   glTextureStorage3D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height(), 1);
   glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,
                       GL_FLOAT, depth.data().data());
-  FilterSettings filterSettings;
-  filterSettings.technique = single.technique;
-  filterSettings.params = single.params;
+  FilterSettings filterSettings = filterSettingsFor(single);
   // The parity path filters with the splits given: Lloyd's placement is the frames' to test.
   if (filterSettings.params.lvsm.placement == shaders::kLayerPlacementLloyd) {
     filterSettings.params.lvsm.placement = shaders::kLayerPlacementFixed;
   }
-  filterSettings.blur = single.blur;
-  filterSettings.filter = single.filter;
-  filterSettings.anisotropy = single.anisotropy;
-  filterSettings.fusePrefilter = single.fusePrefilter;
   DepthInput input;
   input.texture = s.uploadedDepth->id();
   input.size = depth.width();

@@ -5,6 +5,7 @@
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
+#include "gl_call_swap.h"
 #include "gl_test_context.h"
 
 namespace penumbra {
@@ -12,16 +13,11 @@ namespace {
 
 class GpuTiming : public testing::GlTest {};
 
-// Counts the calls a timer makes by swapping libepoxy's dispatch pointers for counting wrappers.
+// Counts the calls a timer makes (tests/gl/gl_call_swap.h), its entry points resolved first.
 struct TimerCallCounter {
   static inline int count = 0;
-  static inline PFNGLFINISHPROC finish = nullptr;
-  static inline PFNGLCREATEQUERIESPROC createQueries = nullptr;
-  static inline PFNGLBEGINQUERYPROC beginQuery = nullptr;
-  static inline PFNGLENDQUERYPROC endQuery = nullptr;
 
-  TimerCallCounter() {
-    // Resolves the entry points first: libepoxy's resolving stubs call through the pointer.
+  static int resolve() {
     GLuint query = 0;
     glCreateQueries(GL_TIME_ELAPSED, 1, &query);
     glBeginQuery(GL_TIME_ELAPSED, query);
@@ -29,33 +25,14 @@ struct TimerCallCounter {
     glDeleteQueries(1, &query);
     glFinish();
     count = 0;
-    finish = epoxy_glFinish;
-    createQueries = epoxy_glCreateQueries;
-    beginQuery = epoxy_glBeginQuery;
-    endQuery = epoxy_glEndQuery;
-    epoxy_glFinish = [] {
-      ++count;
-      finish();
-    };
-    epoxy_glCreateQueries = [](GLenum target, GLsizei n, GLuint* ids) {
-      ++count;
-      createQueries(target, n, ids);
-    };
-    epoxy_glBeginQuery = [](GLenum target, GLuint id) {
-      ++count;
-      beginQuery(target, id);
-    };
-    epoxy_glEndQuery = [](GLenum target) {
-      ++count;
-      endQuery(target);
-    };
+    return 0;
   }
-  ~TimerCallCounter() {
-    epoxy_glFinish = finish;
-    epoxy_glCreateQueries = createQueries;
-    epoxy_glBeginQuery = beginQuery;
-    epoxy_glEndQuery = endQuery;
-  }
+
+  int resolved = resolve();
+  testing::CountedGlCalls<&epoxy_glFinish> finish{count};
+  testing::CountedGlCalls<&epoxy_glCreateQueries> createQueries{count};
+  testing::CountedGlCalls<&epoxy_glBeginQuery> beginQuery{count};
+  testing::CountedGlCalls<&epoxy_glEndQuery> endQuery{count};
 };
 
 TEST_F(GpuTiming, DisabledTimerMakesNoGlCallAndReadsZero) {

@@ -7,6 +7,7 @@
 
 #include <bit>
 
+#include "gl_call_swap.h"
 #include "gl_test_context.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/program.h"
@@ -15,20 +16,14 @@
 namespace penumbra::gl {
 namespace {
 
+using penumbra::testing::CountedGlCalls;
 using penumbra::testing::GlTest;
 
-// Counts the calls that wait for the GPU or read its results, by swapping libepoxy's dispatch
-// pointers for counting wrappers (each resolved first: the resolving stub rewrites the pointer).
+// Resolves the entry points that wait for the GPU or read its results, then counts their calls.
 struct WaitCounter {
   static inline int waits = 0;
-  static inline PFNGLFINISHPROC finish = nullptr;
-  static inline PFNGLGETERRORPROC getError = nullptr;
-  static inline PFNGLGETTEXTUREIMAGEPROC getTextureImage = nullptr;
-  static inline PFNGLGETNAMEDBUFFERSUBDATAPROC getNamedBufferSubData = nullptr;
-  static inline PFNGLREADPIXELSPROC readPixels = nullptr;
-  static inline PFNGLGETQUERYOBJECTUI64VPROC getQueryObject = nullptr;
 
-  WaitCounter() {
+  static int resolve() {
     Texture texture(GL_TEXTURE_2D);
     glTextureStorage2D(texture.id(), 1, GL_R32F, 1, 1);
     float texel = 0.0f;
@@ -47,46 +42,16 @@ struct WaitCounter {
     while (glGetError() != GL_NO_ERROR) {
     }
     waits = 0;
-    finish = epoxy_glFinish;
-    getError = epoxy_glGetError;
-    getTextureImage = epoxy_glGetTextureImage;
-    getNamedBufferSubData = epoxy_glGetNamedBufferSubData;
-    readPixels = epoxy_glReadPixels;
-    getQueryObject = epoxy_glGetQueryObjectui64v;
-    epoxy_glFinish = [] {
-      ++waits;
-      finish();
-    };
-    epoxy_glGetError = [] {
-      ++waits;
-      return getError();
-    };
-    epoxy_glGetTextureImage = [](GLuint t, GLint l, GLenum f, GLenum y, GLsizei n, void* p) {
-      ++waits;
-      getTextureImage(t, l, f, y, n, p);
-    };
-    epoxy_glGetNamedBufferSubData = [](GLuint b, GLintptr o, GLsizeiptr n, void* p) {
-      ++waits;
-      getNamedBufferSubData(b, o, n, p);
-    };
-    epoxy_glReadPixels = [](GLint x, GLint y, GLsizei w, GLsizei h, GLenum f, GLenum t,
-                            void* p) {
-      ++waits;
-      readPixels(x, y, w, h, f, t, p);
-    };
-    epoxy_glGetQueryObjectui64v = [](GLuint q, GLenum n, GLuint64* p) {
-      ++waits;
-      getQueryObject(q, n, p);
-    };
+    return 0;
   }
-  ~WaitCounter() {
-    epoxy_glFinish = finish;
-    epoxy_glGetError = getError;
-    epoxy_glGetTextureImage = getTextureImage;
-    epoxy_glGetNamedBufferSubData = getNamedBufferSubData;
-    epoxy_glReadPixels = readPixels;
-    epoxy_glGetQueryObjectui64v = getQueryObject;
-  }
+
+  int resolved = resolve();
+  CountedGlCalls<&epoxy_glFinish> finish{waits};
+  CountedGlCalls<&epoxy_glGetError> getError{waits};
+  CountedGlCalls<&epoxy_glGetTextureImage> getTextureImage{waits};
+  CountedGlCalls<&epoxy_glGetNamedBufferSubData> getNamedBufferSubData{waits};
+  CountedGlCalls<&epoxy_glReadPixels> readPixels{waits};
+  CountedGlCalls<&epoxy_glGetQueryObjectui64v> getQueryObject{waits};
 };
 
 struct HostDebugLog {
