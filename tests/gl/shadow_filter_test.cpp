@@ -184,6 +184,7 @@ TEST_F(GlTest, ShadowFilterLinearisesPerspectiveWindowDepth) {
                     GLsizei(linear.size() * sizeof(float)), linear.data());
   // fp32 window depth near 0.9 resolves 6e-8; the inverse map's slope there is z^2/(n f)
   // (about 3.3) over (f - n): a few 1e-8 in the metric, 1e-6 leaves room for the division.
+  EXPECT_EQ(filter.memory().importedDepth, uint64_t(n * n * 4));  // the R32F copy, reported
   EXPECT_NEAR(linear[0], 0.5f, 1e-6f);
   EXPECT_NEAR(linear[size_t(n * n - 1)], 0.5f, 1e-6f);
   // A receiver 5.9 units down the axis is in front of that surface, one at 6.1 behind it:

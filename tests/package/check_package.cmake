@@ -11,6 +11,13 @@ run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${SCRATCH}/prefix)
 run(${CMAKE_COMMAND} -S ${CONSUMER} -B ${SCRATCH}/build -G Ninja -DCMAKE_PREFIX_PATH=${SCRATCH}/prefix
     "-DCMAKE_CXX_FLAGS=${CONSUMER_FLAGS}" "-DCMAKE_EXE_LINKER_FLAGS=${CONSUMER_FLAGS}")
 run(${CMAKE_COMMAND} --build ${SCRATCH}/build)
+# The CPU twin rounds like the GPU only without fused multiply-adds: a usage requirement, so the
+# consumer's own compile lines must carry it.
+file(READ ${SCRATCH}/build/build.ninja consumer_build)
+if(NOT consumer_build MATCHES "-ffp-contract=off")
+  message(FATAL_ERROR "the consumer was compiled without -ffp-contract=off (penumbra::core's "
+                      "usage requirement)")
+endif()
 run(${SCRATCH}/build/consumer)
 # The GL consumer, when the package has penumbra::gl.
 if(EXISTS ${SCRATCH}/build/gl_consumer)
