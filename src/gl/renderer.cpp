@@ -162,14 +162,6 @@ Renderer::Renderer(const Context& context) : state_(std::make_unique<State>()) {
   limits.device = context.description();
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limits.maxTextureSize);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &limits.maxArrayLayers);
-  GLint colorSamples = 0, depthSamples = 0;
-  glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colorSamples);
-  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depthSamples);
-  limits.maxSamples = std::min(colorSamples, depthSamples);
-  glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &limits.maxAnisotropy);
-  GLint64 maxBlock = 0;
-  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &maxBlock);
-  limits.maxStorageBlock = maxBlock;
   limits.halfRounding = probeHalfRounding(*state_);
   // The renderer reports each pass's time (RenderResult::wallTimes): its own frames wait.
   state_->shadows.setTiming(true);
@@ -200,33 +192,11 @@ bool Renderer::timerQueriesMeasureExecution() const {
 
 void Renderer::validate(const RenderSettings& settings, LightKind light) const {
   const DeviceLimits& s = state_->limits;
-  validateRenderSettings(settings);  // the ranges on any GL; this GL's limits below
-  checkRange("shadow-map size", settings.shadowMapSize, kMinShadowMapSize, s.maxTextureSize);
+  // The shadow map's settings are the filter's to check (one place for the renderer and hosts);
+  // the frame and the memory budget are the renderer's.
+  state_->shadows.state().checkFilter(settings, shadowMapLayers(settings, light));
   checkRange("frame width", settings.width, kMinFrameSize, s.maxTextureSize);
   checkRange("frame height", settings.height, kMinFrameSize, s.maxTextureSize);
-  if (settings.msaaSamples > s.maxSamples) {
-    throw Error("MSAA samples " + std::to_string(settings.msaaSamples) + ": this GL (" + s.device +
-                ") supports at most " + std::to_string(s.maxSamples));
-  }
-  checkRange("anisotropy", settings.anisotropy, 1,
-             std::min(kMaxAnisotropy, int(s.maxAnisotropy)));
-  validateParams(settings.technique, settings.params);
-  if (settings.filter == FilterMode::SummedArea) {
-    const TechniqueParams& p = settings.params;
-    checkSummedAreaFilterable(settings.technique, p);
-    // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
-    const uint64_t entries = uint64_t(channelCount(settings.technique, p)) *
-                             uint64_t(shadowMapLayers(settings, light)) *
-                             uint64_t(settings.shadowMapSize) * uint64_t(settings.shadowMapSize);
-    const int64_t maxBlock = s.maxStorageBlock;
-    if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxBlock)) {
-      throw Error("the summed-area table of " + std::string(techniqueId(settings.technique)) +
-                  " at " + std::to_string(settings.shadowMapSize) + "^2 (" +
-                  std::to_string(shadowMapLayers(settings, light)) + " layer(s)) needs " +
-                  std::to_string(entries * 8) + " bytes in one storage buffer; this GL holds " +
-                  std::to_string(maxBlock) + "; use a smaller shadow map");
-    }
-  }
   checkMemory(settings, light);
 }
 

@@ -25,13 +25,11 @@ namespace penumbra::gl {
 void checkRange(std::string_view what, float value, float lo, float hi);
 void checkRange(std::string_view what, int value, int lo, int hi);
 
+// The frame's limits (the shadow map's are the filter's: ShadowFilter::State).
 struct DeviceLimits {
   std::string device;
   int maxTextureSize = 0;
   int maxArrayLayers = 0;
-  int maxSamples = 0;
-  float maxAnisotropy = 1.0f;
-  int64_t maxStorageBlock = 0;
   HalfRounding halfRounding = HalfRounding::Nearest;  // how image stores round to fp16
 };
 

@@ -86,6 +86,15 @@ void checkInputTexture(const DepthInput& d) {
                 std::to_string(layers) + " layer(s); the input says " + std::to_string(d.size) +
                 "x" + std::to_string(d.size) + " with " + std::to_string(d.layers));
   }
+  if (target == GL_TEXTURE_2D_MULTISAMPLE_ARRAY) {
+    GLint samples = 0;
+    glGetTextureLevelParameteriv(d.texture, 0, GL_TEXTURE_SAMPLES, &samples);
+    if (samples != d.samples) {
+      throw Error("ShadowFilter: depth texture " + std::to_string(d.texture) + " has " +
+                  std::to_string(samples) + " samples; the input says " +
+                  std::to_string(d.samples));
+    }
+  }
   if (d.encoding == DepthEncoding::WindowDepth && !isDepthFormat(format)) {
     throw Error(
         "ShadowFilter: window depth needs a depth-format texture (GL_DEPTH_COMPONENT16, "
@@ -119,11 +128,8 @@ void checkInput(const DepthInput& d) {
   checkInputTexture(d);
 }
 
-void checkSettings(const FilterSettings& f, const DepthInput& d) {
-  validateParams(f.technique, f.params);
-  checkRange("blur radius", f.blur.radius, 0, shaders::kMaxBlurRadius);
-  checkedBlurSigma(f.blur.sigma);
-  checkRange("anisotropy", f.anisotropy, 1, kMaxAnisotropy);
+// What FilterSettings adds to the renderer's settings: the per-layer kernels.
+void checkLayerKernels(const FilterSettings& f, const DepthInput& d) {
   if (!f.layerBlurs.empty() && int(f.layerBlurs.size()) != d.layers) {
     throw Error("ShadowFilter: " + std::to_string(f.layerBlurs.size()) + " layer blurs for " +
                 std::to_string(d.layers) + " layers (give one per layer, or none)");
@@ -138,14 +144,6 @@ void checkSettings(const FilterSettings& f, const DepthInput& d) {
     checkedBlurSigma(b.sigma);
   }
   for (float scale : f.layerKernelScales) checkRange("layer kernel scale", scale, 1e-6f, 1e6f);
-  if (f.filter == FilterMode::SummedArea && prefiltersChannels(f.technique)) {
-    for (const char* extension : {"GL_ARB_gpu_shader_int64", "GL_ARB_gpu_shader_fp64"}) {
-      if (!epoxy_has_gl_extension(extension)) {
-        throw Error(std::string("the summed-area filter needs ") + extension +
-                    ", which this GL lacks: use --filter trilinear or anisotropic");
-      }
-    }
-  }
 }
 
 // GL 4.5 guarantees compute shaders; the fused prefilter's tile needs its 32 KiB of shared
@@ -170,10 +168,96 @@ void checkCapabilities() {
 }  // namespace
 
 ShadowFilter::State::State() {
+  device = std::string(reinterpret_cast<const char*>(glGetString(GL_RENDERER))) + ", " +
+           reinterpret_cast<const char*>(glGetString(GL_VERSION));
+  glGetIntegerv(GL_MAX_TEXTURE_SIZE, &maxTextureSize);
+  GLint colorSamples = 0, depthSamples = 0;
+  glGetIntegerv(GL_MAX_COLOR_TEXTURE_SAMPLES, &colorSamples);
+  glGetIntegerv(GL_MAX_DEPTH_TEXTURE_SAMPLES, &depthSamples);
+  maxSamples = std::min(colorSamples, depthSamples);
+  // Anisotropic filtering is core from GL 4.6; on 4.5 it is ARB_ or EXT_texture_filter_anisotropic.
+  anisotropicFiltering = epoxy_gl_version() >= 46 ||
+                         epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+                         epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic");
+  if (anisotropicFiltering) glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY, &maxAnisotropy);
+  GLint64 block = 0;
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &block);
+  maxStorageBlock = block;
+  summedAreaTables = epoxy_has_gl_extension("GL_ARB_gpu_shader_int64") &&
+                     epoxy_has_gl_extension("GL_ARB_gpu_shader_fp64");
+  glGetIntegerv(GL_MAX_COMBINED_TEXTURE_IMAGE_UNITS, &maxTextureUnits);
+  glGetIntegerv(GL_MAX_UNIFORM_BUFFER_BINDINGS, &maxUniformBindings);
+  glGetIntegerv(GL_MAX_SHADER_STORAGE_BUFFER_BINDINGS, &maxStorageBindings);
   glCreateSamplers(1, &rawSampler);
   glSamplerParameteri(rawSampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(rawSampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(rawSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+}
+
+void ShadowFilter::State::checkFilter(const RenderSettings& r, int layers) const {
+  validateRenderSettings(r);  // the ranges on any GL; this GL's limits below
+  checkRange("shadow-map size", r.shadowMapSize, kMinShadowMapSize, maxTextureSize);
+  if (r.msaaSamples > maxSamples) {
+    throw Error("MSAA samples " + std::to_string(r.msaaSamples) + ": this GL (" + device +
+                ") supports at most " + std::to_string(maxSamples));
+  }
+  if (r.filter == FilterMode::AnisotropicDriver && !anisotropicFiltering) {
+    throw Error("the anisotropic-driver filter needs anisotropic texture filtering, which this GL (" +
+                device + ") lacks: use --filter anisotropic (penumbra's own probes)");
+  }
+  checkRange("anisotropy", r.anisotropy, 1,
+             std::min(kMaxAnisotropy, std::max(1, int(maxAnisotropy))));
+  validateParams(r.technique, r.params);
+  if (r.filter == FilterMode::SummedArea) {
+    const TechniqueParams& p = r.params;
+    checkSummedAreaFilterable(r.technique, p);
+    if (prefiltersChannels(r.technique) && !summedAreaTables) {
+      throw Error("the summed-area filter needs GL_ARB_gpu_shader_int64 and "
+                  "GL_ARB_gpu_shader_fp64, which this GL (" + device +
+                  ") lacks: use --filter trilinear or anisotropic");
+    }
+    // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
+    const uint64_t entries = uint64_t(channelCount(r.technique, p)) * uint64_t(layers) *
+                             uint64_t(r.shadowMapSize) * uint64_t(r.shadowMapSize);
+    if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxStorageBlock)) {
+      throw Error("the summed-area table of " + std::string(techniqueId(r.technique)) +
+                  " at " + std::to_string(r.shadowMapSize) + "^2 (" +
+                  std::to_string(layers) + " layer(s)) needs " + std::to_string(entries * 8) +
+                  " bytes in one storage buffer; this GL holds " + std::to_string(maxStorageBlock) +
+                  "; use a smaller shadow map");
+    }
+  }
+}
+
+void ShadowFilter::State::checkBindings(const ShadowBindings& b) const {
+  auto inRange = [](const char* what, int value, int count) {
+    if (value < 0 || value >= count) {
+      throw Error(std::string("ShadowBindings::") + what + " " + std::to_string(value) +
+                  " is out of range [0, " + std::to_string(count - 1) + "] on this GL");
+    }
+  };
+  auto distinct = [](const char* what, std::initializer_list<int> values) {
+    for (auto i = values.begin(); i != values.end(); ++i) {
+      for (auto j = i + 1; j != values.end(); ++j) {
+        if (*i == *j) {
+          throw Error(std::string("ShadowBindings: two ") + what + " share binding " +
+                      std::to_string(*i));
+        }
+      }
+    }
+  };
+  inRange("channelUnit", b.channelUnit, maxTextureUnits);
+  inRange("zmaxUnit", b.zmaxUnit, maxTextureUnits);
+  inRange("depthUnit", b.depthUnit, maxTextureUnits);
+  inRange("parameterBlock", b.parameterBlock, maxUniformBindings);
+  inRange("layerRangeBlock", b.layerRangeBlock, maxUniformBindings);
+  inRange("lookupBlock", b.lookupBlock, maxUniformBindings);
+  inRange("satStatsBuffer", b.satStatsBuffer, maxStorageBindings);
+  inRange("satSumsBuffer", b.satSumsBuffer, maxStorageBindings);
+  inRange("blurWeightsBuffer", b.blurWeightsBuffer, maxStorageBindings);
+  distinct("texture units", {b.channelUnit, b.zmaxUnit, b.depthUnit});
+  distinct("uniform blocks", {b.parameterBlock, b.layerRangeBlock, b.lookupBlock});
+  distinct("storage buffers", {b.satStatsBuffer, b.satSumsBuffer, b.blurWeightsBuffer});
 }
 
 ShadowFilter::State::~State() {
@@ -249,6 +333,13 @@ LinearDepthMaps importDepth(ShadowFilter::State& s, const DepthInput& d) {
   program.set("perspective", perspective ? 1 : 0);
   program.set("nearDistance", d.nearDistance);
   program.set("farDistance", d.farDistance);
+  // A depth-stencil texture a host samples as stencil reads its stencil: depth for the import,
+  // then the host's mode back (a texture's own state, which the state guard does not hold).
+  GLint mode = GL_DEPTH_COMPONENT;
+  glGetTextureParameteriv(d.texture, GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+  if (mode != GL_DEPTH_COMPONENT) {
+    glTextureParameteri(d.texture, GL_DEPTH_STENCIL_TEXTURE_MODE, GL_DEPTH_COMPONENT);
+  }
   s.importTimer.begin();
   glBindTextureUnit(0, d.texture);
   glBindSampler(0, s.rawSampler);  // a host's comparison mode must not turn texels into tests
@@ -256,6 +347,7 @@ LinearDepthMaps importDepth(ShadowFilter::State& s, const DepthInput& d) {
   program.dispatch((unsigned(d.size) + 7u) / 8u, (unsigned(d.size) + 7u) / 8u, unsigned(d.layers));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   s.importTimer.end();
+  if (mode != GL_DEPTH_COMPONENT) glTextureParameteri(d.texture, GL_DEPTH_STENCIL_TEXTURE_MODE, mode);
   return {s.importedDepth.id(), d.size, d.layers, 1};
 }
 
@@ -326,10 +418,14 @@ void adopt(ShadowFilter::State& s, const DepthInput& depth, const FilterSettings
 }  // namespace
 
 void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& settings) {
-  checkInput(depth);
-  checkSettings(settings, depth);
-  GlStateGuard guard;
   State& s = *state_;
+  checkInput(depth);
+  checkLayerKernels(settings, depth);
+  s.checkFilter(renderSettingsFor(settings, depth), depth.layers);
+  GlStateGuard guard;
+  // Nothing to bind until this one is complete: a pass that throws leaves no half-made map.
+  s.filtered = false;
+  s.depth = LinearDepthMaps{};
   adopt(s, depth, settings);
   const RenderSettings r = renderSettingsFor(settings, depth);
   s.depth = importDepth(s, depth);
@@ -362,10 +458,14 @@ void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& setting
 }
 
 void ShadowFilter::prepareRawDepth(const DepthInput& depth, const FilterSettings& settings) {
-  checkInput(depth);
-  checkSettings(settings, depth);
-  GlStateGuard guard;
   State& s = *state_;
+  checkInput(depth);
+  checkLayerKernels(settings, depth);
+  s.checkFilter(renderSettingsFor(settings, depth), depth.layers);
+  GlStateGuard guard;
+  // Nothing to bind until this one is complete: a pass that throws leaves no half-made map.
+  s.filtered = false;
+  s.depth = LinearDepthMaps{};
   adopt(s, depth, settings);
   s.parameters.upload(settings.technique, s.params);
   s.depth = importDepth(s, depth);
@@ -385,7 +485,8 @@ void ShadowFilter::prepareRawDepth(const DepthInput& depth, const FilterSettings
 
 namespace {
 
-void setChannelSampling(const Texture& channels, int levels, const FilterSettings& settings) {
+void setChannelSampling(const Texture& channels, int levels, const FilterSettings& settings,
+                        bool anisotropicFiltering) {
   const FilterMode mode = settings.filter;
   const GLuint t = channels.id();
   glTextureParameteri(t, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
@@ -396,9 +497,12 @@ void setChannelSampling(const Texture& channels, int levels, const FilterSetting
   if (levels > 1) minFilter = GL_LINEAR_MIPMAP_LINEAR;
   glTextureParameteri(t, GL_TEXTURE_MIN_FILTER, minFilter);
   // Only the driver's kernel needs the sampler's anisotropy: the modelled probes are textureLod.
-  const float anisotropy =
-      mode == FilterMode::AnisotropicDriver ? float(settings.anisotropy) : 1.0f;
-  glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+  // (checkFilter refuses the driver's kernel where the GL has no anisotropic filtering).
+  if (anisotropicFiltering) {
+    const float anisotropy =
+        mode == FilterMode::AnisotropicDriver ? float(settings.anisotropy) : 1.0f;
+    glTextureParameterf(t, GL_TEXTURE_MAX_ANISOTROPY, anisotropy);
+  }
 }
 
 }  // namespace
@@ -406,7 +510,9 @@ void setChannelSampling(const Texture& channels, int levels, const FilterSetting
 void ShadowFilter::bind(const ShadowBindings& b) const {
   const State& s = *state_;
   if (s.depth.texture == 0) throw Error("ShadowFilter::bind: nothing filtered yet");
-  setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings);
+  s.checkBindings(b);
+  setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings,
+                     s.anisotropicFiltering);
   glBindTextureUnit(unsigned(b.channelUnit), s.maps.channels().id());
   glBindSampler(unsigned(b.channelUnit), 0);
   if (s.filtered && s.zmax.built()) {
@@ -425,6 +531,11 @@ void ShadowFilter::bind(const ShadowBindings& b) const {
 }
 
 std::string ShadowFilter::shaderPreamble(const ShadowBindings& b) const {
+  if (state_->depth.texture == 0) {
+    throw Error("ShadowFilter::shaderPreamble: nothing filtered yet (the defines depend on the "
+                "technique and the filter)");
+  }
+  state_->checkBindings(b);
   std::string text =
       "#define TECHNIQUE_ID " + std::to_string(int(state_->settings.technique)) + "\n";
   for (const ShaderDefine& d : lookupVariantDefines(*state_, false)) {
@@ -444,6 +555,18 @@ std::string ShadowFilter::shaderPreamble(const ShadowBindings& b) const {
     text += std::string("#define ") + name + " " + std::to_string(value) + "\n";
   }
   return text;
+}
+
+unsigned ShadowFilter::channelTexture() const {
+  return state_->maps.channels().id();
+}
+
+unsigned ShadowFilter::linearDepthTexture() const {
+  return state_->depth.texture;
+}
+
+unsigned ShadowFilter::zmaxTexture() const {
+  return state_->filtered && state_->zmax.built() ? state_->zmax.texture().id() : 0;
 }
 
 FilterMemory ShadowFilter::memory() const {

@@ -2,6 +2,9 @@
 // read-backs (the renderer is ShadowFilter's first host).
 #pragma once
 
+#include <epoxy/gl.h>
+
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
@@ -44,8 +47,21 @@ struct ShadowFilter::State {
   bool timing = false;
   GpuTimer importTimer, auxiliaryTimer;
 
+  // This GL's limits, queried once.
+  std::string device;
+  GLint maxTextureSize = 0, maxSamples = 0, maxTextureUnits = 0, maxUniformBindings = 0,
+        maxStorageBindings = 0;
+  float maxAnisotropy = 1.0f;
+  int64_t maxStorageBlock = 0;
+  bool anisotropicFiltering = false, summedAreaTables = false;
+
   State();
   ~State();
+  // Settings against their ranges and this GL's limits (the renderer's validate() too):
+  // throws Error saying which and why.
+  void checkFilter(const RenderSettings& renderSettings, int layers) const;
+  // Bindings within this GL's limits, no two samplers or blocks on one binding.
+  void checkBindings(const ShadowBindings& bindings) const;
 };
 
 // The defines a shader sampling the last filtered map needs besides the technique's

@@ -53,6 +53,9 @@ constexpr float kArithmetic = 1e-5f;
 constexpr double kPixelShare = 0.001;
 constexpr float kWindowBulk = 1e-3f;
 constexpr float kWindowMax = 0.02f;
+// Where ties decide, pixels flipped whole: none measured; a tie needs the map and the receiver
+// within the 9-ulp map rounding, so a handful at most (0.01% of the 320x180 frame).
+constexpr size_t kTiePixels = 6;
 
 struct EmbedCase {
   std::string name;       // the test's name
@@ -109,6 +112,9 @@ struct Differences {
     return values[std::min(values.size() - 1, size_t(q * double(values.size())))];
   }
   float max() const { return values.back(); }
+  size_t countAbove(float limit) const {
+    return size_t(values.end() - std::upper_bound(values.begin(), values.end(), limit));
+  }
   std::string describe() const {
     std::ostringstream text;
     text << values.size() << " pixels, p99 " << quantile(0.99) << ", p99.9 " << quantile(0.999)
@@ -187,6 +193,8 @@ TEST_P(EmbedParity, VisibilityEqualsRenderOfTheSameSceneAndHostStateIsKept) {
       << "window depth: " << window.describe();
   if (!c.decidesAtTies) {
     EXPECT_LE(window.max(), kWindowMax) << "window depth: " << window.describe();
+  } else {
+    EXPECT_LE(window.countAbove(kWindowMax), kTiePixels) << "window depth: " << window.describe();
   }
 }
 

@@ -75,7 +75,7 @@ ShadowBindings movedBindings() {
 // for the technique, then its code: visibility at the given shadow coordinates.
 std::vector<float> sampleAsHost(const ShadowFilter& filter, Technique technique,
                                 const ShadowBindings& bindings,
-                                const std::vector<glm::vec3>& coords) {
+                                const std::vector<glm::vec4>& coords) {
   const std::string glsl = readText(std::string(PENUMBRA_GLSL_BUILD_DIR) + "/penumbra_" +
                                     std::string(techniqueId(technique)) + ".glsl");
   EXPECT_FALSE(glsl.empty());
@@ -86,12 +86,12 @@ std::vector<float> sampleAsHost(const ShadowFilter& filter, Technique technique,
                       "layout(std430, binding = 9) buffer Io { vec4 io[]; };\n"
                       "void main() {\n"
                       "  uint i = gl_GlobalInvocationID.x;\n"
-                      "  io[i].w = penumbraShadow(0, io[i].xyz, vec2(0.0f), vec2(0.0f),\n"
-                      "                           vec2(0.0f));\n"
+                      "  io[i].w = penumbraShadow(int(io[i].w), io[i].xyz, vec2(0.0f),\n"
+                      "                           vec2(0.0f), vec2(0.0f));\n"
                       "}\n");
   const Program program = Program::compute(library, "host/probe.comp");
-  std::vector<glm::vec4> io;
-  for (const glm::vec3& c : coords) io.emplace_back(c, -1.0f);
+  // (u, v, window depth, layer) in, visibility out in w.
+  std::vector<glm::vec4> io = coords;
   Buffer buffer(std::as_bytes(std::span(io)));
   buffer.bindStorage(9);
   filter.bind(bindings);
@@ -114,7 +114,7 @@ TEST_F(GlTest, ShadowFilterHostShaderSeesOccluderThroughEveryTechnique) {
     // Receivers at window depth 0.7, a quarter of the map from the edge (the 5-tap kernel
     // reaches 2 texels): behind the occluder on the left, in front of nothing on the right.
     const std::vector<float> v =
-        sampleAsHost(filter, t, movedBindings(), {{0.25f, 0.5f, 0.7f}, {0.75f, 0.5f, 0.7f}});
+        sampleAsHost(filter, t, movedBindings(), {{0.25f, 0.5f, 0.7f, 0.0f}, {0.75f, 0.5f, 0.7f, 0.0f}});
     // Each technique's error at a lone step 0.4 deep is well under 0.05 (ESM: exp(-80 * 0.4),
     // moments: no variance, CSM: its ringing at that distance); 0.05 still tells 0 from 1.
     EXPECT_LT(v[0], 0.05f);
@@ -147,7 +147,8 @@ TEST_F(GlTest, ShadowFilterMatchesTheRendererBitForBit) {
   filter.filter(depth.input(), settings);
   const ChannelShape& shape = filter.state().maps.shape();
   std::vector<float> got(size_t(n) * size_t(n) * 4);
-  glGetTextureImage(filter.state().maps.channels().id(), 0, GL_RGBA, GL_FLOAT,
+  ASSERT_EQ(filter.channelTexture(), filter.state().maps.channels().id());
+  glGetTextureImage(filter.channelTexture(), 0, GL_RGBA, GL_FLOAT,
                     GLsizei(got.size() * sizeof(float)), got.data());
   ASSERT_EQ(shape.layout.channels, 4);
   int differing = 0;
@@ -180,7 +181,7 @@ TEST_F(GlTest, ShadowFilterLinearisesPerspectiveWindowDepth) {
   settings.technique = Technique::Hard;
   filter.filter(input, settings);
   std::vector<float> linear(size_t(n * n));
-  glGetTextureImage(filter.state().depth.texture, 0, GL_RED, GL_FLOAT,
+  glGetTextureImage(filter.linearDepthTexture(), 0, GL_RED, GL_FLOAT,
                     GLsizei(linear.size() * sizeof(float)), linear.data());
   // fp32 window depth near 0.9 resolves 6e-8; the inverse map's slope there is z^2/(n f)
   // (about 3.3) over (f - n): a few 1e-8 in the metric, 1e-6 leaves room for the division.
@@ -195,7 +196,7 @@ TEST_F(GlTest, ShadowFilterLinearisesPerspectiveWindowDepth) {
   };
   const std::vector<float> v =
       sampleAsHost(filter, Technique::Hard, ShadowBindings{},
-                   {{0.5f, 0.5f, windowAt(5.9f)}, {0.5f, 0.5f, windowAt(6.1f)}});
+                   {{0.5f, 0.5f, windowAt(5.9f), 0.0f}, {0.5f, 0.5f, windowAt(6.1f), 0.0f}});
   EXPECT_EQ(v[0], 1.0f);
   EXPECT_EQ(v[1], 0.0f);
 }
@@ -313,6 +314,106 @@ TEST_F(GlTest, ShadowFilterRefusesInputsItCannotRead) {
   reversed.perspective = true;
   reversed.nearDistance = 0.0f;
   EXPECT_NE(message(reversed).find("near > 0"), std::string::npos) << message(reversed);
+}
+
+TEST_F(GlTest, ShadowFilterReadsEveryLayerOfAnArray) {
+  // Three cascades (or faces) in one D32F array, each at its own depth: the import converts
+  // every layer and the host's lookup reads the layer it names.
+  const int n = 32;
+  Texture array(GL_TEXTURE_2D_ARRAY);
+  glTextureStorage3D(array.id(), 1, GL_DEPTH_COMPONENT32F, n, n, 3);
+  const float layerDepth[3] = {0.2f, 0.5f, 0.8f};
+  for (int layer = 0; layer < 3; ++layer) {
+    const std::vector<float> values(size_t(n * n), layerDepth[layer]);
+    glTextureSubImage3D(array.id(), 0, 0, 0, layer, n, n, 1, GL_DEPTH_COMPONENT, GL_FLOAT,
+                        values.data());
+  }
+  DepthInput input;
+  input.texture = array.id();
+  input.size = n;
+  input.layers = 3;
+  ShadowFilter filter;
+  FilterSettings settings;
+  settings.technique = Technique::Hard;
+  filter.filter(input, settings);
+  // A receiver at 0.65 is behind layers 0 and 1, in front of layer 2.
+  const std::vector<float> v = sampleAsHost(
+      filter, Technique::Hard, ShadowBindings{},
+      {{0.5f, 0.5f, 0.65f, 0.0f}, {0.5f, 0.5f, 0.65f, 1.0f}, {0.5f, 0.5f, 0.65f, 2.0f}});
+  EXPECT_EQ(v[0], 0.0f);
+  EXPECT_EQ(v[1], 0.0f);
+  EXPECT_EQ(v[2], 1.0f);
+}
+
+TEST_F(GlTest, ShadowFilterReadsDepthOfADepthStencilTextureSampledAsStencil) {
+  // A host that samples its D24S8 map's stencil has set GL_STENCIL_INDEX: the import must read
+  // depth anyway, and give the host its mode back.
+  const int n = 16;
+  Texture depthStencil(GL_TEXTURE_2D);
+  glTextureStorage2D(depthStencil.id(), 1, GL_DEPTH24_STENCIL8, n, n);
+  // 24-bit depth 0.5 (0x800000 / 0xffffff) above an 8-bit stencil of 0xff.
+  const std::vector<uint32_t> packed(size_t(n * n), (0x800000u << 8) | 0xffu);
+  glTextureSubImage2D(depthStencil.id(), 0, 0, 0, n, n, GL_DEPTH_STENCIL, GL_UNSIGNED_INT_24_8,
+                      packed.data());
+  glTextureParameteri(depthStencil.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, GL_STENCIL_INDEX);
+  DepthInput input;
+  input.texture = depthStencil.id();
+  input.size = n;
+  ShadowFilter filter;
+  FilterSettings settings;
+  settings.technique = Technique::Hard;
+  filter.filter(input, settings);
+  std::vector<float> linear(size_t(n * n));
+  glGetTextureImage(filter.linearDepthTexture(), 0, GL_RED, GL_FLOAT,
+                    GLsizei(linear.size() * sizeof(float)), linear.data());
+  // 0x800000 / 0xffffff, exact in fp32 to well under 1e-6 (stencil 255 would read as 255).
+  EXPECT_NEAR(linear[0], 8388608.0f / 16777215.0f, 1e-6f);
+  GLint mode = 0;
+  glGetTextureParameteriv(depthStencil.id(), GL_DEPTH_STENCIL_TEXTURE_MODE, &mode);
+  EXPECT_EQ(mode, GL_STENCIL_INDEX);
+}
+
+TEST_F(GlTest, ShadowFilterRefusesSettingsAndBindingsItCannotServe) {
+  ShadowFilter filter;
+  auto message = [](auto&& call) {
+    try {
+      call();
+    } catch (const Error& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  EXPECT_NE(message([&] { (void)filter.shaderPreamble(); }).find("nothing filtered yet"),
+            std::string::npos);
+  HostDepth depth(32, halfOccluded(32));
+  // ESM's exponentials do not survive the table's fixed point: the renderer refuses it, so
+  // must the filter (the same check).
+  FilterSettings esmSat;
+  esmSat.technique = Technique::Esm;
+  esmSat.filter = FilterMode::SummedArea;
+  const std::string sat = message([&] { filter.filter(depth.input(), esmSat); });
+  EXPECT_NE(sat.find("summed-area"), std::string::npos) << sat;
+
+  FilterSettings vsm;
+  filter.filter(depth.input(), vsm);
+  ShadowBindings shared;
+  shared.depthUnit = shared.channelUnit;
+  const std::string same = message([&] { filter.bind(shared); });
+  EXPECT_NE(same.find("two texture units share binding 0"), std::string::npos) << same;
+  ShadowBindings negative;
+  negative.lookupBlock = -1;
+  const std::string range = message([&] { (void)filter.shaderPreamble(negative); });
+  EXPECT_NE(range.find("lookupBlock -1 is out of range"), std::string::npos) << range;
+
+  Texture multisampled(GL_TEXTURE_2D_MULTISAMPLE_ARRAY);
+  glTextureStorage3DMultisample(multisampled.id(), 4, GL_R32F, 32, 32, 1, GL_TRUE);
+  DepthInput msaa;
+  msaa.texture = multisampled.id();
+  msaa.size = 32;
+  msaa.samples = 2;
+  msaa.encoding = DepthEncoding::LinearDepth;
+  const std::string samples = message([&] { filter.filter(msaa, vsm); });
+  EXPECT_NE(samples.find("has 4 samples; the input says 2"), std::string::npos) << samples;
 }
 
 }  // namespace

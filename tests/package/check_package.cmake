@@ -19,7 +19,10 @@ if(NOT consumer_build MATCHES "-ffp-contract=off")
                       "usage requirement)")
 endif()
 run(${SCRATCH}/build/consumer)
-# The GL consumer, when the package has penumbra::gl.
-if(EXISTS ${SCRATCH}/build/gl_consumer)
+# The GL consumer, whenever penumbra was built with its GL library.
+if(WITH_GL)
+  if(NOT EXISTS ${SCRATCH}/build/gl_consumer)
+    message(FATAL_ERROR "penumbra was built with penumbra::gl, but the package did not give it")
+  endif()
   run(${SCRATCH}/build/gl_consumer)
 endif()

@@ -126,6 +126,16 @@ class ShadowFilter {
   // the bindings. Goes right after #version.
   std::string shaderPreamble(const ShadowBindings& bindings = {}) const;
 
+  // The GL names behind bind(), owned by the filter and valid until the next filter() or
+  // prepareRawDepth() (which may recreate them when the shape changes): for a host that binds
+  // or inspects them itself. The channel texture is a 2D array of layers x channel layers
+  // (docs/integration.md); the depth is penumbra's linear metric in R32F layers (the host's own
+  // texture when it was given as a linear 2D array); the Z-max pyramid is 0 unless ESM's zmax
+  // classifier built it.
+  unsigned channelTexture() const;
+  unsigned linearDepthTexture() const;
+  unsigned zmaxTexture() const;
+
   FilterMemory memory() const;
   // The parameters in effect (EVSM's exponents clamped to their storage, LVSM's splits placed).
   const TechniqueParams& params() const;

@@ -22,10 +22,10 @@ int layerChannelReduction(int layer, int c) {
   // `layer` may count every cascade's layers (the mip pass runs over the whole array): the
   // channel is the one within the cascade. A layer's unused components (beyond the technique's
   // channels) are reduced as means and never read.
-  int count = techniqueChannelCount(technique, params);
+  int count = techniqueChannelCount(penumbraTechnique, penumbraParams);
   int channel = 4 * (layer % ((count + 3) / 4)) + c;
   return channel < count
-             ? channelReduction(technique, channel, params)
+             ? channelReduction(penumbraTechnique, channel, penumbraParams)
              : kReduceMean;
 #endif
 }

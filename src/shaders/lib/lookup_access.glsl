@@ -35,25 +35,27 @@
 #endif
 
 // Every cascade's layers: cascade c's channel layer l is layer c * layersPerCascade + l.
-layout(binding = PENUMBRA_CHANNEL_UNIT) uniform sampler2DArray channelMap;
+layout(binding = PENUMBRA_CHANNEL_UNIT) uniform sampler2DArray penumbraChannelMap;
 #if ZMAX
-layout(binding = PENUMBRA_ZMAX_UNIT) uniform sampler2DArray zmaxMap;
+layout(binding = PENUMBRA_ZMAX_UNIT) uniform sampler2DArray penumbraZmaxMap;
 #endif
 #if MSAA
-layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DMSArray lightDepthMap;
+layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DMSArray penumbraDepthMap;
 #else
-layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DArray lightDepthMap;
+layout(binding = PENUMBRA_DEPTH_UNIT) uniform sampler2DArray penumbraDepthMap;
 #endif
 #if SUMMED_AREA
 #include "summed_area.glsl"
 layout(std430, binding = PENUMBRA_SAT_STATS_BUFFER) readonly buffer SatStats {
-  SatChannelStats satStats[];
+  SatChannelStats penumbraSatStats[];
 };
-layout(std430, binding = PENUMBRA_SAT_SUMS_BUFFER) readonly buffer SatSums { uint64_t satSums[]; };
+layout(std430, binding = PENUMBRA_SAT_SUMS_BUFFER) readonly buffer SatSums {
+  uint64_t penumbraSatSums[];
+};
 #endif
 // Per cascade, the prefilter's blur weights summed up to each tap (see blurCumulativeWeight).
 layout(std430, binding = PENUMBRA_BLUR_WEIGHTS_BUFFER) readonly buffer BlurCumulative {
-  float blurCumulative[];
+  float penumbraBlurWeights[];
 };
 // The lookup's settings (shared/lookup_block.h), written by ShadowFilter.
 layout(std140, binding = PENUMBRA_LOOKUP_BLOCK) uniform PenumbraLookupBlock {
@@ -69,32 +71,32 @@ int channelLayer(LookupSources s, int layer) {
 }
 
 vec4 channelTexel(LookupSources s, int layer, ivec2 texel, int level) {
-  return texelFetch(channelMap, ivec3(texel, channelLayer(s, layer)), level);
+  return texelFetch(penumbraChannelMap, ivec3(texel, channelLayer(s, layer)), level);
 }
 
 vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
-  return textureLod(channelMap, vec3(uv, float(channelLayer(s, layer))), lod);
+  return textureLod(penumbraChannelMap, vec3(uv, float(channelLayer(s, layer))), lod);
 }
 
 vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy) {
-  return textureGrad(channelMap, vec3(uv, float(channelLayer(s, layer))), uvDx, uvDy);
+  return textureGrad(penumbraChannelMap, vec3(uv, float(channelLayer(s, layer))), uvDx, uvDy);
 }
 
 float lightDepthTexel(LookupSources s, ivec2 texel) {
 #if MSAA
   float z = 1.0f;
   for (int i = 0; i < penumbraLookup.depthSamples; ++i) {
-    z = min(z, texelFetch(lightDepthMap, ivec3(texel, s.cascade), i).x);
+    z = min(z, texelFetch(penumbraDepthMap, ivec3(texel, s.cascade), i).x);
   }
   return z;
 #else
-  return texelFetch(lightDepthMap, ivec3(texel, s.cascade), 0).x;
+  return texelFetch(penumbraDepthMap, ivec3(texel, s.cascade), 0).x;
 #endif
 }
 
 float zmaxTexel(LookupSources s, ivec2 texel, int level) {
 #if ZMAX
-  return texelFetch(zmaxMap, ivec3(texel, s.cascade), level).x;
+  return texelFetch(penumbraZmaxMap, ivec3(texel, s.cascade), level).x;
 #else
   return 0.0f;
 #endif
@@ -102,23 +104,23 @@ float zmaxTexel(LookupSources s, ivec2 texel, int level) {
 
 float blurCumulativeWeight(LookupSources s, int u) {
   int radius = int(penumbraLookup.layerKernel[s.cascade].x);
-  return blurCumulative[s.cascade * (2 * kMaxBlurRadius + 1) + u + radius];
+  return penumbraBlurWeights[s.cascade * (2 * kMaxBlurRadius + 1) + u + radius];
 }
 
 #if SUMMED_AREA
 // Each cascade's channels are consecutive channels of one table (lib/summed_area.glsl).
 uint64_t summedAreaPrefix(LookupSources s, int channel, int x, int y) {
   if (x < 0 || y < 0) return 0UL;
-  return satSums[satIndex(s.cascade * penumbraLookup.channelsPerCascade + channel, x, y,
+  return penumbraSatSums[satIndex(s.cascade * penumbraLookup.channelsPerCascade + channel, x, y,
                            ivec2(penumbraLookup.shadowMapSize))];
 }
 
 double summedAreaCentre(LookupSources s, int channel) {
-  return satStats[s.cascade * penumbraLookup.channelsPerCascade + channel].centre;
+  return penumbraSatStats[s.cascade * penumbraLookup.channelsPerCascade + channel].centre;
 }
 
 double summedAreaStep(LookupSources s, int channel) {
-  return satStats[s.cascade * penumbraLookup.channelsPerCascade + channel].step;
+  return penumbraSatStats[s.cascade * penumbraLookup.channelsPerCascade + channel].step;
 }
 #endif
 

@@ -10,6 +10,7 @@
 #ifndef PENUMBRA_LIB_PENUMBRA_SHADOW_GLSL
 #define PENUMBRA_LIB_PENUMBRA_SHADOW_GLSL
 #include "lookup_access.glsl"
+#include "../shared/receiver_plane.h"
 
 // The receiver's depth in the map's linear metric.
 float penumbraReceiverDepth(float windowDepth) {
@@ -35,8 +36,9 @@ float penumbraShadow(int layer, vec3 shadowCoord, vec2 dx, vec2 dy, vec2 depthPe
   hard.farDistance = penumbraLookup.receiverFar;
   hard.texelWorldSize = 1.0f;
   hard.maxWidthTexels = kMaxSoftWidthTexels;
-  ShadowSample s = shadowLookup(sources, lookupSettings(layer), technique, params, uv,
-                                penumbraReceiverDepth(shadowCoord.z), dx, dy, depthPerTexel, hard);
+  ShadowSample s =
+      shadowLookup(sources, lookupSettings(layer), penumbraTechnique, penumbraParams, uv,
+                   penumbraReceiverDepth(shadowCoord.z), dx, dy, depthPerTexel, hard);
   return s.visibility;
 }
 
@@ -56,13 +58,7 @@ float penumbraShadow(int layer, vec3 shadowCoord) {
   vec2 dy = dFdy(shadowCoord.xy);
   float depthDx = dFdx(penumbraReceiverDepth(shadowCoord.z));
   float depthDy = dFdy(penumbraReceiverDepth(shadowCoord.z));
-  // [dx dy]^T g = (depthDx, depthDy), in uv units, then per texel.
-  float determinant = dx.x * dy.y - dx.y * dy.x;
-  vec2 depthPerUv = vec2(0.0f);
-  if (abs(determinant) > 1e-12f) {
-    depthPerUv = vec2(dy.y * depthDx - dx.y * depthDy, dx.x * depthDy - dy.x * depthDx) /
-                 determinant;
-  }
+  vec2 depthPerUv = solveDepthGradient(vec3(dx, depthDx), vec3(dy, depthDy));
   vec2 depthPerTexel = depthPerUv / float(penumbraLookup.shadowMapSize);
   return penumbraShadow(layer, shadowCoord, dx, dy, depthPerTexel);
 }

@@ -11,11 +11,11 @@ struct SatChannelStats {
 };
 
 // Table channel c is channel c % perCascade of cascade c / perCascade in the channel texture.
-float satChannelValue(sampler2DArray channelMap, int channel, int x, int y, int perCascade,
+float satChannelValue(sampler2DArray penumbraChannelMap, int channel, int x, int y, int perCascade,
                       int layersPerCascade) {
   int cascade = channel / perCascade;
   int k = channel % perCascade;
-  return texelFetch(channelMap, ivec3(x, y, cascade * layersPerCascade + k / 4), 0)[k % 4];
+  return texelFetch(penumbraChannelMap, ivec3(x, y, cascade * layersPerCascade + k / 4), 0)[k % 4];
 }
 
 uint satIndex(int channel, int x, int y, ivec2 size) {

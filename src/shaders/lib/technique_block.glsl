@@ -10,18 +10,18 @@
 #define PENUMBRA_LAYER_RANGE_BLOCK 1
 #endif
 layout(std140, binding = PENUMBRA_PARAMETER_BLOCK) uniform TechniqueBlock {
-  TechniqueParams params;
+  TechniqueParams penumbraParams;
 };
 // The encode's per-texel-layer ranges (texelLayerRangeTable), read from the block by the layer's
 // index: computed in every invocation they cost LVSM's encode 7x a copy on llvmpipe.
 layout(std140, binding = PENUMBRA_LAYER_RANGE_BLOCK) uniform TexelLayerRangeBlock {
-  TexelLayerRangeTable rangeTable;
+  TexelLayerRangeTable penumbraRangeTable;
 };
 // The renderer compiles one variant per technique, so the dispatcher folds to one branch.
 #ifdef TECHNIQUE_ID
-const int technique = TECHNIQUE_ID;
+const int penumbraTechnique = TECHNIQUE_ID;
 #else
-uniform int technique;
+uniform int penumbraTechnique;
 #endif
 
 #endif

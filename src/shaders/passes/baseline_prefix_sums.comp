@@ -6,7 +6,7 @@
 #include "../lib/summed_area.glsl"
 
 layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2DArray channelMap;
+layout(binding = 0) uniform sampler2DArray penumbraChannelMap;
 layout(std430, binding = 3) buffer Sums {
   uint64_t sums[];
 };
@@ -22,7 +22,7 @@ void main() {
   uint64_t running = 0UL;
   for (int i = 0; i < size.x; ++i) {
 #if AXIS == 0
-    float v = satChannelValue(channelMap, channel, i, line, channelCount, layersPerCascade);
+    float v = satChannelValue(penumbraChannelMap, channel, i, line, channelCount, layersPerCascade);
     running += uint64_t(int64_t(v * 2147483648.0f));
     sums[satIndex(channel, i, line, size)] = running;
 #else

@@ -30,7 +30,7 @@ void main() {
 #else
     ChannelAccumulator acc[4];
     for (int c = 0; c < 4; ++c) {
-      acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
+      acc[c] = startReduction(layerChannelReduction(layer, c), penumbraParams.esm.exponent);
     }
     for (int i = -radius; i <= radius; ++i) {
       ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);

@@ -19,6 +19,7 @@
 #include "../lib/lookup_access.glsl"
 #include "../lib/material.glsl"
 #include "../shared/point_light_faces.h"
+#include "../shared/receiver_plane.h"
 #include "../shared/shading.h"
 
 in vec3 worldPosition;
@@ -96,11 +97,7 @@ vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
   vec3 centre = lightPlaneAndDepth(world).xyz;
   vec3 a = lightPlaneAndDepth(world + step * tangent).xyz - centre;
   vec3 b = lightPlaneAndDepth(world + step * bitangent).xyz - centre;
-  float determinant = a.x * b.y - a.y * b.x;
-  if (abs(determinant) <= 1e-6f * (dot(a.xy, a.xy) + dot(b.xy, b.xy))) {
-    return vec2(0.0f);  // the surface is seen edge-on from the light: no plane over the texels
-  }
-  return vec2(b.y * a.z - a.y * b.z, -b.x * a.z + a.x * b.z) / determinant;
+  return solveDepthGradient(a, b);
 }
 
 // One cascade's lookup of the pixel: visibility (-1: left to the CPU) and diagnostic.
@@ -127,8 +124,8 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
   light.maxWidthTexels =
       pointLight != 0 ? pointLightSoftWidthTexels(penumbraLookup.shadowMapSize)
                       : kMaxSoftWidthTexels;
-  ShadowSample shadow = shadowLookup(sources, settings, technique, params, uv, receiver, uvDx,
-                                     uvDy, depthPerTexel, light);
+  ShadowSample shadow = shadowLookup(sources, settings, penumbraTechnique, penumbraParams, uv,
+                                     receiver, uvDx, uvDy, depthPerTexel, light);
   return vec2(shadow.visibility, shadow.diagnostic);
 #endif
 }

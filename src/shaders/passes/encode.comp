@@ -23,19 +23,22 @@ const int layerCount = LAYER_COUNT;
 
 #if MSAA
 vec4 encodeSamples(ivec3 p, int texelLayer) {
-  bool depthOnly = !techniquePrefiltersChannels(technique);
-  int count = techniqueChannelCount(technique, params);
+  bool depthOnly = !techniquePrefiltersChannels(penumbraTechnique);
+  int count = techniqueChannelCount(penumbraTechnique, penumbraParams);
   ChannelAccumulator acc[4];
   for (int c = 0; c < 4; ++c) {
     int channel = 4 * texelLayer + c;
     int reduction = depthOnly ? kReduceMin
-                              : (channel < count ? channelReduction(technique, channel, params)
+                              : (channel < count
+                                     ? channelReduction(penumbraTechnique, channel, penumbraParams)
                                                  : kReduceMean);
-    acc[c] = startReduction(reduction, params.esm.exponent);
+    acc[c] = startReduction(reduction, penumbraParams.esm.exponent);
   }
   for (int s = 0; s < sampleCount; ++s) {
-    TexelEncoding e = texelEncodingAt(technique, texelFetch(depthMap, p, s).x, texelLayer, params);
-    vec4 v = encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[texelLayer], params);
+    TexelEncoding e = texelEncodingAt(penumbraTechnique, texelFetch(depthMap, p, s).x, texelLayer,
+                                      penumbraParams);
+    vec4 v = encodeCurrentTexelLayer(penumbraTechnique, e,
+                                     penumbraRangeTable.texelLayer[texelLayer], penumbraParams);
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], v[c], 1.0f / float(sampleCount));
   }
   return vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
@@ -51,11 +54,13 @@ void main() {
     imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), encodeSamples(p, layer));
   }
 #else
-  TexelEncoding e = startTexelEncoding(technique, texelFetch(depthMap, p, 0).x, params);
+  TexelEncoding e =
+      startTexelEncoding(penumbraTechnique, texelFetch(depthMap, p, 0).x, penumbraParams);
   for (int layer = 0; layer < layerCount; ++layer) {
     imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer),
-               encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[layer], params));
-    e = nextTexelLayer(technique, e);
+               encodeCurrentTexelLayer(penumbraTechnique, e, penumbraRangeTable.texelLayer[layer],
+                                       penumbraParams));
+    e = nextTexelLayer(penumbraTechnique, e);
   }
 #endif
 }

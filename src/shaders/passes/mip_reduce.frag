@@ -54,7 +54,7 @@ void main() {
 #else
   ChannelAccumulator acc[4];
   for (int c = 0; c < 4; ++c) {
-    acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
+    acc[c] = startReduction(layerChannelReduction(layer, c), penumbraParams.esm.exponent);
   }
   for (int y = 0; y < extent.y; ++y) {
     for (int x = 0; x < extent.x; ++x) {

@@ -40,7 +40,7 @@ vec4 reduceTaps(int first, int stride, bool fromEncoded, int layer) {
 #else
   ChannelAccumulator acc[4];
   for (int c = 0; c < 4; ++c) {
-    acc[c] = startReduction(layerChannelReduction(layer, c), params.esm.exponent);
+    acc[c] = startReduction(layerChannelReduction(layer, c), penumbraParams.esm.exponent);
   }
   for (int i = 0; i <= 2 * APRON; ++i) {
     vec4 texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
@@ -58,8 +58,10 @@ void main() {
   for (int i = local; i < kSpan * kSpan; i += TILE * TILE) {
     ivec2 q = clamp(origin + ivec2(i % kSpan, i / kSpan), ivec2(0), size - 1);
     TexelEncoding e =
-        texelEncodingAt(technique, texelFetch(depthMap, ivec3(q, cascade), 0).x, layer, params);
-    encoded[i] = encodeCurrentTexelLayer(technique, e, rangeTable.texelLayer[layer], params);
+        texelEncodingAt(penumbraTechnique, texelFetch(depthMap, ivec3(q, cascade), 0).x, layer,
+                        penumbraParams);
+    encoded[i] = encodeCurrentTexelLayer(penumbraTechnique, e, penumbraRangeTable.texelLayer[layer],
+                                         penumbraParams);
   }
   barrier();
   for (int i = local; i < kSpan * TILE; i += TILE * TILE) {

@@ -6,7 +6,7 @@
 #include "../shared/summed_area.h"
 
 layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2DArray channelMap;
+layout(binding = 0) uniform sampler2DArray penumbraChannelMap;
 layout(std430, binding = 1) readonly buffer Extremes {
   uint extremes[];  // per channel: key of the lowest value, complement of the highest's
 };
@@ -36,7 +36,8 @@ void main() {
   }
   uint64_t running = 0UL;
   for (int x = 0; x < size.x; ++x) {
-    float v = satChannelValue(channelMap, channel, x, y, channelsPerCascade, layersPerCascade);
+    float v =
+        satChannelValue(penumbraChannelMap, channel, x, y, channelsPerCascade, layersPerCascade);
     running += uint64_t(int64_t(roundEven(summedAreaScaled(v, q))));
     sums[satIndex(channel, x, y, size)] = running;
   }

@@ -6,7 +6,7 @@
 #include "../lib/summed_area.glsl"
 
 layout(local_size_x = 64) in;
-layout(binding = 0) uniform sampler2DArray channelMap;
+layout(binding = 0) uniform sampler2DArray penumbraChannelMap;
 layout(std430, binding = 1) buffer Extremes {
   uint extremes[];  // per channel: key of the lowest value, complement of the highest's
 };
@@ -22,7 +22,7 @@ void main() {
   vec4 lo = vec4(uintBitsToFloat(0x7f800000u));  // +infinity
   vec4 hi = -lo;
   for (int y = 0; y < size.y; ++y) {
-    vec4 v = texelFetch(channelMap, ivec3(x, y, layer), 0);
+    vec4 v = texelFetch(penumbraChannelMap, ivec3(x, y, layer), 0);
     lo = min(lo, v);
     hi = max(hi, v);
   }

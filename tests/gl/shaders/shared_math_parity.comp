@@ -5,7 +5,7 @@
 layout(local_size_x = 64) in;
 
 struct ParityCase {
-  int technique;
+  int penumbraTechnique;
   float receiverDepth;
   int pad0;
   int pad1;
@@ -28,5 +28,5 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= caseCount) return;
   ParityCase c = cases[i];
-  visibility[i] = reconstructVisibility(c.technique, c.channels, c.receiverDepth, paramSets[i]);
+  visibility[i] = reconstructVisibility(c.penumbraTechnique, c.channels, c.receiverDepth, paramSets[i]);
 }
