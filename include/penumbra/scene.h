@@ -250,4 +250,8 @@ void validateOverrides(const SceneOverrides& overrides);
 // position, a light size out of range for the final light's kind.
 void applyOverrides(Scene& scene, const SceneOverrides& overrides);
 
+// The scene's camera and light as overrides, every value given: applied to any scene, they
+// give it this view (render's <stem>_settings.json reproduces a picture through them).
+SceneOverrides viewOverrides(const Scene& scene);
+
 }  // namespace penumbra

@@ -1,5 +1,6 @@
 // Rendering every technique and the references, and measuring them.
 #include "penumbra/compare/comparison.h"
+#include "penumbra/compare/shadowed_frame.h"
 
 #include <algorithm>
 #include <cmath>
@@ -335,6 +336,12 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     }
     result.scene.troubleSpots = largestErrorRegions(errors, 3);
   }
+  // Mostly in shadow for the reference and every technique: the view, not the techniques.
+  double leastShadowed = shadowedShare(result.referenceVisibility, result.coverage);
+  for (const TechniqueResult& t : result.techniques) {
+    leastShadowed = std::min(leastShadowed, shadowedShare(t.visibility, result.coverage));
+  }
+  result.shadowedWarning = mostlyShadowedWarning(result.scene, leastShadowed);
   if (progress) progress(total, total, "measured");
   return result;
 }

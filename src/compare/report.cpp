@@ -181,6 +181,32 @@ ordered_json truthJson(const ComparisonResult& r) {
           {"shadow_rays", t.shadowRays}};
 }
 
+std::string vecText(glm::vec3 v) {
+  std::ostringstream out;
+  out << std::setprecision(4) << "(" << v.x << ", " << v.y << ", " << v.z << ")";
+  return out.str();
+}
+
+// The light and camera in words, so a report's picture can be reproduced.
+std::string viewSentence(const Scene& scene) {
+  const Light& l = scene.light;
+  std::ostringstream out;
+  out << std::setprecision(4) << lightKindName(l.kind) << " light ";
+  if (l.kind == LightKind::Directional) {
+    out << "travelling " << vecText(l.direction);
+  } else {
+    out << "at " << vecText(l.position);
+  }
+  if (l.kind == LightKind::Spot) {
+    out << " aimed at " << vecText(l.target) << ", cone " << l.spotAngleDegrees << "°";
+  }
+  if (l.size > 0.0f) out << ", size " << l.size;
+  out << "; camera at " << vecText(scene.camera.position) << " looking at "
+      << vecText(scene.camera.target) << ", " << scene.camera.verticalFovDegrees
+      << "° vertical field of view";
+  return out.str();
+}
+
 // The error the report ranks by: against the truth when there is one.
 double rankingRmse(const TechniqueResult& t) {
   return t.truth ? t.truth->rmse : t.filtered.rmse;
@@ -209,6 +235,8 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
       {"scene_description", r.scene.description},
       {"device", r.device},
       {"settings", settingsJson(r.request)},
+      {"view", ordered_json::parse(gl::viewJson(r.scene))},
+      {"view_warning", r.shadowedWarning ? ordered_json(*r.shadowedWarning) : ordered_json(nullptr)},
       {"ranked_by", r.truth ? "rmse against the ray-traced truth (vs_truth)"
                             : "rmse against the filtered reference (vs_filtered_reference)"},
       {"truth", truthJson(r)},
@@ -453,6 +481,12 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     h << ", " << r.request.settings.msaaSamples << "× MSAA in the techniques' light pass";
   }
   h << ".</p>\n"
+    << "<p><b>View</b>: " << html(viewSentence(r.scene)) << " (<code>metrics.json</code> "
+    << "<code>view</code>).</p>\n"
+    << (r.shadowedWarning ? "<p style=\"background:#fee;border:1px solid #c33;padding:8px\"><b>"
+                            "This frame ranks the view, not the techniques</b>: " +
+                                html(*r.shadowedWarning) + "</p>\n"
+                          : std::string())
     << truthNote(r) << areaLightNote(r)
     << (r.request.settings.msaaSamples > 1
             ? "<p><b>MSAA</b>: " + html(msaaNote(r)) + ".</p>\n"

@@ -19,6 +19,30 @@ std::vector<float> cascadeEnds(const CascadeFrame& frame) {
 
 }  // namespace
 
+std::string viewJson(const Scene& scene) {
+  using nlohmann::ordered_json;
+  auto vec = [](glm::vec3 v) { return ordered_json::array({v.x, v.y, v.z}); };
+  const Light& l = scene.light;
+  ordered_json light = {{"kind", lightKindName(l.kind)}};
+  if (l.kind == LightKind::Directional) {
+    light["direction"] = vec(l.direction);
+  } else {
+    light["position"] = vec(l.position);
+  }
+  if (l.kind == LightKind::Spot) {
+    light["target"] = vec(l.target);
+    light["spot_angle"] = l.spotAngleDegrees;
+  }
+  light["size"] = l.size;
+  const Camera& c = scene.camera;
+  return ordered_json{{"light", light},
+                      {"camera",
+                       {{"position", vec(c.position)},
+                        {"target", vec(c.target)},
+                        {"fov", c.verticalFovDegrees}}}}
+      .dump();
+}
+
 std::string passTimesJson(const PassTimes& t) {
   return nlohmann::ordered_json{{"light", t.light},
                                 {"encode", t.encode},
@@ -69,6 +93,8 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
       {"technique", techniqueId(settings.technique)},
       {"technique_title", techniqueTitle(settings.technique)},
       {"params", params},
+      // Where the picture was seen and lit from (<stem>_settings.json gives it back to --settings).
+      {"view", ordered_json::parse(viewJson(scene))},
       {"light_kind", lightKindName(scene.light.kind)},
       // Light::size: 0 is an ideal point source; else soft shadows (spot: disk diameter in world
       // units, directional: tangent of the angular diameter).

@@ -172,4 +172,24 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
   }
 }
 
+SceneOverrides viewOverrides(const Scene& scene) {
+  SceneOverrides o;
+  const Light& light = scene.light;
+  o.lightKind = light.kind;
+  if (light.kind == LightKind::Directional) {
+    o.lightDirection = light.direction;
+  } else {
+    o.lightPosition = light.position;
+  }
+  if (light.kind == LightKind::Spot) {
+    o.lightTarget = light.target;
+    o.spotAngleDegrees = light.spotAngleDegrees;
+  }
+  o.lightSize = light.size;
+  o.cameraPosition = scene.camera.position;
+  o.cameraTarget = scene.camera.target;
+  o.cameraFovDegrees = scene.camera.verticalFovDegrees;
+  return o;
+}
+
 }  // namespace penumbra

@@ -1,6 +1,7 @@
 // `penumbra render`: parses options, calls penumbra::gl::Renderer, writes the images and record.
 #include "render_command.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -12,11 +13,14 @@
 #include "interrupt_cleanup.h"
 #include "output_folder.h"
 #include "penumbra/animation.h"
+#include "penumbra/compare/shadowed_frame.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/render_record.h"
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/image_io.h"
+#include "penumbra/metrics.h"
 #include "penumbra/output_journal.h"
 #include "penumbra/run_program.h"
 #include "penumbra/text_file.h"
@@ -129,13 +133,15 @@ void runRender(const RenderCommandOptions& options) {
   namespace fs = std::filesystem;
   const fs::path dir = output.begin(interrupt);
   std::vector<std::string> summaries;
+  double leastShadowed = 1.0;  // over the techniques: the frame is mostly shadowed for all
   for (Technique technique : techniques) {
     settings.technique = technique;
     const std::string stem = scene.name + "_" + std::string(techniqueId(technique));
     std::map<std::string, std::string> files{{"color", stem + ".png"},
                                              {"visibility_exr", stem + "_visibility.exr"},
                                              {"visibility_png", stem + "_visibility.png"},
-                                             {"record", stem + ".json"}};
+                                             {"record", stem + ".json"},
+                                             {"settings", stem + "_settings.json"}};
     // Later repetitions time warm passes: shader JIT compilation lands in the first.
     renderer.setScene(scene);
     gl::RenderResult result = renderer.render(scene, settings);
@@ -143,6 +149,8 @@ void runRender(const RenderCommandOptions& options) {
     if (options.frames > 1) {
       result = renderSequence(renderer, scene, settings, options, dir, stem, files);
     }
+    leastShadowed = std::min(leastShadowed, compare::shadowedShare(
+                                                result.visibility, litSurfaceMask(result.lookup)));
     const bool classified =
         technique == Technique::Esm && result.params.esm.classifier != shaders::kEsmClassifyNone;
     if (classified) {
@@ -158,6 +166,12 @@ void runRender(const RenderCommandOptions& options) {
     writeGrey16Png(result.visibility, dir / files.at("visibility_png"));
     writeTextFile(dir / files.at("record"),
                   gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files));
+    // The picture again through --settings: this technique, these settings, this exact view.
+    gl::Settings again = resolved;
+    again.techniques = {technique};
+    again.render = settings;
+    again.view = viewOverrides(scene);
+    writeTextFile(dir / files.at("settings"), gl::settingsJson(again));
     std::ostringstream summary;
     summary << "wrote " << (output.target() / files.at("color")).string() << "  (";
     if (renderer.timerQueriesMeasureExecution()) {
@@ -170,6 +184,9 @@ void runRender(const RenderCommandOptions& options) {
   }
   output.finish(interrupt);
   for (const std::string& line : summaries) std::cout << line << "\n";
+  if (const auto warning = compare::mostlyShadowedWarning(scene, leastShadowed)) {
+    std::cout << *warning << "\n";
+  }
 }
 
 }  // namespace

@@ -134,6 +134,9 @@ struct ComparisonResult {
   Image coverage;               // 1 where the shadow test decides the shading (litSurfaceMask)
   std::optional<TruthResult> truth;  // absent with TruthKind::None
   std::vector<TechniqueResult> techniques;
+  // Set when the reference and every technique have most lit surfaces in shadow
+  // (mostlyShadowedWarning): the report says so above its ranking.
+  std::optional<std::string> shadowedWarning;
   // The worst pixel over all techniques (against the filtered reference) and the depth
   // distribution of its reference kernel, shifted along the receiver plane so that the receiver
   // sits at `worstReceiverDepth`: what `penumbra curves` plots.

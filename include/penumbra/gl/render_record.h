@@ -13,6 +13,11 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
                              const RenderResult& result, const std::string& device,
                              const std::map<std::string, std::string>& files);
 
+// The view a picture was made from, as a compact JSON object: {"light": {"kind", "direction"
+// or "position" (and a spot's "target" and "spot_angle"), "size"}, "camera": {"position",
+// "target", "fov"}} — the render record's and compare's metrics' "view".
+std::string viewJson(const Scene& scene);
+
 // Milliseconds per pass as a compact JSON object, for the render record and compare's metrics.
 std::string passTimesJson(const PassTimes& times);
 

@@ -1,0 +1,50 @@
+// Every render records the view it was made from (light and camera) in its JSON, and writes the
+// settings file that gives the same picture back through --settings.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <nlohmann/json.hpp>
+
+#include "penumbra/image_io.h"
+#include "run_penumbra.h"
+
+namespace penumbra::test {
+namespace {
+
+TEST(RenderView, TheRecordNamesTheViewAndItsSettingsFileRendersThePictureAgain) {
+  ScratchFolder scratch;
+  // A view of the user's own, none of it the scene's default: the settings file must carry all
+  // of it for the second render to see the same picture.
+  const RunResult first = runPenumbra(
+      {"render", "--scene", "planar", "--technique", "vsm", "--light", "spot", "--light-pos",
+       "2,6,3", "--light-target", "0,0,0.5", "--spot-angle", "70", "--camera-pos", "-3,4,6",
+       "--camera-target", "0.5,0,0", "--camera-fov", "50", "--shadow-size", "128", "--width",
+       "96", "--height", "54", "--out", "first"},
+      scratch.path());
+  ASSERT_EQ(first.exitCode(), 0) << first.output;
+  const nlohmann::json record =
+      nlohmann::json::parse(readFile(scratch.path() / "first" / "planar_vsm.json"));
+  const nlohmann::json& view = record.at("view");
+  EXPECT_EQ(view.at("light").at("kind"), "spot");
+  EXPECT_EQ(view.at("light").at("position"), nlohmann::json::parse("[2.0, 6.0, 3.0]"));
+  EXPECT_EQ(view.at("light").at("target"), nlohmann::json::parse("[0.0, 0.0, 0.5]"));
+  EXPECT_EQ(view.at("light").at("spot_angle"), 70.0);
+  EXPECT_EQ(view.at("camera").at("position"), nlohmann::json::parse("[-3.0, 4.0, 6.0]"));
+  EXPECT_EQ(view.at("camera").at("target"), nlohmann::json::parse("[0.5, 0.0, 0.0]"));
+  EXPECT_EQ(view.at("camera").at("fov"), 50.0);
+
+  const RunResult again = runPenumbra(
+      {"render", "--settings", (scratch.path() / "first" / "planar_vsm_settings.json").string(),
+       "--out", "again"},
+      scratch.path());
+  ASSERT_EQ(again.exitCode(), 0) << again.output;
+  const Image a = readFloatExr(scratch.path() / "first" / "planar_vsm_visibility.exr");
+  const Image b = readFloatExr(scratch.path() / "again" / "planar_vsm_visibility.exr");
+  ASSERT_EQ(a.width(), b.width());
+  ASSERT_EQ(a.height(), b.height());
+  // The same GL, settings and view: the same bits.
+  EXPECT_TRUE(std::equal(a.data().begin(), a.data().end(), b.data().begin()));
+}
+
+}  // namespace
+}  // namespace penumbra::test
