@@ -37,7 +37,7 @@ std::optional<std::string> mostlyShadowedWarning(const Scene& scene, double shar
   if (!(share > kMostlyShadowedShare)) return std::nullopt;
   std::ostringstream out;
   out.precision(3);
-  out << "warning: " << 100.0 * share
+  out << 100.0 * share
       << "% of the lit surfaces are in shadow for every technique: the frame shows the view more "
          "than the techniques. ";
   const Bounds bounds = scene.bounds();

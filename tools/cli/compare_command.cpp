@@ -96,7 +96,7 @@ void runCompare(const CompareOptions& o) {
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
   printSceneWarnings(result.scene);
-  if (result.shadowedWarning) std::cout << *result.shadowedWarning << "\n";
+  if (result.shadowedWarning) std::cout << "warning: " << *result.shadowedWarning << "\n";
   compare::writeReportFiles(result, staging);
   output.finish(interrupt);
   if (!o.quiet) {

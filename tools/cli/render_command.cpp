@@ -185,7 +185,7 @@ void runRender(const RenderCommandOptions& options) {
   output.finish(interrupt);
   for (const std::string& line : summaries) std::cout << line << "\n";
   if (const auto warning = compare::mostlyShadowedWarning(scene, leastShadowed)) {
-    std::cout << *warning << "\n";
+    std::cout << "warning: " << *warning << "\n";
   }
 }
 

@@ -21,7 +21,7 @@ double shadowedShare(const Image& visibility, const Image& coverage);
 
 // The warning for a frame whose every technique (and reference) has `share` of its pixels in
 // shadow, share > kMostlyShadowedShare, with the likely cause for this scene's light and camera;
-// nothing below that.
+// nothing below that. A sentence for a report; front ends prefix "warning: ".
 std::optional<std::string> mostlyShadowedWarning(const Scene& scene, double share);
 
 }  // namespace penumbra::compare
