@@ -396,8 +396,19 @@ void uploadLookupBlock(ShadowFilter::State& s, bool reference) {
   s.lookupUploaded = b;
 }
 
-// The settings and parameters of this filter, as the passes use them.
+// Everything about a request that can be refused, before any GL work.
+void checkRequest(const ShadowFilter::State& s, const DepthInput& depth,
+                  const FilterSettings& settings) {
+  checkInput(depth);
+  checkLayerKernels(settings, depth);
+  s.checkFilter(renderSettingsFor(settings, depth), depth.layers);
+}
+
+// The settings and parameters of this filter, as the passes use them. Nothing is bound until
+// the request completes: a pass that throws leaves no half-made map.
 void adopt(ShadowFilter::State& s, const DepthInput& depth, const FilterSettings& settings) {
+  s.filtered = false;
+  s.depth = LinearDepthMaps{};
   s.settings = settings;
   s.input = depth;
   s.params = settings.params;
@@ -421,13 +432,8 @@ void adopt(ShadowFilter::State& s, const DepthInput& depth, const FilterSettings
 
 void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& settings) {
   State& s = *state_;
-  checkInput(depth);
-  checkLayerKernels(settings, depth);
-  s.checkFilter(renderSettingsFor(settings, depth), depth.layers);
+  checkRequest(s, depth, settings);
   GlStateGuard guard;
-  // Nothing to bind until this one is complete: a pass that throws leaves no half-made map.
-  s.filtered = false;
-  s.depth = LinearDepthMaps{};
   adopt(s, depth, settings);
   const RenderSettings r = renderSettingsFor(settings, depth);
   s.depth = importDepth(s, depth);
@@ -461,13 +467,8 @@ void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& setting
 
 void ShadowFilter::prepareRawDepth(const DepthInput& depth, const FilterSettings& settings) {
   State& s = *state_;
-  checkInput(depth);
-  checkLayerKernels(settings, depth);
-  s.checkFilter(renderSettingsFor(settings, depth), depth.layers);
+  checkRequest(s, depth, settings);
   GlStateGuard guard;
-  // Nothing to bind until this one is complete: a pass that throws leaves no half-made map.
-  s.filtered = false;
-  s.depth = LinearDepthMaps{};
   adopt(s, depth, settings);
   s.parameters.upload(settings.technique, s.params);
   s.depth = importDepth(s, depth);

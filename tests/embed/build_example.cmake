@@ -1,12 +1,7 @@
 # Script: install BUILD_DIR into SCRATCH/prefix, then configure and build examples/embed (EXAMPLE)
 # against that prefix only, as an engine outside this tree would.
 file(REMOVE_RECURSE ${SCRATCH})
-function(run)
-  execute_process(COMMAND ${ARGN} RESULT_VARIABLE code OUTPUT_VARIABLE out ERROR_VARIABLE err)
-  if(NOT code EQUAL 0)
-    message(FATAL_ERROR "failed: ${ARGN}\n${out}\n${err}")
-  endif()
-endfunction()
+include(${CMAKE_CURRENT_LIST_DIR}/../cmake/run_or_fail.cmake)
 run(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${SCRATCH}/prefix)
 # The example builds with the flags penumbra was built with (the sanitizers', if any).
 run(${CMAKE_COMMAND} -S ${EXAMPLE} -B ${SCRATCH}/build -G Ninja

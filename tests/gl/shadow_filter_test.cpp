@@ -56,6 +56,18 @@ std::string readText(const std::string& path) {
   return text.str();
 }
 
+// The hard test's filter of `input` (nothing but the import and a copy), and the linear depth
+// it imported, layer 0.
+std::vector<float> importedDepth(ShadowFilter& filter, const DepthInput& input) {
+  FilterSettings settings;
+  settings.technique = Technique::Hard;
+  filter.filter(input, settings);
+  std::vector<float> linear(size_t(input.size) * size_t(input.size) * size_t(input.layers));
+  glGetTextureImage(filter.linearDepthTexture(), 0, GL_RED, GL_FLOAT,
+                    GLsizei(linear.size() * sizeof(float)), linear.data());
+  return linear;
+}
+
 // Bindings a host with its own resources on the low units might choose.
 ShadowBindings movedBindings() {
   ShadowBindings b;
@@ -177,12 +189,7 @@ TEST_F(GlTest, ShadowFilterLinearisesPerspectiveWindowDepth) {
   input.nearDistance = nearDistance;
   input.farDistance = farDistance;
   ShadowFilter filter;
-  FilterSettings settings;
-  settings.technique = Technique::Hard;
-  filter.filter(input, settings);
-  std::vector<float> linear(size_t(n * n));
-  glGetTextureImage(filter.linearDepthTexture(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(linear.size() * sizeof(float)), linear.data());
+  const std::vector<float> linear = importedDepth(filter, input);
   // fp32 window depth near 0.9 resolves 6e-8; the inverse map's slope there is z^2/(n f)
   // (about 3.3) over (f - n): a few 1e-8 in the metric, 1e-6 leaves room for the division.
   EXPECT_EQ(filter.memory().importedDepth, uint64_t(n * n * 4));  // the R32F copy, reported
@@ -360,12 +367,7 @@ TEST_F(GlTest, ShadowFilterReadsDepthOfADepthStencilTextureSampledAsStencil) {
   input.texture = depthStencil.id();
   input.size = n;
   ShadowFilter filter;
-  FilterSettings settings;
-  settings.technique = Technique::Hard;
-  filter.filter(input, settings);
-  std::vector<float> linear(size_t(n * n));
-  glGetTextureImage(filter.linearDepthTexture(), 0, GL_RED, GL_FLOAT,
-                    GLsizei(linear.size() * sizeof(float)), linear.data());
+  const std::vector<float> linear = importedDepth(filter, input);
   // 0x800000 / 0xffffff, exact in fp32 to well under 1e-6 (stencil 255 would read as 255).
   EXPECT_NEAR(linear[0], 8388608.0f / 16777215.0f, 1e-6f);
   GLint mode = 0;
