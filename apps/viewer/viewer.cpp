@@ -53,11 +53,13 @@ void setMessage(ViewerState& state, std::string message, bool isError) {
   state.messageIsError = isError;
 }
 
-void loadSceneInto(ViewerState& state, const SceneLoadOptions& options) {
+void loadSceneInto(ViewerState& state, SceneLoadOptions options) {
+  options.aspect = float(state.settings.render.width) / float(state.settings.render.height);
   Scene scene = loadScene(state.settings.scene, options);
   applyOverrides(scene, state.settings.view);
   for (const std::string& w : scene.warnings)
     std::cerr << "penumbra-viewer: warning: " << w << "\n";
+  for (const std::string& n : scene.notes) std::cerr << "penumbra-viewer: note: " << n << "\n";
   state.scene = std::move(scene);
   state.camera = state.scene.camera;
   state.light = state.scene.light;
@@ -330,8 +332,8 @@ class Viewer {
       return p.kind == q.kind && p.direction == q.direction && p.position == q.position &&
              p.target == q.target && p.spotAngleDegrees == q.spotAngleDegrees && p.size == q.size;
     };
-    return sameCamera(a.camera, b.camera) && sameLight(a.light, b.light) &&
-           a.width == b.width && a.height == b.height && a.supersample == b.supersample &&
+    return sameCamera(a.camera, b.camera) && sameLight(a.light, b.light) && a.width == b.width &&
+           a.height == b.height && a.supersample == b.supersample &&
            a.lightSamples == b.lightSamples;
   }
 
@@ -359,7 +361,8 @@ class Viewer {
       return;
     }
     retireTruthJob();
-    truthJob_ = std::make_unique<TrueShadowJob>(raySceneSlot_, request, renderer_.readCameraDepth());
+    truthJob_ =
+        std::make_unique<TrueShadowJob>(raySceneSlot_, request, renderer_.readCameraDepth());
     truthFrames_ = 0;
     longestTruthFrameMs_ = 0.0;
   }
@@ -471,9 +474,8 @@ class Viewer {
       if (splitResult_ && !map) {
         // The same view of the right side's render (the reference does not depend on the
         // technique), right of the divider.
-        const DisplayImage right =
-            composeDisplay(state_.view, *splitResult_, reference, nullptr, referenceRowsShown_,
-                           truthShown);
+        const DisplayImage right = composeDisplay(state_.view, *splitResult_, reference, nullptr,
+                                                  referenceRowsShown_, truthShown);
         const size_t from = size_t(dividerPixel()) * 3;
         const size_t row = size_t(image.width) * 3;
         for (int y = 0; y < image.height; ++y) {
@@ -783,9 +785,9 @@ class Viewer {
   std::shared_ptr<RaySceneSlot> raySceneSlot_;
   std::unique_ptr<TrueShadowJob> truthJob_;
   std::vector<std::unique_ptr<TrueShadowJob>> retiredTruthJobs_;
-  bool truthShown_ = false;  // the scene area shows truthJob_'s complete trace
+  bool truthShown_ = false;      // the scene area shows truthJob_'s complete trace
   bool truthDescribed_ = false;  // and the panel has shown its numbers since the last frame
-  int truthFrames_ = 0;      // frames drawn while it traced, and the longest
+  int truthFrames_ = 0;          // frames drawn while it traced, and the longest
   double longestTruthFrameMs_ = 0.0;
   Clock::time_point referenceShownAt_;
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest

@@ -29,6 +29,11 @@ struct TextureImage {
   std::vector<uint8_t> rgba;  // width * height * 4
 };
 
+// What a mesh is to the scene. A loaded file's meshes are Model; loadScene marks geometry that
+// encloses the rest (a sky dome, a skybox) as Enclosure and adds a Ground under a lone model
+// (SceneLoadOptions). Framing and the default lights look at the Model meshes only.
+enum class MeshRole { Model, Enclosure, Ground };
+
 // How a material's alpha (texture alpha x factor alpha) decides coverage. The light and camera
 // passes test Mask against alphaCutoff; Blend is treated as Mask at 0.5 (the loaders warn):
 // shadow maps hold one depth per texel, there is nothing to blend into.
@@ -45,6 +50,12 @@ struct Mesh {
   // Single-sided meshes are culled from behind in the camera pass (glTF's doubleSided: false);
   // every mesh casts shadows from both sides.
   bool doubleSided = true;
+  MeshRole role = MeshRole::Model;
+  // glTF's KHR_materials_unlit: an emissive backdrop, not a surface that blocks light.
+  bool unlit = false;
+  // Drawn in the light pass and blocking the ray-traced truth's shadow rays. loadScene clears it
+  // for enclosures and unlit materials unless SceneLoadOptions::casters is All.
+  bool castsShadow = true;
 
   bool alphaTested() const { return alphaMode != AlphaMode::Opaque; }
   float effectiveAlphaCutoff() const { return alphaMode == AlphaMode::Blend ? 0.5f : alphaCutoff; }
@@ -107,6 +118,12 @@ struct TroubleSpot {
   glm::vec4 rect{0.0f, 0.0f, 1.0f, 1.0f};  // x0, y0, x1, y1
 };
 
+// A camera a scene file defines, with the name it gives it (may be empty).
+struct NamedCamera {
+  std::string name;
+  Camera camera;
+};
+
 struct Scene {
   std::string name;
   std::string description;
@@ -118,15 +135,23 @@ struct Scene {
   // view, so pixels keep their surfaces and frame-to-frame change is shadow instability.
   glm::vec3 pathOffset{0.03f, 0.0f, 0.0f};
   std::vector<TroubleSpot> troubleSpots;  // none known for scenes from files
+  // A glTF file's perspective cameras in the order its scene's nodes place them (--camera N).
+  std::vector<NamedCamera> fileCameras;
   // What a loader accepted with a caveat (a texture that failed to load, BLEND as a mask, ...),
   // for the front ends to print.
   std::vector<std::string> warnings;
+  // What a loader decided for the user that they may want to undo (a ground added, enclosures
+  // left out of the shadows), with the option that undoes it, for the front ends to print.
+  std::vector<std::string> notes;
 
   // The camera path for temporal measurements: `frames` cameras from the default one to the
   // default one moved by pathOffset, the target moving alike (frame 0 is the default camera).
   std::vector<Camera> cameraPath(int frames) const;
 
   Bounds bounds() const;
+  // The bounds of the Model meshes (MeshRole): what framing and the default lights look at;
+  // bounds() where the scene has none.
+  Bounds modelBounds() const;
   size_t triangleCount() const;
 };
 
@@ -154,7 +179,9 @@ inline LightView fitLightView(const Scene& scene) {
 }
 
 // The far plane that keeps the whole scene in view, and the near plane: the scene's bounding
-// radius / kCameraNearPerRadius, but no nearer than kMinCameraNear — the scene's, not the
+// radius / kCameraNearPerRadius, but no nearer than kMinCameraNear (or a tenth of the radius
+// for a scene smaller than half a unit, which the framing camera sees from a few radii) — the
+// scene's, not the
 // camera's, so that it holds still while the camera moves (cascade splits start at it). A fp32
 // depth buffer resolves view depth z to about ulp(1) z / near relative: 1.5e-4 of z at the far
 // plane of a camera framing the scene from 3 radii, 1e-3 only from 30 radii, whatever the
@@ -192,12 +219,52 @@ inline constexpr uint64_t kMaxSceneMemoryBytes = uint64_t(1) << 50;
 // half.
 uint64_t defaultSceneMemoryLimit();
 
+// --ground: Auto adds a ground plane under a scene file's model when no large upward-facing
+// surface lies at the bottom of its bounds; On always, Off never.
+enum class GroundMode { Auto, On, Off };
+// --casters: Auto leaves enclosures and unlit materials out of the shadows; All keeps every mesh.
+enum class CasterMode { Auto, All };
+
+// "auto", "on", "off" / "auto", "all"; the parsers throw Error listing the valid names.
+std::string_view groundModeName(GroundMode mode);
+GroundMode parseGroundMode(std::string_view name);
+std::string_view casterModeName(CasterMode mode);
+CasterMode parseCasterMode(std::string_view name);
+
+// The default camera of a scene file: it looks at the centre of the model's bounds
+// (Scene::modelBounds) from the front (+z), above, along kFramingDirection, with a 45-degree
+// vertical field of view, from the distance at which the model's vertices span kFramingFill of
+// the frame's width or height from its centre (whichever binds first) at the frame's aspect
+// (width / height).
+inline constexpr float kFramingFill = 0.8f;
+inline constexpr glm::vec3 kFramingDirection{0.45f, 0.55f, 1.0f};  // from the model to the camera
+Camera framingCamera(const Scene& scene, float aspect);
+
+// What a camera sees of a scene's model at an aspect: the share of the Model meshes' surface
+// area whose triangles' centres lie in its view, and the share of the frame their bounding
+// box's projection covers (clipped to the frame).
+struct CameraSight {
+  float surfaceShare = 0.0f;
+  float frameShare = 0.0f;
+};
+CameraSight cameraSight(const Scene& scene, const Camera& camera, float aspect);
+// A file's camera is the default only when it sees the whole model: all but a thousandth of its
+// surface (a camera that crops the model at the frame's aspect is not a first picture to keep).
+inline constexpr float kFileCameraMinSurfaceShare = 0.999f;
+
 struct SceneLoadOptions {
   // Host memory a scene file may take: the files it reads, its geometry with every instance
   // expanded and its decoded textures. Estimated from counts and image headers before any
   // geometry is expanded or any texture decoded; loadScene refuses a file above it with the bytes
   // needed. [kMinSceneMemoryBytes, kMaxSceneMemoryBytes].
   uint64_t maxMemoryBytes = defaultSceneMemoryLimit();
+  // The frame's width / height, for the framing camera of a scene file, (0, 100].
+  float aspect = 16.0f / 9.0f;
+  GroundMode ground = GroundMode::Auto;
+  CasterMode casters = CasterMode::Auto;
+  // The file's camera to use (an index into Scene::fileCameras); unset: the first file camera
+  // that sees the model (kFileCameraMinSurfaceShare), else the framing camera.
+  std::optional<int> camera;
 };
 
 // A memory size as an option gives it (`option` names it in messages): a number of MiB ("512"),
@@ -209,12 +276,13 @@ uint64_t parseMemorySize(std::string_view text, std::string_view option);
 std::string memorySizeText(uint64_t bytes);
 
 // A built-in scene's name, or a path to a .gltf, .glb or .obj file (scene_loaders.cpp). A file
-// scene is named after its file and keeps the file's first camera and light
-// (KHR_lights_punctual) where it has them, else a camera framing its bounds and a directional
-// light from above. Throws Error naming the file and the fault for malformed files (a hierarchy
-// deeper than kMaxGltfNodeDepth, more memory than options.maxMemoryBytes, a file it names that
-// is not a regular file, an allocation that fails), and the valid names and extensions for
-// anything else.
+// scene is named after its file and keeps the file's light (KHR_lights_punctual) where it has
+// one, else a directional light from above; its camera follows SceneLoadOptions::camera, its
+// enclosures, casters and ground SceneLoadOptions (docs/scenes.md, "Real models"). The options
+// other than maxMemoryBytes do not change built-in scenes; a camera index for one is refused.
+// Throws Error naming the file and the fault for malformed files (a hierarchy deeper than
+// kMaxGltfNodeDepth, more memory than options.maxMemoryBytes, a file it names that is not a regular
+// file, an allocation that fails), and the valid names and extensions for anything else.
 Scene loadScene(std::string_view nameOrPath, const SceneLoadOptions& options = {});
 // Checks, without loading, that loadScene can try `nameOrPath`: a built-in name or an existing
 // file with a supported extension. Throws Error as loadScene does.

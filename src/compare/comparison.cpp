@@ -4,16 +4,16 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <glm/gtc/matrix_transform.hpp>
+#include <memory>
 
 #include "penumbra/compare/error_regions.h"
 #include "penumbra/compare/reference_region.h"
+#include "penumbra/compare/truth_measurement.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/params.h"
 #include "penumbra/shared/shadow_lookup.h"
-#include "penumbra/compare/truth_measurement.h"
 
 namespace penumbra::compare {
 namespace {
@@ -150,7 +150,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
                                const Progress& progress) {
   validateRequest(request, renderer);
   ComparisonResult result;
-  result.scene = loadScene(request.scene, request.sceneLoad);
+  SceneLoadOptions load = request.sceneLoad;
+  load.aspect = float(request.settings.width) / float(request.settings.height);  // the frame's
+  result.scene = loadScene(request.scene, load);
   applyOverrides(result.scene, request.view);
   requireCascadableLight(request.settings.cascades, result.scene.light);
   result.areaLight = result.scene.light.size > 0.0f;
@@ -168,9 +170,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   const std::vector<Camera> path = result.scene.cameraPath(request.pathFrames);
   const bool measuresShimmer = request.settings.cascades.count > 1;
   const bool traces = request.truth == TruthKind::RayTraced;
-  const int total = request.pathFrames * (1 + int(request.techniques.size()) *
-                                                  (measuresShimmer ? 3 : 1)) +
-                    1 + (traces ? 1 : 0);
+  const int total =
+      request.pathFrames * (1 + int(request.techniques.size()) * (measuresShimmer ? 3 : 1)) + 1 +
+      (traces ? 1 : 0);
   int done = 0;
   auto step = [&](const std::string& what) {
     if (progress) progress(done, total, what);
@@ -196,16 +198,17 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       if (std::none_of(result.coverage.data().begin(), result.coverage.data().end(),
                        [](float m) { return m > 0.5f; })) {
         // Every metric would be 0 over no pixels: a silent perfect score.
-        throw Error("scene '" + result.scene.name +
-                    "' shows no lit surface inside the shadow map" +
-                    (request.settings.cascades.count > 1 ? "s (is the view beyond --shadow-distance?)"
-                                                         : " (does the light face the view?)") +
+        throw Error("scene '" + result.scene.name + "' shows no lit surface inside the shadow map" +
+                    (request.settings.cascades.count > 1
+                         ? "s (is the view beyond --shadow-distance?)"
+                         : " (does the light face the view?)") +
                     ": nothing to measure");
       }
       // Every cascade's depth (the worst pixel may lie in any), read before the techniques'
       // light passes (which may be multisampled) replace them.
       std::vector<Image> depths;
-      for (int c = 0; c < reference.cascadeFrame.count; ++c) depths.push_back(renderer.readDepthMap(c));
+      for (int c = 0; c < reference.cascadeFrame.count; ++c)
+        depths.push_back(renderer.readDepthMap(c));
       // Kept for the worst pixel's curves, found once every technique is measured.
       result.worstRegion.clear();
       step("supersampled ground truth");
@@ -220,9 +223,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
             {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
             [&](int rows, int of) {
               if (progress) {
-                progress(traceStep, total,
-                         "ray-traced truth, row " + std::to_string(rows) + " of " +
-                             std::to_string(of));
+                progress(
+                    traceStep, total,
+                    "ray-traced truth, row " + std::to_string(rows) + " of " + std::to_string(of));
               }
             });
       }
@@ -236,18 +239,18 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
         TechniqueResult& out = result.techniques[k];
         out.technique = t;
         out.params = r.params;
-        out.filtered = errorsAgainstReference(r.visibility, reference.visibility,
-                                              result.coverage, leakCoverage, request.tau);
+        out.filtered = errorsAgainstReference(r.visibility, reference.visibility, result.coverage,
+                                              leakCoverage, request.tau);
         out.groundTruth = errorsAgainstReference(r.visibility, result.groundTruthVisibility,
                                                  result.coverage, leakCoverage, request.tau);
         if (result.truth) {
           out.truth = measureVisibilityErrors(r.visibility, result.truth->visibility,
                                               result.truth->coverage, request.tau);
-          out.truthError = signedVisibilityError(r.visibility, result.truth->visibility,
-                                                 result.truth->coverage);
+          out.truthError =
+              signedVisibilityError(r.visibility, result.truth->visibility, result.truth->coverage);
           out.filteringRmseOnTruthPixels =
-              measureVisibilityErrors(r.visibility, reference.visibility,
-                                      result.truth->coverage, request.tau)
+              measureVisibilityErrors(r.visibility, reference.visibility, result.truth->coverage,
+                                      request.tau)
                   .rmse;
         }
         out.failureRatePercent = r.failureRatePercent;
@@ -304,8 +307,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     std::vector<Camera> shadowPath = path;
     for (size_t frame = 0; frame < shadowPath.size(); ++frame) {
       Camera& c = shadowPath[frame];
-      const glm::mat4 turn = glm::rotate(glm::mat4(1.0f), glm::radians(kShimmerTurnDegrees * float(frame)),
-                                         glm::vec3(0.0f, 1.0f, 0.0f));
+      const glm::mat4 turn =
+          glm::rotate(glm::mat4(1.0f), glm::radians(kShimmerTurnDegrees * float(frame)),
+                      glm::vec3(0.0f, 1.0f, 0.0f));
       c.target = c.position + glm::vec3(turn * glm::vec4(c.target - c.position, 0.0f));
     }
     for (size_t k = 0; k < request.techniques.size(); ++k) {

@@ -107,7 +107,8 @@ GpuScene::GpuScene(const Scene& scene) {
   for (const Mesh& m : scene.meshes) {
     const bool textured = m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < textures_.size();
     materials_.push_back({m.albedo, m.opacity, m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f,
-                          textured ? textures_[size_t(m.baseColorTexture)] : 0u, m.doubleSided});
+                          textured ? textures_[size_t(m.baseColorTexture)] : 0u, m.doubleSided,
+                          m.castsShadow});
   }
   checkErrors("uploading the scene");
 }
@@ -119,12 +120,14 @@ GpuScene::~GpuScene() {
   if (!textures_.empty()) glDeleteTextures(GLsizei(textures_.size()), textures_.data());
 }
 
-void GpuScene::draw(const std::function<void(const Material&)>& beforeMesh) const {
+void GpuScene::draw(const std::function<void(const Material&)>& beforeMesh, Meshes meshes) const {
   glBindVertexArray(vertexArray_);
   for (size_t i = 0; i < ranges_.size(); ++i) {
     const Material& material = materials_[i];
+    if (meshes == Meshes::Casters && !material.castsShadow) continue;
     if (beforeMesh) beforeMesh(material);
-    if (material.texture != 0) glBindTextureUnit(PENUMBRA_BASE_COLOR_TEXTURE_UNIT, material.texture);
+    if (material.texture != 0)
+      glBindTextureUnit(PENUMBRA_BASE_COLOR_TEXTURE_UNIT, material.texture);
     glDrawElementsBaseVertex(
         GL_TRIANGLES, GLsizei(ranges_[i].indexCount), GL_UNSIGNED_INT,
         reinterpret_cast<const void*>(ranges_[i].firstIndex * sizeof(uint32_t)),
@@ -152,7 +155,7 @@ uint64_t sceneFingerprint(const Scene& scene) {
     hash = hashBytes(hash, m.indices.data(), m.indices.size() * sizeof(uint32_t));
     const float material[5] = {m.albedo.r, m.albedo.g, m.albedo.b, m.opacity,
                                m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f};
-    const int flags[2] = {m.baseColorTexture, m.doubleSided ? 1 : 0};
+    const int flags[3] = {m.baseColorTexture, m.doubleSided ? 1 : 0, m.castsShadow ? 1 : 0};
     hash = hashBytes(hash, material, sizeof material);
     hash = hashBytes(hash, flags, sizeof flags);
   }

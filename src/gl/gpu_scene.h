@@ -21,6 +21,7 @@ class GpuScene {
     float alphaCutoff = -1.0f;  // < 0: opaque, no test (shared/alpha_mask.h)
     unsigned texture = 0;       // the base-colour texture, 0 for none
     bool doubleSided = true;    // false: the camera pass culls back faces
+    bool castsShadow = true;    // false: the light pass skips it (Mesh::castsShadow)
   };
 
   explicit GpuScene(const Scene& scene);
@@ -30,7 +31,10 @@ class GpuScene {
 
   // Draws every mesh; `beforeMesh` runs first for each (to set its material, setMaterialUniforms)
   // with the mesh's base-colour texture, if any, bound to PENUMBRA_BASE_COLOR_TEXTURE_UNIT.
-  void draw(const std::function<void(const Material&)>& beforeMesh) const;
+  // Which meshes a pass draws: the camera sees every mesh, the light only the shadow casters.
+  enum class Meshes { All, Casters };
+  void draw(const std::function<void(const Material&)>& beforeMesh,
+            Meshes meshes = Meshes::All) const;
 
   // Bytes of the vertex, index and texture storage (textures with their full mip chains).
   uint64_t bytes() const { return bytes_; }

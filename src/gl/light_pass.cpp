@@ -77,17 +77,19 @@ void LightPass::render(ProgramCache& programs, const GpuScene& scene,
     program.set("lightNear", view.nearDistance);
     program.set("lightFar", view.farDistance);
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffers_[size_t(layer)]);
-    scene.draw([&](const GpuScene::Material& material) {
-      setMaterialUniforms(program, material);
-      // MSAA: a masked caster is tested per sample, so each sample's coverage follows the
-      // texture's alpha edge (a per-pixel discard would drop or keep all samples at once).
-      if (multisampled() && material.alphaCutoff >= 0.0f) {
-        glEnable(GL_SAMPLE_SHADING);
-        glMinSampleShading(1.0f);
-      } else {
-        glDisable(GL_SAMPLE_SHADING);
-      }
-    });
+    scene.draw(
+        [&](const GpuScene::Material& material) {
+          setMaterialUniforms(program, material);
+          // MSAA: a masked caster is tested per sample, so each sample's coverage follows the
+          // texture's alpha edge (a per-pixel discard would drop or keep all samples at once).
+          if (multisampled() && material.alphaCutoff >= 0.0f) {
+            glEnable(GL_SAMPLE_SHADING);
+            glMinSampleShading(1.0f);
+          } else {
+            glDisable(GL_SAMPLE_SHADING);
+          }
+        },
+        GpuScene::Meshes::Casters);
   }
   glDisable(GL_SAMPLE_SHADING);
   timer.end();

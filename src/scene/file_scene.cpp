@@ -105,20 +105,9 @@ void finishFileScene(Scene& scene, const std::string& source, const FileView& vi
   if (!finite(bounds.max - bounds.min) || !std::isfinite(bounds.radius())) {
     throw Error(source + ": the scene's extent is not finite in single precision");
   }
-  const glm::vec3 centre = bounds.centre();
   const float radius = std::max(bounds.radius(), 1e-3f);
-  if (view.camera) {
-    scene.camera = *view.camera;
-  } else {
-    // Three-quarter view from the front (+z), above: the whole bounding sphere in the frame.
-    Camera camera;
-    camera.verticalFovDegrees = 45.0f;
-    const float distance =
-        1.15f * radius / std::sin(glm::radians(0.5f * camera.verticalFovDegrees));
-    camera.position = centre + distance * glm::normalize(glm::vec3(0.45f, 0.55f, 1.0f));
-    camera.target = centre;
-    scene.camera = camera;
-  }
+  scene.fileCameras = view.cameras;
+  scene.camera = view.cameras.empty() ? framingCamera(scene, 16.0f / 9.0f) : view.cameras[0].camera;
   if (view.light) {
     scene.light = *view.light;
   } else {

@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "penumbra/scene.h"
 
@@ -11,13 +12,15 @@ namespace penumbra::scene {
 
 // The camera and light a file asked for, if any.
 struct FileView {
-  std::optional<Camera> camera;
+  std::vector<NamedCamera> cameras;
   std::optional<Light> light;
 };
 
 // Throws Error "<source>: ..." for an empty scene or non-finite positions or texture
 // coordinates; replaces non-finite or zero normals by their triangles' normals (with a warning);
-// sets the camera (framing the bounds) and light (from above) the file did not give.
+// keeps the file's cameras (Scene::fileCameras), sets the camera (the file's first, else one
+// framing the bounds at 16:9; loadScene chooses again with the frame's aspect) and the light (from
+// above) the file did not give.
 void finishFileScene(Scene& scene, const std::string& source, const FileView& view);
 
 // Flat normals for triangles without normals: each triangle gets its own three vertices

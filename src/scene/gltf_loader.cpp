@@ -177,8 +177,12 @@ class Importer {
   std::vector<int> parentCount_;
   std::map<int, int> textureOfImage_;
   std::set<int> blendWarned_;  // materials
-  std::optional<glm::mat4> cameraWorld_;
-  int cameraIndex_ = -1;
+  struct PlacedCamera {
+    int node;
+    int camera;
+    glm::mat4 world;
+  };
+  std::vector<PlacedCamera> cameras_;  // in the order the walk meets their nodes
   std::optional<glm::mat4> lightWorld_;
   int lightIndex_ = -1;
 };
@@ -647,6 +651,7 @@ void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where,
   } else {
     fail(what + "'s alphaMode '" + m.alphaMode + "' is none of OPAQUE, MASK, BLEND");
   }
+  mesh.unlit = m.extensions.count("KHR_materials_unlit") != 0;
   if (m.extensions.count("KHR_materials_pbrSpecularGlossiness") != 0) {
     warn(what + " uses KHR_materials_pbrSpecularGlossiness: its diffuse colour is not read");
   }
@@ -760,13 +765,12 @@ void Importer::addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& 
 
 void Importer::noteCamera(int node, const glm::mat4& world) {
   const int camera = model_.nodes[size_t(node)].camera;
-  if (camera < 0 || cameraWorld_) return;
+  if (camera < 0) return;
   if (size_t(camera) >= model_.cameras.size()) {
     fail("node " + std::to_string(node) + " names camera " + std::to_string(camera) +
          ", but the file has " + std::to_string(model_.cameras.size()));
   }
-  cameraWorld_ = world;
-  cameraIndex_ = camera;
+  cameras_.push_back({node, camera, world});
 }
 
 void Importer::noteLight(int node, const glm::mat4& world) {
@@ -784,9 +788,10 @@ void Importer::noteLight(int node, const glm::mat4& world) {
 Scene Importer::run(std::vector<std::string> warnings) {
   scene_.warnings = std::move(warnings);
   for (const std::string& extension : model_.extensionsRequired) {
-    if (extension != "KHR_lights_punctual") {
+    if (extension != "KHR_lights_punctual" && extension != "KHR_materials_unlit") {
       fail("the file requires extension " + extension +
-           ", which penumbra does not read (it reads KHR_lights_punctual)");
+           ", which penumbra does not read (it reads KHR_lights_punctual and "
+           "KHR_materials_unlit)");
     }
   }
   parentCount_.assign(model_.nodes.size(), 0);
@@ -827,19 +832,20 @@ Scene Importer::run(std::vector<std::string> warnings) {
     const float distance = std::max(glm::length(bounds.centre() - position), 1e-2f);
     return std::pair{position, position + distance * forward};
   };
-  if (cameraWorld_) {
-    const tinygltf::Camera& c = model_.cameras[size_t(cameraIndex_)];
+  for (const PlacedCamera& placed : cameras_) {
+    const tinygltf::Camera& c = model_.cameras[size_t(placed.camera)];
     const float fov = float(glm::degrees(c.perspective.yfov));
+    const std::string what =
+        "camera " + std::to_string(placed.camera) + " (node " + std::to_string(placed.node) + ")";
     if (c.type != "perspective") {
-      warn("camera " + std::to_string(cameraIndex_) + " is " + c.type +
-           "; only perspective cameras are used, a framing camera is used instead");
+      warn(what + " is " + c.type + "; only perspective cameras are used");
     } else if (!(fov > 0.0f && fov <= 170.0f)) {
-      warn("camera " + std::to_string(cameraIndex_) + "'s yfov " + std::to_string(fov) +
-           " degrees is outside (0, 170]; a framing camera is used instead");
+      warn(what + "'s yfov " + std::to_string(fov) + " degrees is outside (0, 170]; not used");
     } else {
-      const auto [position, target] = aim(*cameraWorld_);
+      const auto [position, target] = aim(placed.world);
       if (std::isfinite(target.x + target.y + target.z)) {
-        fileView.camera = Camera{position, target, fov};
+        const std::string& name = c.name.empty() ? model_.nodes[size_t(placed.node)].name : c.name;
+        fileView.cameras.push_back({name, Camera{position, target, fov}});
       }
     }
   }

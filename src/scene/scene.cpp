@@ -8,16 +8,32 @@
 
 namespace penumbra {
 
-Bounds Scene::bounds() const {
+namespace {
+
+template <typename Keep>
+Bounds boundsOf(const std::vector<Mesh>& meshes, Keep keep) {
   Bounds b{glm::vec3(std::numeric_limits<float>::max()),
            glm::vec3(std::numeric_limits<float>::lowest())};
   for (const Mesh& m : meshes) {
+    if (!keep(m)) continue;
     for (const Vertex& v : m.vertices) {
       b.min = glm::min(b.min, v.position);
       b.max = glm::max(b.max, v.position);
     }
   }
   return b;
+}
+
+}  // namespace
+
+Bounds Scene::bounds() const {
+  return boundsOf(meshes, [](const Mesh&) { return true; });
+}
+
+Bounds Scene::modelBounds() const {
+  const Bounds model = boundsOf(
+      meshes, [](const Mesh& m) { return m.role == MeshRole::Model && !m.vertices.empty(); });
+  return model.min.x <= model.max.x ? model : bounds();
 }
 
 std::vector<Camera> Scene::cameraPath(int frames) const {
@@ -101,12 +117,15 @@ float cameraFar(const Camera& camera, const Bounds& sceneBounds) {
 }
 
 float cameraNear(const Bounds& sceneBounds) {
-  return std::max(kMinCameraNear, sceneBounds.radius() / kCameraNearPerRadius);
+  // A scene smaller than the fixed floor (a model in millimetres, framed from a few of its own
+  // radii) gets a tenth of its radius instead, so the floor never clips it.
+  const float radius = sceneBounds.radius();
+  return std::max(std::min(kMinCameraNear, 0.1f * radius), radius / kCameraNearPerRadius);
 }
 
 glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
-  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect,
-                          cameraNear(sceneBounds), cameraFar(camera, sceneBounds));
+  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, cameraNear(sceneBounds),
+                          cameraFar(camera, sceneBounds));
 }
 
 }  // namespace penumbra

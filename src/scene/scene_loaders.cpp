@@ -9,6 +9,7 @@
 #include "obj_loader.h"
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
+#include "scene_shaping.h"
 
 namespace penumbra {
 namespace {
@@ -48,7 +49,14 @@ void checkSceneSource(std::string_view nameOrPath) {
 }
 
 Scene loadScene(std::string_view nameOrPath, const SceneLoadOptions& options) {
-  if (isBuiltin(nameOrPath)) return makeBuiltinScene(nameOrPath);
+  if (isBuiltin(nameOrPath)) {
+    if (options.camera) {
+      throw Error("scene '" + std::string(nameOrPath) +
+                  "' is built in and defines no cameras of its own; --camera picks one of a "
+                  "scene file's cameras");
+    }
+    return makeBuiltinScene(nameOrPath);
+  }
   checkSceneSource(nameOrPath);
   if (options.maxMemoryBytes < kMinSceneMemoryBytes ||
       options.maxMemoryBytes > kMaxSceneMemoryBytes) {
@@ -64,6 +72,7 @@ Scene loadScene(std::string_view nameOrPath, const SceneLoadOptions& options) {
   try {
     Scene scene = kind == FileKind::Gltf ? scene::loadGltfFile(path, budget)
                                          : scene::loadObjFile(path, budget);
+    scene::shapeFileScene(scene, options, path.string());
     scene.name = path.stem().string();
     scene.description = (kind == FileKind::Gltf ? "glTF 2.0 file " : "OBJ file ") + path.string() +
                         ", " + std::to_string(scene.triangleCount()) + " triangles";

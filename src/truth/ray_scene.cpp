@@ -6,9 +6,9 @@
 #include <string>
 
 #include "penumbra/error.h"
+#include "penumbra/shared/alpha_mask.h"
 #include "penumbra/srgb.h"
 #include "ray_scene_impl.h"
-#include "penumbra/shared/alpha_mask.h"
 
 namespace penumbra::truth {
 namespace {
@@ -33,8 +33,8 @@ RayTexture decodeTexture(const TextureImage& image) {
   t.texels.resize(size_t(image.width) * size_t(image.height));
   for (size_t i = 0; i < t.texels.size(); ++i) {
     const uint8_t* texel = &image.rgba[4 * i];
-    t.texels[i] = glm::vec4(linear[texel[0]], linear[texel[1]], linear[texel[2]],
-                            float(texel[3]) / 255.0f);
+    t.texels[i] =
+        glm::vec4(linear[texel[0]], linear[texel[1]], linear[texel[2]], float(texel[3]) / 255.0f);
   }
   return t;
 }
@@ -63,13 +63,15 @@ void filterCameraHit(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-// Filter for shadow rays: every mesh casts from both sides (the light pass draws without
-// culling); the alpha mask cuts out what it cuts out in the light pass.
+// Filter for shadow rays: every caster casts from both sides (the light pass draws without
+// culling); the alpha mask cuts out what it cuts out in the light pass; a mesh that casts no
+// shadow (the light pass skips it) lets every ray through.
 void filterShadowHit(const RTCFilterFunctionNArguments* args) {
   const RayMesh& mesh = *static_cast<const RayMesh*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    if (!mesh.covers(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
+    if (!mesh.castsShadow ||
+        !mesh.covers(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
                      RTCHitN_v(args->hit, args->N, i))) {
       args->valid[i] = 0;
     }
@@ -141,22 +143,23 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     }
     m.alphaCutoff = mesh.alphaTested() ? mesh.effectiveAlphaCutoff() : -1.0f;
     m.doubleSided = mesh.doubleSided;
+    m.castsShadow = mesh.castsShadow;
     s.triangles += m.indices.size() / 3;
   }
   for (size_t id = 0; id < s.meshes.size(); ++id) {
     RayMesh& m = s.meshes[id];
     const RTCGeometry geometry = rtcNewGeometry(s.device, RTC_GEOMETRY_TYPE_TRIANGLE);
     // Embree reads vertices as 16 bytes: its own buffers carry the padding it needs.
-    auto* vertices = static_cast<float*>(rtcSetNewGeometryBuffer(
-        geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float),
-        std::max<size_t>(m.positions.size(), 1)));
+    auto* vertices = static_cast<float*>(
+        rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                3 * sizeof(float), std::max<size_t>(m.positions.size(), 1)));
     auto* indices = static_cast<uint32_t*>(
         rtcSetNewGeometryBuffer(geometry, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3,
                                 3 * sizeof(uint32_t), std::max<size_t>(m.indices.size() / 3, 1)));
     if (vertices == nullptr || indices == nullptr) {
       rtcReleaseGeometry(geometry);
-      throw Error("Embree could not allocate mesh " + std::to_string(id) + "'s buffers: " +
-                  deviceErrorText(s.device, message));
+      throw Error("Embree could not allocate mesh " + std::to_string(id) +
+                  "'s buffers: " + deviceErrorText(s.device, message));
     }
     for (size_t i = 0; i < m.positions.size(); ++i) {
       vertices[3 * i] = m.positions[i].x;
@@ -169,7 +172,9 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     if (!m.doubleSided || m.alphaCutoff >= 0.0f) {
       rtcSetGeometryIntersectFilterFunction(geometry, filterCameraHit);
     }
-    if (m.alphaCutoff >= 0.0f) rtcSetGeometryOccludedFilterFunction(geometry, filterShadowHit);
+    if (m.alphaCutoff >= 0.0f || !m.castsShadow) {
+      rtcSetGeometryOccludedFilterFunction(geometry, filterShadowHit);
+    }
     rtcCommitGeometry(geometry);
     rtcAttachGeometryByID(s.scene, geometry, unsigned(id));
     rtcReleaseGeometry(geometry);
@@ -186,8 +191,12 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
 
 RayScene::~RayScene() = default;
 
-size_t RayScene::triangleCount() const { return impl_->triangles; }
-double RayScene::buildSeconds() const { return impl_->buildSeconds; }
+size_t RayScene::triangleCount() const {
+  return impl_->triangles;
+}
+double RayScene::buildSeconds() const {
+  return impl_->buildSeconds;
+}
 
 std::string embreeDescription() {
   return "Intel Embree " RTC_VERSION_STRING;

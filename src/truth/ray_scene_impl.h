@@ -38,6 +38,7 @@ struct RayMesh {
   const RayTexture* texture = nullptr;  // into RayScene::Impl::textures
   float alphaCutoff = -1.0f;            // < 0: opaque (shared/alpha_mask.h)
   bool doubleSided = true;
+  bool castsShadow = true;  // false: shadow rays pass through it (Mesh::castsShadow)
 
   std::array<uint32_t, 3> triangle(uint32_t primitive) const {
     return {indices[3 * primitive], indices[3 * primitive + 1], indices[3 * primitive + 2]};

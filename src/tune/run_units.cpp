@@ -7,6 +7,7 @@
 #include <optional>
 #include <set>
 
+#include "path_error.h"
 #include "penumbra/area_light.h"
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/truth_measurement.h"
@@ -14,7 +15,6 @@
 #include "penumbra/metrics.h"
 #include "penumbra/tune/search.h"
 #include "penumbra/tune/tune.h"
-#include "path_error.h"
 
 namespace penumbra::tune {
 namespace {
@@ -59,9 +59,9 @@ PathTargets traceTargets(const TuneRequest& request, gl::Renderer& renderer,
     FrameTarget t;
     if (rays) {
       const Image depth = renderer.readCameraDepth();
-      compare::TruthResult traced = compare::measureTruth(
-          *rays, c, scene, path[f],
-          {coverage, depth, reference.visibility, groundTruth.visibility});
+      compare::TruthResult traced =
+          compare::measureTruth(*rays, c, scene, path[f],
+                                {coverage, depth, reference.visibility, groundTruth.visibility});
       t.visibility = std::move(traced.visibility);
       t.mask = std::move(traced.coverage);
     } else {
@@ -92,14 +92,17 @@ class SceneTuner {
   SceneTuner(const TuneRequest& request, gl::Renderer& renderer, const std::string& source,
              const std::function<void()>& onFrame)
       : request_(request), renderer_(renderer) {
-    scene_ = loadScene(source, request.sceneLoad);
+    SceneLoadOptions load = request.sceneLoad;
+    load.aspect = float(request.settings.width) / float(request.settings.height);  // the frame's
+    scene_ = loadScene(source, load);
     applyOverrides(scene_, request.view);
     requireCascadableLight(request.settings.cascades, scene_.light);
     renderer_.setScene(scene_);
     path_ = scene_.cameraPath(request.frames);
     tuneFrames_ = size_t(tuningFrames(request));
     searchBase_ = request.settings;
-    searchBase_.width = std::max(16, int(std::lround(request.settings.width * request.searchScale)));
+    searchBase_.width =
+        std::max(16, int(std::lround(request.settings.width * request.searchScale)));
     searchBase_.height =
         std::max(16, int(std::lround(request.settings.height * request.searchScale)));
     if (request.target == Target::RayTraced) rays_ = std::make_unique<truth::RayScene>(scene_);
@@ -171,8 +174,8 @@ class SceneTuner {
     // The user's setting (evaluation 0) is always among the candidates: if the better ones
     // exceed the time budget at full size, it is what fits.
     if (order.size() > size_t(kConfirmCandidates)) order.resize(size_t(kConfirmCandidates));
-    if (std::find(order.begin(), order.end(), 0) == order.end() &&
-        !result.evaluations.empty() && result.evaluations[0].measurement.eligible) {
+    if (std::find(order.begin(), order.end(), 0) == order.end() && !result.evaluations.empty() &&
+        result.evaluations[0].measurement.eligible) {
       order.push_back(0);
     }
     for (size_t k = 0; k < order.size(); ++k) {
@@ -231,8 +234,9 @@ class SceneTuner {
       if (f == 0 && !first && slowFrameMs_ && frameMs > *slowFrameMs_) {
         m.tooSlow = true;
         // No measured time in the status: a report compares equal whatever the times.
-        m.status = "too slow to search: its first frame (shader compilation included) took "
-                   "longer than --max-slowdown x the given setting's";
+        m.status =
+            "too slow to search: its first frame (shader compilation included) took "
+            "longer than --max-slowdown x the given setting's";
         m.timeMs = frameMs;
         return m;
       }
@@ -252,8 +256,10 @@ class SceneTuner {
     }
     m.measured = true;
     m.timeMs = median(times);
-    const SetError tuning = errorOver(request_.measure, request_.leakWeight, visibility, targets, 0, tuneFrames_);
-    const SetError heldOut = errorOver(request_.measure, request_.leakWeight, visibility, targets, tuneFrames_, path_.size());
+    const SetError tuning =
+        errorOver(request_.measure, request_.leakWeight, visibility, targets, 0, tuneFrames_);
+    const SetError heldOut = errorOver(request_.measure, request_.leakWeight, visibility, targets,
+                                       tuneFrames_, path_.size());
     m.tuneError = tuning.measure;
     m.tuneRmse = tuning.rmse;
     m.heldOutError = heldOut.measure;

@@ -26,8 +26,8 @@ void appendChunk(std::string& out, const char* type, const std::string& data) {
   appendBigEndian(out, uint32_t(data.size()));
   const std::string typed = std::string(type, 4) + data;
   out += typed;
-  appendBigEndian(out, uint32_t(crc32(0, reinterpret_cast<const Bytef*>(typed.data()),
-                                      uInt(typed.size()))));
+  appendBigEndian(
+      out, uint32_t(crc32(0, reinterpret_cast<const Bytef*>(typed.data()), uInt(typed.size()))));
 }
 
 // An 8-bit RGBA PNG declaring width x height whose image data inflates to `rawBytes` zero bytes.
@@ -36,7 +36,8 @@ std::string png(uint32_t width, uint32_t height, size_t rawBytes) {
   std::string header;
   appendBigEndian(header, width);
   appendBigEndian(header, height);
-  header += std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, filter 0, no interlace
+  header +=
+      std::string("\x08\x06\x00\x00\x00", 5);  // 8 bits, RGBA, deflate, filter 0, no interlace
   appendChunk(out, "IHDR", header);
   const std::vector<Bytef> raw(rawBytes, 0);
   uLongf packedSize = compressBound(uLong(raw.size()));
@@ -54,7 +55,9 @@ Scene loadTexturedTriangle(const std::string& name, const std::string& pngBytes)
   std::ofstream(dir / "t.mtl") << "newmtl m\nmap_Kd t.png\n";
   std::ofstream(dir / "t.obj") << "mtllib t.mtl\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\n"
                                   "vt 0 1\nusemtl m\nf 1/1 2/2 3/3\n";
-  Scene scene = loadScene((dir / "t.obj").string(), {256u << 20});
+  SceneLoadOptions options;
+  options.maxMemoryBytes = 256u << 20;
+  Scene scene = loadScene((dir / "t.obj").string(), options);
   fs::remove_all(dir);
   return scene;
 }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 
+#include "load_as_written.h"
 #include "penumbra/error.h"
 #include "penumbra/image_io.h"
 #include "penumbra/scene.h"
@@ -29,7 +30,7 @@ fs::path scratch(const std::string& name) {
 // The message of the Error loadScene throws for `file`, or "loaded".
 std::string refusal(const fs::path& file) {
   try {
-    loadScene(file.string());
+    testing::loadAsWritten(file.string());
     return "loaded";
   } catch (const Error& e) {
     return e.what();
@@ -109,7 +110,7 @@ TEST(UntrustedObj, ReadsFiniteNumbersAndCommentsAsBefore) {
   const fs::path file = testing::writeFile(
       dir / "finite.obj",
       "mtllib lib.mtl\nv 0 0 0 # nan\nv 1 0 0\nv 1 1 -1e-30\nusemtl a\nf 1 2 3\n");
-  const Scene s = loadScene(file.string());
+  const Scene s = testing::loadAsWritten(file.string());
   ASSERT_EQ(s.meshes.size(), 1u);
   EXPECT_EQ(s.meshes[0].albedo, glm::vec3(0.5f, 0.25f, 1.0f));
   EXPECT_EQ(s.meshes[0].alphaMode, AlphaMode::Opaque);
@@ -133,7 +134,7 @@ std::string circleFace(size_t corners) {
 TEST(UntrustedObj, RefusesAPolygonOfMoreCornersThanItTriangulatesInTime) {
   const fs::path dir = scratch("polygon");
   const fs::path atLimit = testing::writeFile(dir / "limit.obj", circleFace(4096));
-  EXPECT_EQ(loadScene(atLimit.string()).triangleCount(), 4094u);
+  EXPECT_EQ(testing::loadAsWritten(atLimit.string()).triangleCount(), 4094u);
   const fs::path beyond = testing::writeFile(dir / "beyond.obj", circleFace(100000));
   EXPECT_EQ(refusal(beyond), beyond.string() +
                                  ": line 100002: a face of 100000 corners; penumbra takes polygons "
@@ -210,7 +211,7 @@ TEST(UntrustedGltf, RefusesANodeTransformBeyondSinglePrecision) {
 }
 
 TEST(UntrustedGltf, LoadsTheGeneratedQuad) {
-  const Scene s = loadScene(writeQuad(scratch("quad"), {}).string());
+  const Scene s = testing::loadAsWritten(writeQuad(scratch("quad"), {}).string());
   EXPECT_EQ(s.triangleCount(), 2u);
   EXPECT_EQ(s.textures.size(), 1u);
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
@@ -261,7 +262,7 @@ TEST(UntrustedGltf, WarnsOncePerMaterialThatBlendIsDrawnAsAMask) {
       R"({"name":"glass","alphaMode":"BLEND","pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.25]}})");
   quad.nodes = R"([{"mesh":0,"children":[1]},{"mesh":0,"translation":[0,1,0]}])";
   const fs::path file = writeQuad(scratch("blend"), quad);
-  const Scene s = loadScene(file.string());
+  const Scene s = testing::loadAsWritten(file.string());
   ASSERT_EQ(s.meshes.size(), 2u);
   for (const Mesh& m : s.meshes) EXPECT_EQ(m.alphaMode, AlphaMode::Blend);
   ASSERT_EQ(s.warnings.size(), 1u);

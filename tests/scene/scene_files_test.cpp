@@ -7,6 +7,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "load_as_written.h"
 #include "penumbra/error.h"
 #include "penumbra/image.h"
 #include "penumbra/image_io.h"
@@ -31,8 +32,8 @@ bool allFinite(const Scene& scene) {
 }
 
 TEST(GltfLoader, LoadsTheTwoCylinderEngineWithItsCameraAndEveryTriangle) {
-  const Scene s =
-      loadScene((kModels / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string());
+  const Scene s = testing::loadAsWritten(
+      (kModels / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb").string());
   EXPECT_EQ(s.name, "2CylinderEngine");
   EXPECT_EQ(s.triangleCount(), 121496u);  // the sum of its primitives' index counts / 3
   EXPECT_TRUE(allFinite(s));
@@ -44,7 +45,7 @@ TEST(GltfLoader, ReadsTheBaseColourTextureAsRgba8) {
   for (const char* file :
        {"glTF2/BoxTextured-glTF/BoxTextured.gltf", "glTF2/BoxTextured-glTF-Binary/BoxTextured.glb",
         "glTF2/BoxTextured-glTF-Embedded/BoxTextured.gltf"}) {
-    const Scene s = loadScene((kModels / file).string());
+    const Scene s = testing::loadAsWritten((kModels / file).string());
     ASSERT_EQ(s.textures.size(), 1u) << file;
     EXPECT_EQ(s.textures[0].width, 211) << file;  // CesiumLogoFlat.png
     EXPECT_EQ(s.textures[0].rgba.size(), size_t(211 * 211 * 4)) << file;
@@ -55,8 +56,8 @@ TEST(GltfLoader, ReadsTheBaseColourTextureAsRgba8) {
 }
 
 TEST(GltfLoader, ReplacesZeroNormalsWithTriangleNormalsAndWarns) {
-  const Scene s =
-      loadScene((kModels / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb").string());
+  const Scene s = testing::loadAsWritten(
+      (kModels / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb").string());
   EXPECT_TRUE(allFinite(s));
   ASSERT_FALSE(s.warnings.empty());
   EXPECT_NE(s.warnings[0].find("normals were not finite or had zero length"), std::string::npos);
@@ -68,7 +69,7 @@ TEST(GltfLoader, ConvertsStripsAndFansToTriangles) {
     const fs::path f =
         kModels / ("glTF2/glTF-Asset-Generator/Mesh_PrimitiveMode/Mesh_PrimitiveMode_0" +
                    std::to_string(mode) + ".gltf");
-    const Scene s = loadScene(f.string());
+    const Scene s = testing::loadAsWritten(f.string());
     EXPECT_EQ(s.triangleCount(), 2u) << f;
     // Counter-clockwise seen from +z (the file's front): every normal points at +z.
     for (const Vertex& v : s.meshes[0].vertices) EXPECT_GT(v.normal.z, 0.99f) << f;
@@ -85,7 +86,7 @@ class BrokenGltf : public ::testing::TestWithParam<BrokenFile> {};
 TEST_P(BrokenGltf, IsRefusedWithAnErrorNamingTheFileAndTheFault) {
   const fs::path path = kModels / "glTF2" / GetParam().path;
   try {
-    loadScene(path.string());
+    testing::loadAsWritten(path.string());
     FAIL() << path << " loaded";
   } catch (const Error& e) {
     const std::string what = e.what();
@@ -135,7 +136,7 @@ const std::vector<uint16_t> kQuadIndices{0, 1, 2, 0, 2, 3};
 TEST(GltfLoader, RefusesAnImageWhoseBufferViewRunsPastItsBuffer) {
   const fs::path file = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_image_view_past_buffer.glb";
   try {
-    loadScene(file.string());
+    testing::loadAsWritten(file.string());
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("runs past the end of its buffer"), std::string::npos)
@@ -162,7 +163,7 @@ TEST(GltfLoader, APngWithAnEmptyFirstDataChunkIsDecodedWithoutUndefinedBehaviour
   const fs::path file =
       testing::writeFile(fs::path(::testing::TempDir()) / "png_empty_first_idat.glb", bytes);
   try {
-    loadScene(file.string());
+    testing::loadAsWritten(file.string());
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("is out of range"), std::string::npos) << e.what();
@@ -177,7 +178,7 @@ TEST(GltfLoader, ComposesNodeTransformsParentFirst) {
   const fs::path file =
       testing::writeFile(fs::path(::testing::TempDir()) / "hierarchy.gltf",
                          testing::gltfWithMesh(kQuad, kQuadIndices, nodes, "[0]"));
-  const Scene s = loadScene(file.string());
+  const Scene s = testing::loadAsWritten(file.string());
   ASSERT_EQ(s.meshes.size(), 1u);
   const glm::mat4 world = glm::translate(glm::mat4(1.0f), glm::vec3(0, 1, 0)) *
                           glm::rotate(glm::mat4(1.0f), glm::radians(30.0f), glm::vec3(0, 1, 0)) *
@@ -201,7 +202,7 @@ TEST(GltfLoader, RefusesANodeWithTwoParents) {
   EXPECT_THROW(
       {
         try {
-          loadScene(file.string());
+          testing::loadAsWritten(file.string());
         } catch (const Error& e) {
           EXPECT_NE(std::string(e.what()).find("node 2 is reached twice"), std::string::npos)
               << e.what();
@@ -215,7 +216,7 @@ TEST(GltfLoader, ComputesFlatNormalsWhereTheFileHasNone) {
   const fs::path file =
       testing::writeFile(fs::path(::testing::TempDir()) / "flat.gltf",
                          testing::gltfWithMesh(kQuad, kQuadIndices, R"([{"mesh":0}])", "[0]"));
-  const Scene s = loadScene(file.string());
+  const Scene s = testing::loadAsWritten(file.string());
   ASSERT_EQ(s.meshes[0].vertices.size(), 6u);  // one vertex per triangle corner
   for (const Vertex& v : s.meshes[0].vertices) EXPECT_EQ(v.normal, glm::vec3(0.0f, 1.0f, 0.0f));
 }
@@ -238,7 +239,7 @@ TEST(ObjLoader, ReadsMapDAsTheAlphaMaskOfMapKd) {
   testing::writeFile(dir / "leaf.obj",
                      "mtllib leaf.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\n"
                      "vt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\nusemtl leaf\nf 1/1 2/2 3/3 4/4\n");
-  const Scene s = loadScene((dir / "leaf.obj").string());
+  const Scene s = testing::loadAsWritten((dir / "leaf.obj").string());
   ASSERT_EQ(s.meshes.size(), 1u);
   const Mesh& m = s.meshes[0];
   EXPECT_EQ(m.alphaMode, AlphaMode::Mask);
@@ -259,7 +260,7 @@ TEST(ObjLoader, RefusesAFaceNamingAVertexTheFileDoesNotHave) {
   const fs::path file = testing::writeFile(fs::path(::testing::TempDir()) / "bad_index.obj",
                                            "v 0 0 0\nv 1 0 0\nv 1 1 0\nf 1 2 7\n");
   try {
-    loadScene(file.string());
+    testing::loadAsWritten(file.string());
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find("names vertex 7, but the file has 3"), std::string::npos)
@@ -271,7 +272,7 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
   // The fuzzer's find: tinyobjloader would convert the joint to int, undefined behaviour.
   const fs::path file = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_vw_joint_beyond_int.obj";
   try {
-    loadScene(file.string());
+    testing::loadAsWritten(file.string());
     FAIL();
   } catch (const Error& e) {
     const std::string message = e.what();
@@ -285,16 +286,17 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
   const fs::path valid = testing::writeFile(
       fs::path(::testing::TempDir()) / "skin_weights.obj",
       "v 0 0 0\r\nv 1 0 0\r\nv 0 1 0\r\nvw 1\t0 0.5 2147483647 0.5\r\nf 1 2 3\r\n");
-  EXPECT_EQ(loadScene(valid.string()).triangleCount(), 1u);
+  EXPECT_EQ(testing::loadAsWritten(valid.string()).triangleCount(), 1u);
   const fs::path negative =
       testing::writeFile(fs::path(::testing::TempDir()) / "negative.obj", "v 0 0 0\nvw 0 -3e9 1\n");
-  EXPECT_THROW(loadScene(negative.string()), Error) << "below int's range is undefined too";
+  EXPECT_THROW(testing::loadAsWritten(negative.string()), Error)
+      << "below int's range is undefined too";
   const fs::path later = testing::writeFile(fs::path(::testing::TempDir()) / "late_joint.obj",
                                             "v 0 0 0\rv 1 0 0\nvw 1 0 0.5 1e10 0.5\n");
   EXPECT_THROW(
       {
         try {
-          loadScene(later.string());
+          testing::loadAsWritten(later.string());
         } catch (const Error& e) {
           EXPECT_NE(std::string(e.what()).find("line 3: skin weight (vw) joint '1e10'"),
                     std::string::npos)
@@ -308,30 +310,30 @@ TEST(ObjLoader, RefusesASkinWeightJointBeyondInt) {
 TEST(ObjLoader, RefusesNonFinitePositions) {
   const fs::path file = testing::writeFile(fs::path(::testing::TempDir()) / "nan.obj",
                                            "v 0 0 0\nv 1 0 0\nv 1e400 1 0\nf 1 2 3\n");
-  EXPECT_THROW(loadScene(file.string()), Error);
+  EXPECT_THROW(testing::loadAsWritten(file.string()), Error);
 }
 
 TEST(ObjLoader, LoadsTheAssimpTestModels) {
   for (const char* file : {"OBJ/spider.obj", "OBJ/WusonOBJ.obj", "OBJ/box.obj"}) {
-    const Scene s = loadScene((kModels / file).string());
+    const Scene s = testing::loadAsWritten((kModels / file).string());
     EXPECT_GT(s.triangleCount(), 0u) << file;
     EXPECT_TRUE(allFinite(s)) << file;
   }
   // spider.mtl names its textures with Windows separators (".\\SpiderTex.jpg"); its faces use
   // four of its five materials.
-  EXPECT_EQ(loadScene((kModels / "OBJ/spider.obj").string()).textures.size(), 4u);
+  EXPECT_EQ(testing::loadAsWritten((kModels / "OBJ/spider.obj").string()).textures.size(), 4u);
 }
 
 TEST(SceneSource, NamesTheValidScenesAndExtensionsForAnythingElse) {
   try {
-    loadScene("garden");
+    testing::loadAsWritten("garden");
     FAIL();
   } catch (const Error& e) {
     EXPECT_NE(
         std::string(e.what()).find("foliage, penumbrae, lantern, or a .gltf, .glb or .obj file"),
         std::string::npos);
   }
-  EXPECT_THROW(loadScene("/nonexistent/model.glb"), Error);
+  EXPECT_THROW(testing::loadAsWritten("/nonexistent/model.glb"), Error);
 }
 
 TEST(SceneOverrides, SetTheLightAndCameraAndRefuseNonsense) {

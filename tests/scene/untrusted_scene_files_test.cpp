@@ -37,6 +37,14 @@ fs::path scratch(const std::string& name) {
 }
 
 // The message of the Error loadScene throws for `file`, or "loaded".
+// Load options that bound the memory, for the file's geometry as written (no added ground).
+SceneLoadOptions memoryLimit(uint64_t bytes) {
+  SceneLoadOptions options;
+  options.maxMemoryBytes = bytes;
+  options.ground = GroundMode::Off;
+  return options;
+}
+
 std::string refusal(const fs::path& file, const SceneLoadOptions& options = {}) {
   try {
     loadScene(file.string(), options);
@@ -137,14 +145,14 @@ fs::path writeInstances(const fs::path& dir, int side, int instances) {
 TEST(UntrustedGltf, BudgetsEveryInstanceOfAMeshBeforeExpandingIt) {
   const fs::path file = writeInstances(scratch("instances"), 64, 100);
   // 793,800 triangles, 2,381,400 vertices of 32 bytes and as many indices: 81.8 MiB.
-  const std::string message = refusal(file, {16 * kMiB});
+  const std::string message = refusal(file, memoryLimit(16 * kMiB));
   EXPECT_TRUE(message.starts_with(file.string() +
                                   ": needs 81.9 MiB of host memory for 793,800 triangles (81.8 "
                                   "MiB) and the "))
       << message;
   EXPECT_TRUE(message.ends_with(" of files read, above the 16.0 MiB limit (--max-memory)"))
       << message;
-  EXPECT_EQ(loadScene(file.string(), {256 * kMiB}).triangleCount(), 793800u);
+  EXPECT_EQ(loadScene(file.string(), memoryLimit(256 * kMiB)).triangleCount(), 793800u);
 }
 
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
@@ -171,7 +179,7 @@ uint64_t mappedBytes() {
   const uint64_t limit = mappedBytes() + 192 * kMiB;
   const rlimit addressSpace{limit, limit};
   setrlimit(RLIMIT_AS, &addressSpace);
-  const std::string message = refusal(file, {kMaxSceneMemoryBytes});
+  const std::string message = refusal(file, memoryLimit(kMaxSceneMemoryBytes));
   std::fprintf(stderr, "%s\n", message.c_str());
   std::exit(contains(message, "\n") ? 2 : 1);
 }
@@ -210,7 +218,7 @@ TEST(UntrustedGltf, DecodesOnlyTheImagesItsMaterialsUse) {
   const fs::path file = testing::writeFile(
       dir / "unused.gltf",
       testing::gltfWithMesh(kQuad, kQuadIndices, R"([{"mesh":0}])", "[0]", "", images + "]"));
-  const Scene s = loadScene(file.string(), {16 * kMiB});
+  const Scene s = loadScene(file.string(), memoryLimit(16 * kMiB));
   EXPECT_TRUE(s.textures.empty());
   // Decoding any of them would have warned that it cannot be used.
   EXPECT_TRUE(s.warnings.empty()) << s.warnings.front();
@@ -223,12 +231,12 @@ TEST(UntrustedGltf, BudgetsTheImagesItsMaterialsUseFromTheirHeadersBeforeDecodin
       dir / "textured.gltf",
       testing::gltfWithMesh(kQuad, kQuadIndices, R"([{"mesh":0}])", "[0]", R"(,"material":0)",
                             kTexturedMaterial + R"(,"images":[{"uri":"huge.png"}])"));
-  const std::string message = refusal(file, {64 * kMiB});
+  const std::string message = refusal(file, memoryLimit(64 * kMiB));
   EXPECT_TRUE(contains(message, "for 2 triangles (") && contains(message, "1 texture (256 MiB)") &&
               contains(message, "above the 64.0 MiB limit (--max-memory)"))
       << message;
   // Within the budget it is decoded, fails, and the material keeps its factor.
-  const Scene s = loadScene(file.string(), {512 * kMiB});
+  const Scene s = loadScene(file.string(), memoryLimit(512 * kMiB));
   EXPECT_TRUE(s.textures.empty());
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_TRUE(contains(s.warnings[0], "huge.png cannot be used: decoding failed")) << s.warnings[0];
@@ -331,7 +339,7 @@ TEST(UntrustedSceneFiles, RefuseASideFileLargerThanTheBudgetBeforeReadingIt) {
   testing::writeFile(dir / "big.mtl", "newmtl a\nmap_Kd big.png\n");
   const fs::path obj = testing::writeFile(
       dir / "big.obj", "mtllib big.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl a\nf 1 2 3\n");
-  const std::string objMessage = refusal(obj, {64 * kMiB});
+  const std::string objMessage = refusal(obj, memoryLimit(64 * kMiB));
   EXPECT_TRUE(objMessage.starts_with(obj.string() + ": texture 'big.png' is 2.00 GiB, which takes "
                                                     "the files read to 2.00 GiB, above the 64.0 "
                                                     "MiB limit (--max-memory)"))
@@ -339,7 +347,7 @@ TEST(UntrustedSceneFiles, RefuseASideFileLargerThanTheBudgetBeforeReadingIt) {
   const fs::path gltf = testing::writeFile(
       dir / "big.gltf",
       R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":16,"uri":"big.bin"}]})");
-  const std::string gltfMessage = refusal(gltf, {64 * kMiB});
+  const std::string gltfMessage = refusal(gltf, memoryLimit(64 * kMiB));
   EXPECT_TRUE(contains(gltfMessage, "big.bin' is 2.00 GiB, which takes the files read to"))
       << gltfMessage;
 }
@@ -360,7 +368,7 @@ TEST(UntrustedObj, DecodesATextureSharedByManyMaterialsOnce) {
   const fs::path file = testing::writeFile(
       dir / "shared.obj",
       "mtllib shared.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nvt 0 0\nvt 1 0\nvt 1 1\n" + faces);
-  const Scene s = loadScene(file.string(), {4 * kMiB});
+  const Scene s = loadScene(file.string(), memoryLimit(4 * kMiB));
   ASSERT_EQ(s.meshes.size(), 60u);
   ASSERT_EQ(s.textures.size(), 2u);
   for (size_t m = 0; m < 60; ++m) EXPECT_EQ(s.meshes[m].baseColorTexture, m < 40 ? 0 : 1) << m;
@@ -393,16 +401,16 @@ TEST(UntrustedObj, BudgetsGeometryAndTexturesBeforeBuildingThem) {
   testing::writeFile(dir / "huge.mtl", "newmtl a\nmap_Kd huge.png\n");
   const fs::path textured = testing::writeFile(
       dir / "textured.obj", "mtllib huge.mtl\nv 0 0 0\nv 1 0 0\nv 1 1 0\nusemtl a\nf 1 2 3\n");
-  const std::string message = refusal(textured, {64 * kMiB});
+  const std::string message = refusal(textured, memoryLimit(64 * kMiB));
   EXPECT_TRUE(contains(message, "for 1 triangle (") && contains(message, "1 texture (256 MiB)"))
       << message;
   // 20,000 faces: at most three vertices of 32 bytes and three indices each, 2.06 MiB.
   std::string faces = "v 0 0 0\nv 1 0 0\nv 1 1 0\n";
   for (int i = 0; i < 20000; ++i) faces += "f 1 2 3\n";
   const fs::path many = testing::writeFile(dir / "many.obj", faces);
-  const std::string manyMessage = refusal(many, {kMinSceneMemoryBytes});
+  const std::string manyMessage = refusal(many, memoryLimit(kMinSceneMemoryBytes));
   EXPECT_TRUE(contains(manyMessage, "for 20,000 triangles (2.06 MiB)")) << manyMessage;
-  EXPECT_EQ(loadScene(many.string(), {16 * kMiB}).triangleCount(), 20000u);
+  EXPECT_EQ(loadScene(many.string(), memoryLimit(16 * kMiB)).triangleCount(), 20000u);
 }
 
 TEST(SceneLoadOptions, ParsesMemorySizesInMiBOrWithABinaryUnit) {
@@ -444,7 +452,7 @@ TEST(SceneLoadOptions, DefaultsToHalfThePhysicalMemoryAndRefusesLimitsOutOfRange
             std::clamp(physical / 2, kMinSceneMemoryBytes, kMaxSceneMemoryBytes));
   EXPECT_EQ(SceneLoadOptions{}.maxMemoryBytes, defaultSceneMemoryLimit());
   const fs::path file = writeChain(scratch("limit_range"), 1);
-  EXPECT_EQ(refusal(file, {kMinSceneMemoryBytes - 1}),
+  EXPECT_EQ(refusal(file, memoryLimit(kMinSceneMemoryBytes - 1)),
             "the scene memory limit 1024 KiB is out of range [1.00 MiB, 1.00 PiB]");
 }
 

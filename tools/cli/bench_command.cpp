@@ -18,10 +18,10 @@
 #include "penumbra/compare/paper_bench_report.h"
 #include "penumbra/csv_field.h"
 #include "penumbra/error.h"
-#include "penumbra/text_file.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/pass_bench.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/text_file.h"
 #include "render_options.h"
 #include "scene_options.h"
 #include "technique_options.h"
@@ -64,7 +64,8 @@ void runPaperExperiments(const BenchOptions& o) {
   sizes.height = o.render.height;
   std::vector<compare::Experiment> experiments;
   for (const std::string& id : ids) experiments.push_back(compare::makePaperExperiment(id, sizes));
-  Scene scene = loadScene(o.scene.scene, sceneLoadOptions(o.scene));
+  Scene scene = loadScene(
+      o.scene.scene, sceneLoadOptions(o.scene, float(o.render.width) / float(o.render.height)));
   applyOverrides(scene, sceneOverrides(o.scene));
   CommandOutput output(o.output);
   InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
@@ -116,7 +117,8 @@ void runBench(const BenchOptions& o) {
                 " has no prefilter passes to measure (it filters after the test): choose "
                 "techniques that prefilter, or all");
   }
-  Scene scene = loadScene(o.scene.scene, sceneLoadOptions(o.scene));
+  Scene scene = loadScene(
+      o.scene.scene, sceneLoadOptions(o.scene, float(o.render.width) / float(o.render.height)));
   applyOverrides(scene, sceneOverrides(o.scene));
   CommandOutput output(o.output);
   InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask

@@ -58,7 +58,9 @@ void runCompare(const CompareOptions& o) {
       resolveSettings(*o.command, o.settingsFile, o.scene, o.technique, o.render);
   request.scene = resolved.scene;
   checkSceneSource(request.scene);  // unknown scenes and missing files fail before anything else
-  request.sceneLoad = sceneLoadOptions(o.scene);
+  const float aspect = float(resolved.render.width) / float(resolved.render.height);
+  if (printCameraListIfAsked(o.scene, request.scene, aspect)) return;
+  request.sceneLoad = sceneLoadOptions(o.scene, aspect);
   request.view = resolved.view;
   request.techniques = resolved.techniques;
   // A PCF parameter the user set (--param or the settings file) is used as given: PCF then keeps

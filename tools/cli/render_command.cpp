@@ -17,8 +17,8 @@
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/render_record.h"
-#include "penumbra/gl/settings_json.h"
 #include "penumbra/gl/renderer.h"
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/image_io.h"
 #include "penumbra/metrics.h"
 #include "penumbra/output_journal.h"
@@ -106,7 +106,9 @@ void runRender(const RenderCommandOptions& options) {
                                                 options.scene, options.technique, options.render);
   const SceneOverrides& overrides = resolved.view;
   const auto loadStart = std::chrono::steady_clock::now();
-  Scene scene = loadScene(resolved.scene, sceneLoadOptions(options.scene));
+  const float aspect = float(resolved.render.width) / float(resolved.render.height);
+  if (printCameraListIfAsked(options.scene, resolved.scene, aspect)) return;
+  Scene scene = loadScene(resolved.scene, sceneLoadOptions(options.scene, aspect));
   const double loadMs =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - loadStart)
           .count();
@@ -149,8 +151,8 @@ void runRender(const RenderCommandOptions& options) {
     if (options.frames > 1) {
       result = renderSequence(renderer, scene, settings, options, dir, stem, files);
     }
-    leastShadowed = std::min(leastShadowed, compare::shadowedShare(
-                                                result.visibility, litSurfaceMask(result.lookup)));
+    leastShadowed = std::min(
+        leastShadowed, compare::shadowedShare(result.visibility, litSurfaceMask(result.lookup)));
     const bool classified =
         technique == Technique::Esm && result.params.esm.classifier != shaders::kEsmClassifyNone;
     if (classified) {
@@ -164,8 +166,9 @@ void runRender(const RenderCommandOptions& options) {
     writeColorPng(result.color, dir / files.at("color"));
     writeFloatExr(result.visibility, dir / files.at("visibility_exr"));
     writeGrey16Png(result.visibility, dir / files.at("visibility_png"));
-    writeTextFile(dir / files.at("record"),
-                  gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files));
+    writeTextFile(
+        dir / files.at("record"),
+        gl::renderRecordJson(scene, settings, result, renderer.deviceDescription(), files));
     // The picture again through --settings: this technique, these settings, this exact view.
     gl::Settings again = resolved;
     again.techniques = {technique};

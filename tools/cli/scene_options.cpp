@@ -4,6 +4,7 @@
 // Light::size}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
 #include "scene_options.h"
 
+#include <cmath>
 #include <iostream>
 #include <sstream>
 
@@ -55,12 +56,64 @@ void addSceneOptions(CLI::App& app, SceneOptions& o) {
                  "expanded, decoded textures): MiB, or with a unit K, M, G or T; default half "
                  "this machine's memory, " +
                      memorySizeText(defaultSceneMemoryLimit()) + " (docs/untrusted-input.md)");
+  app.add_option("--ground", o.ground,
+                 "auto: a ground plane under a scene file's model that stands on no floor of "
+                 "its own; on; off (docs/scenes.md, \"Real models\")")
+      ->capture_default_str();
+  app.add_option("--casters", o.casters,
+                 "auto: geometry enclosing a scene file's model (a sky dome or box) and unlit "
+                 "materials cast no shadows; all: every mesh casts")
+      ->capture_default_str();
+  app.add_option("--camera", o.camera,
+                 "N: a scene file's camera N (default: the first that sees the whole model, "
+                 "else a camera framing the model to 80% of the frame); list: name them with "
+                 "what they see");
 }
 
-SceneLoadOptions sceneLoadOptions(const SceneOptions& o) {
+SceneLoadOptions sceneLoadOptions(const SceneOptions& o, float aspect) {
   SceneLoadOptions options;
   if (!o.maxMemory.empty()) options.maxMemoryBytes = parseMemorySize(o.maxMemory, "--max-memory");
+  options.aspect = aspect;
+  options.ground = parseGroundMode(o.ground);
+  options.casters = parseCasterMode(o.casters);
+  if (!o.camera.empty() && o.camera != "list") {
+    size_t end = 0;
+    int index = -1;
+    try {
+      index = std::stoi(o.camera, &end);
+    } catch (const std::exception&) {
+      end = 0;
+    }
+    if (end == 0 || end != o.camera.size()) {
+      throw Error("--camera '" + o.camera + "' must be a camera's index (0, 1, ...) or 'list'");
+    }
+    options.camera = index;
+  }
   return options;
+}
+
+bool printCameraListIfAsked(const SceneOptions& o, const std::string& source, float aspect) {
+  if (o.camera != "list") return false;
+  SceneOptions listing = o;
+  listing.camera.clear();
+  const Scene scene = loadScene(source, sceneLoadOptions(listing, aspect));
+  if (scene.fileCameras.empty()) {
+    std::cout << source << " defines no cameras; the default camera frames the model\n";
+    return true;
+  }
+  std::cout << source << " defines " << scene.fileCameras.size()
+            << " cameras (what each sees of the model at aspect " << aspect << "):\n";
+  for (size_t i = 0; i < scene.fileCameras.size(); ++i) {
+    const NamedCamera& c = scene.fileCameras[i];
+    const CameraSight sight = cameraSight(scene, c.camera, aspect);
+    std::cout << "  " << i << "  " << (c.name.empty() ? "(unnamed)" : c.name) << "  at "
+              << c.camera.position.x << "," << c.camera.position.y << "," << c.camera.position.z
+              << ", fov " << c.camera.verticalFovDegrees
+              << " deg: " << std::floor(1000.0f * sight.surfaceShare) / 10.0f
+              << "% of the model's surface, " << int(std::lround(100.0f * sight.frameShare))
+              << "% of the frame\n";
+  }
+  return true;
 }
 
 SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
@@ -105,6 +158,7 @@ SceneOverrides sceneOverrides(const SceneOptions& o, SceneOverrides base) {
 
 void printSceneWarnings(const Scene& scene) {
   for (const std::string& w : scene.warnings) std::cerr << "penumbra: warning: " << w << "\n";
+  for (const std::string& n : scene.notes) std::cerr << "penumbra: note: " << n << "\n";
 }
 
 }  // namespace penumbra::cli

@@ -22,6 +22,9 @@ struct SceneOptions {
   std::optional<float> cameraFov;
   std::optional<float> lightSize;  // Light::size
   std::string maxMemory;           // --max-memory as given; empty: defaultSceneMemoryLimit()
+  std::string ground = "auto";     // --ground auto|on|off
+  std::string casters = "auto";    // --casters auto|all
+  std::string camera;              // --camera N|list; empty: SceneLoadOptions::camera's rule
 };
 
 void addSceneOptions(CLI::App& app, SceneOptions& options);
@@ -30,11 +33,16 @@ void addSceneOptions(CLI::App& app, SceneOptions& options);
 // option or the file's key that is malformed.
 SceneOverrides sceneOverrides(const SceneOptions& options, SceneOverrides base = {});
 
-// What loading a scene file may take (--max-memory); throws Error for a size that is malformed or
-// out of range.
-SceneLoadOptions sceneLoadOptions(const SceneOptions& options);
+// How to load a scene file for frames of this aspect (width / height): --max-memory, --ground,
+// --casters, --camera N. Throws Error for a size that is malformed or out of range, an unknown
+// mode (listing the valid ones), a camera that is neither a number nor 'list'.
+SceneLoadOptions sceneLoadOptions(const SceneOptions& options, float aspect);
 
-// Prints the scene's warnings to stderr, one line each.
+// --camera list: prints the scene file's cameras, each with what it sees of the model at this
+// aspect, and returns true; false when not asked.
+bool printCameraListIfAsked(const SceneOptions& options, const std::string& scene, float aspect);
+
+// Prints the scene's warnings and notes to stderr, one line each.
 void printSceneWarnings(const Scene& scene);
 
 }  // namespace penumbra::cli

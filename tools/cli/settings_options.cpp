@@ -37,7 +37,8 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
     }
     gl::applySettingsFile(path, s, given);
     // The file's "blur" sets its width's default sigma: a --blur-sigma given here stays.
-    if (command.count("--blur-sigma") > 0) s.render.blur.sigma = renderSettingsOf(render).blur.sigma;
+    if (command.count("--blur-sigma") > 0)
+      s.render.blur.sigma = renderSettingsOf(render).blur.sigma;
   }
   requireGivenOptionsApply(render, s.render);
   gl::validateRenderSettings(s.render);

@@ -80,7 +80,8 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
       resolveSettings(*o.command, o.settingsFile, scene, o.technique, o.render);
   tune::TuneRequest r;
   r.scenes = o.scenes.empty() ? std::vector<std::string>{resolved.scene} : o.scenes;
-  r.sceneLoad = sceneLoadOptions(o.scene);
+  r.sceneLoad =
+      sceneLoadOptions(o.scene, float(resolved.render.width) / float(resolved.render.height));
   r.view = resolved.view;
   r.techniques = resolved.techniques;
   r.settings = resolved.render;
@@ -152,8 +153,8 @@ void runTune(const TuneOptions& o) {
   if (!sharded) tune::writeTuneReport(staging);
   output.finish(interrupt);
   if (!o.quiet) {
-    std::cout << "wrote "
-              << (sharded ? output.target() : output.target() / "index.html").string() << "\n";
+    std::cout << "wrote " << (sharded ? output.target() : output.target() / "index.html").string()
+              << "\n";
   }
 }
 

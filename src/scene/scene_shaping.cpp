@@ -1,0 +1,315 @@
+// Real models look right the first time: enclosures cast no shadow, a lone model stands on a
+// ground, the camera sees the model (docs/scenes.md, "Real models").
+#include "scene_shaping.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "penumbra/error.h"
+
+namespace penumbra {
+namespace {
+
+constexpr std::string_view kGroundModeNames[] = {"auto", "on", "off"};
+constexpr std::string_view kCasterModeNames[] = {"auto", "all"};
+
+std::string nameList(std::span<const std::string_view> names) {
+  std::string list;
+  for (std::string_view n : names) list += (list.empty() ? "" : ", ") + std::string(n);
+  return list;
+}
+
+std::string percent(float share) {
+  std::ostringstream text;
+  text.precision(3);
+  text << 100.0f * share << "%";
+  return text.str();
+}
+
+}  // namespace
+
+std::string_view groundModeName(GroundMode mode) {
+  return kGroundModeNames[int(mode)];
+}
+
+GroundMode parseGroundMode(std::string_view name) {
+  for (size_t i = 0; i < std::size(kGroundModeNames); ++i) {
+    if (kGroundModeNames[i] == name) return GroundMode(i);
+  }
+  throw Error("unknown ground mode '" + std::string(name) +
+              "'; valid modes: " + nameList(kGroundModeNames));
+}
+
+std::string_view casterModeName(CasterMode mode) {
+  return kCasterModeNames[int(mode)];
+}
+
+CasterMode parseCasterMode(std::string_view name) {
+  for (size_t i = 0; i < std::size(kCasterModeNames); ++i) {
+    if (kCasterModeNames[i] == name) return CasterMode(i);
+  }
+  throw Error("unknown casters mode '" + std::string(name) +
+              "'; valid modes: " + nameList(kCasterModeNames));
+}
+
+Camera framingCamera(const Scene& scene, float aspect) {
+  Camera camera;
+  camera.verticalFovDegrees = 45.0f;
+  const Bounds model = scene.modelBounds();
+  const glm::vec3 centre = model.centre();
+  const glm::vec3 back = glm::normalize(kFramingDirection);  // from the model to the camera
+  const glm::vec3 forward = -back;
+  // The camera's axes as viewFromWorld builds them (glm::lookAt with +y up).
+  const glm::vec3 right = glm::normalize(glm::cross(forward, glm::vec3(0.0f, 1.0f, 0.0f)));
+  const glm::vec3 up = glm::cross(right, forward);
+  const float tanHalfHeight = std::tan(glm::radians(0.5f * camera.verticalFovDegrees));
+  const float tanHalfWidth = tanHalfHeight * aspect;
+  // A vertex at offset o from the centre, seen from centre + D back, lies at depth D - o.back,
+  // across at o.right and up at o.up; it is inside fill of the frame when
+  // |o.right| <= fill tanHalfWidth (D - o.back), alike vertically. The least D meeting every
+  // vertex's conditions puts the binding vertex exactly on the fill line.
+  const float radius = std::max(model.radius(), 1e-6f);
+  float distance = 0.0f;
+  const bool hasModel = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) {
+    return m.role == MeshRole::Model && !m.vertices.empty();
+  });
+  for (const Mesh& mesh : scene.meshes) {
+    if (hasModel && mesh.role != MeshRole::Model) continue;
+    for (const Vertex& v : mesh.vertices) {
+      const glm::vec3 o = v.position - centre;
+      const float depthOffset = glm::dot(o, back);
+      distance = std::max(distance, depthOffset + 1e-3f * radius);  // every vertex in front
+      distance = std::max(
+          distance, std::abs(glm::dot(o, right)) / (kFramingFill * tanHalfWidth) + depthOffset);
+      distance = std::max(distance,
+                          std::abs(glm::dot(o, up)) / (kFramingFill * tanHalfHeight) + depthOffset);
+    }
+  }
+  camera.position = centre + distance * back;
+  camera.target = centre;
+  return camera;
+}
+
+CameraSight cameraSight(const Scene& scene, const Camera& camera, float aspect) {
+  const glm::mat4 clipFromWorld =
+      clipFromView(camera, aspect, scene.bounds()) * viewFromWorld(camera);
+  double totalArea = 0.0, seenArea = 0.0;
+  glm::vec2 low(1.0f), high(-1.0f);
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.role != MeshRole::Model) continue;
+    for (const Vertex& v : mesh.vertices) {
+      const glm::vec4 clip = clipFromWorld * glm::vec4(v.position, 1.0f);
+      if (!(clip.w > 0.0f)) continue;
+      const glm::vec2 ndc = glm::clamp(glm::vec2(clip) / clip.w, glm::vec2(-1.0f), glm::vec2(1.0f));
+      low = glm::min(low, ndc);
+      high = glm::max(high, ndc);
+    }
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+      const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+      const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+      const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
+      if (!std::isfinite(area)) continue;
+      totalArea += area;
+      const glm::vec4 clip = clipFromWorld * glm::vec4((a + b + c) / 3.0f, 1.0f);
+      if (clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w &&
+          std::abs(clip.z) <= clip.w) {
+        seenArea += area;
+      }
+    }
+  }
+  CameraSight sight;
+  if (totalArea > 0.0) sight.surfaceShare = float(seenArea / totalArea);
+  if (high.x > low.x && high.y > low.y)
+    sight.frameShare = (high.x - low.x) * (high.y - low.y) / 4.0f;
+  return sight;
+}
+
+namespace scene {
+namespace {
+
+// Within this share of the bounds' largest extent from one of their faces, a vertex hugs them.
+constexpr float kHugShare = 0.05f;
+constexpr size_t kMaxCamerasJudged = 16;
+
+float distanceToFaces(glm::vec3 p, const Bounds& b) {
+  const glm::vec3 low = p - b.min, high = b.max - p;
+  return std::min({low.x, low.y, low.z, high.x, high.y, high.z});
+}
+
+Mesh groundUnder(const Bounds& model) {
+  // A square 1.5 model radii from the model's centre each way: the default light's shadow of
+  // the model's top reaches 0.57 of its height sideways, well inside it.
+  const float radius = std::max(model.radius(), 1e-6f);
+  const float half = 1.5f * radius;
+  const float y = model.min.y - 1e-3f * radius;  // below the model's lowest point, not in it
+  const glm::vec3 c = model.centre();
+  Mesh ground;
+  ground.role = MeshRole::Ground;
+  ground.albedo = glm::vec3(0.8f);
+  const glm::vec3 up(0.0f, 1.0f, 0.0f);
+  ground.vertices = {{{c.x - half, y, c.z + half}, up, {0.0f, 1.0f}},
+                     {{c.x + half, y, c.z + half}, up, {1.0f, 1.0f}},
+                     {{c.x + half, y, c.z - half}, up, {1.0f, 0.0f}},
+                     {{c.x - half, y, c.z - half}, up, {0.0f, 0.0f}}};
+  ground.indices = {0, 1, 2, 0, 2, 3};  // counter-clockwise seen from above
+  return ground;
+}
+
+std::string cameraName(const Scene& scene, size_t index) {
+  const std::string& name = scene.fileCameras[index].name;
+  return "camera " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+}
+
+void chooseCamera(Scene& scene, const SceneLoadOptions& options, const std::string& source) {
+  const size_t count = scene.fileCameras.size();
+  if (options.camera) {
+    const int index = *options.camera;
+    if (count == 0) {
+      throw Error(source +
+                  " defines no cameras; --camera takes the index of one of a file's "
+                  "cameras ('--camera list' names them)");
+    }
+    if (index < 0 || size_t(index) >= count) {
+      throw Error("--camera " + std::to_string(index) + " is out of range [0, " +
+                  std::to_string(count - 1) + "]: " + source + " defines " + std::to_string(count) +
+                  " cameras ('--camera list' names them)");
+    }
+    scene.camera = scene.fileCameras[size_t(index)].camera;
+    return;
+  }
+  float bestShare = -1.0f;
+  size_t best = 0;
+  // Each sight costs a pass over the model: a file with thousands of cameras is judged by its
+  // first kMaxCamerasJudged.
+  for (size_t i = 0; i < std::min(count, kMaxCamerasJudged); ++i) {
+    const CameraSight sight = cameraSight(scene, scene.fileCameras[i].camera, options.aspect);
+    if (sight.surfaceShare >= kFileCameraMinSurfaceShare) {
+      scene.camera = scene.fileCameras[i].camera;
+      return;
+    }
+    if (sight.surfaceShare > bestShare) {
+      bestShare = sight.surfaceShare;
+      best = i;
+    }
+  }
+  scene.camera = framingCamera(scene, options.aspect);
+  if (count > 0) {
+    scene.warnings.push_back(
+        source + ": " +
+        (count == 1 ? std::string("its camera does not see")
+                    : "none of its " + std::to_string(count) + " cameras sees") +
+        " the whole model at the frame's aspect (" + cameraName(scene, best) + " sees " +
+        percent(bestShare) +
+        "); a camera framing the model is used instead (--camera N picks one, --camera list "
+        "names them)");
+  }
+}
+
+}  // namespace
+
+void markEnclosures(Scene& scene) {
+  const Bounds b = scene.bounds();
+  const glm::vec3 extent = b.max - b.min;
+  const float hug = kHugShare * std::max({extent.x, extent.y, extent.z});
+  std::vector<bool> shell(scene.meshes.size(), false);
+  size_t shells = 0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    const Mesh& mesh = scene.meshes[m];
+    if (mesh.vertices.empty()) continue;
+    float top = b.min.y, bottom = b.max.y;
+    size_t hugging = 0;
+    for (const Vertex& v : mesh.vertices) {
+      if (distanceToFaces(v.position, b) <= hug) ++hugging;
+      top = std::max(top, v.position.y);
+      bottom = std::min(bottom, v.position.y);
+    }
+    // A floor hugs the bottom face only; a dome's or a box's pieces reach up the sides or top.
+    const bool rises = top >= b.max.y - hug || top - bottom >= 0.5f * extent.y;
+    shell[m] = rises && double(hugging) >= 0.95 * double(mesh.vertices.size());
+    shells += shell[m] ? 1 : 0;
+  }
+  if (shells == 0 || shells == scene.meshes.size()) return;
+  // The rest must lie strictly inside: clear of the sides and the top by the hugging distance.
+  Bounds inside{glm::vec3(std::numeric_limits<float>::max()),
+                glm::vec3(std::numeric_limits<float>::lowest())};
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (shell[m]) continue;
+    for (const Vertex& v : scene.meshes[m].vertices) {
+      inside.min = glm::min(inside.min, v.position);
+      inside.max = glm::max(inside.max, v.position);
+    }
+  }
+  const bool enclosed = inside.max.y < b.max.y - hug && inside.min.x > b.min.x + hug &&
+                        inside.max.x < b.max.x - hug && inside.min.z > b.min.z + hug &&
+                        inside.max.z < b.max.z - hug;
+  if (!enclosed) return;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (shell[m]) scene.meshes[m].role = MeshRole::Enclosure;
+  }
+}
+
+bool hasFloor(const Scene& scene) {
+  const Bounds b = scene.modelBounds();
+  const glm::vec3 extent = b.max - b.min;
+  const double footprint = double(extent.x) * double(extent.z);
+  const float level = b.min.y + kHugShare * std::max({extent.x, extent.y, extent.z});
+  double floorArea = 0.0;
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.role != MeshRole::Model) continue;
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+      const glm::vec3 p = mesh.vertices[mesh.indices[t + 1]].position;
+      const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+      if (std::max({a.y, p.y, c.y}) > level) continue;
+      const glm::vec3 n = glm::cross(p - a, c - a);  // length: twice the area
+      const float length = glm::length(n);
+      if (length > 0.0f && n.y >= 0.9f * length) floorArea += 0.5 * double(length);
+    }
+  }
+  return footprint > 0.0 && floorArea >= 0.25 * footprint;
+}
+
+void shapeFileScene(Scene& scene, const SceneLoadOptions& options, const std::string& source) {
+  if (!(options.aspect > 0.0f && options.aspect <= 100.0f)) {
+    throw Error("the frame's aspect " + std::to_string(options.aspect) + " is outside (0, 100]");
+  }
+  markEnclosures(scene);
+  size_t enclosures = 0, unlit = 0;
+  for (Mesh& mesh : scene.meshes) {
+    enclosures += mesh.role == MeshRole::Enclosure ? 1 : 0;
+    unlit += mesh.unlit ? 1 : 0;
+    mesh.castsShadow =
+        options.casters == CasterMode::All || (mesh.role != MeshRole::Enclosure && !mesh.unlit);
+  }
+  if (options.casters == CasterMode::Auto && (enclosures > 0 || unlit > 0)) {
+    std::string what;
+    if (enclosures > 0) {
+      what = std::to_string(enclosures) + (enclosures == 1 ? " mesh encloses" : " meshes enclose") +
+             " the rest of the scene (a sky dome or box)";
+    }
+    if (unlit > 0) {
+      what += (what.empty() ? "" : " and ") + std::to_string(unlit) +
+              (unlit == 1 ? " mesh is" : " meshes are") + " unlit (KHR_materials_unlit)";
+    }
+    scene.notes.push_back(source + ": " + what +
+                          "; they cast no shadows (--casters all keeps "
+                          "them)");
+  }
+  const bool ground =
+      options.ground == GroundMode::On || (options.ground == GroundMode::Auto && !hasFloor(scene));
+  if (ground) {
+    scene.meshes.push_back(groundUnder(scene.modelBounds()));
+    if (options.ground == GroundMode::Auto) {
+      scene.notes.push_back(source +
+                            ": no floor under the model; a ground plane is added to "
+                            "receive its shadow (--ground off leaves it out)");
+    }
+  }
+  chooseCamera(scene, options, source);
+}
+
+}  // namespace scene
+}  // namespace penumbra

@@ -1,0 +1,23 @@
+// What loadScene does to a scene file once its loader has read it: marks the geometry that
+// encloses the rest, decides what casts shadows, adds a ground under a lone model and chooses the
+// camera (SceneLoadOptions; docs/scenes.md, "Real models").
+#pragma once
+
+#include <string>
+
+#include "penumbra/scene.h"
+
+namespace penumbra::scene {
+
+// Meshes whose vertices all hug the scene's bounding box, reach its top or span most of its
+// height, and hold the rest of the scene strictly inside: a sky dome, a skybox.
+void markEnclosures(Scene& scene);
+
+// True when an upward-facing surface at the bottom of the model's bounds covers a quarter of
+// their footprint or more: the model stands on its own floor.
+bool hasFloor(const Scene& scene);
+
+// Throws Error "<source>: ..." for a camera index the file does not have.
+void shapeFileScene(Scene& scene, const SceneLoadOptions& options, const std::string& source);
+
+}  // namespace penumbra::scene
