@@ -241,7 +241,7 @@ inline constexpr glm::vec3 kFramingDirection{0.45f, 0.55f, 1.0f};  // from the m
 Camera framingCamera(const Scene& scene, float aspect);
 
 // What a camera sees of a scene's model at an aspect: the share of the Model meshes' surface
-// area whose triangles' centres lie in its view, and the share of the frame their bounding
+// area whose triangles lie wholly in its view (all three corners), and the share of the frame their bounding
 // box's projection covers (clipped to the frame).
 struct CameraSight {
   float surfaceShare = 0.0f;

@@ -142,13 +142,11 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     } else if (previous == LightKind::Directional) {
       // No position given and none to keep: inside the model's bounding sphere (not an
       // enclosure's: a light outside a sky dome lights nothing), halfway from its centre
-      // towards the sun the scene had, so the light keeps lighting what it lit; raised above
-      // the model's top where that would stand inside the model.
+      // towards the sun the scene had, so the light keeps lighting what it lit; and above the
+      // model's top by a quarter of its radius, so that it stands in no part of the model.
       const Bounds b = scene.modelBounds();
       glm::vec3 position = b.centre() - scene.light.direction * (0.5f * b.radius());
-      const bool withinModel = glm::all(glm::greaterThanEqual(position, b.min)) &&
-                               glm::all(glm::lessThanEqual(position, b.max));
-      if (withinModel) position.y = b.max.y + 0.25f * b.radius();
+      position.y = std::max(position.y, b.max.y + 0.25f * b.radius());
       scene.light.position = position;
     }
     if (wantsSpot && (o.lightPosition || previous != LightKind::Spot)) {

@@ -113,9 +113,12 @@ CameraSight cameraSight(const Scene& scene, const Camera& camera, float aspect) 
       const double area = 0.5 * double(glm::length(glm::cross(b - a, c - a)));
       if (!std::isfinite(area)) continue;
       totalArea += area;
-      const glm::vec4 clip = clipFromWorld * glm::vec4((a + b + c) / 3.0f, 1.0f);
-      if (clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w &&
-          std::abs(clip.z) <= clip.w) {
+      const auto inView = [&](glm::vec3 p) {
+        const glm::vec4 clip = clipFromWorld * glm::vec4(p, 1.0f);
+        return clip.w > 0.0f && std::abs(clip.x) <= clip.w && std::abs(clip.y) <= clip.w &&
+               std::abs(clip.z) <= clip.w;
+      };
+      if (inView(a) && inView(b) && inView(c)) {
         seenArea += area;
       }
     }

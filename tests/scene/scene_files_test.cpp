@@ -37,7 +37,13 @@ TEST(GltfLoader, LoadsTheTwoCylinderEngineWithItsCameraAndEveryTriangle) {
   EXPECT_EQ(s.name, "2CylinderEngine");
   EXPECT_EQ(s.triangleCount(), 121496u);  // the sum of its primitives' index counts / 3
   EXPECT_TRUE(allFinite(s));
-  EXPECT_NEAR(s.camera.verticalFovDegrees, 18.0107f, 1e-3f);  // its first camera's yfov
+  ASSERT_EQ(s.fileCameras.size(), 1u);
+  EXPECT_NEAR(s.fileCameras[0].camera.verticalFovDegrees, 18.0107f, 1e-3f);  // its yfov
+  // Its camera crops the engine at 16:9 (99.2% of the surface in view): the framing camera.
+  EXPECT_EQ(s.camera.verticalFovDegrees, 45.0f);
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("its camera does not see the whole model"), std::string::npos)
+      << s.warnings[0];
   EXPECT_TRUE(s.troubleSpots.empty());
 }
 

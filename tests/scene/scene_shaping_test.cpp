@@ -1,0 +1,265 @@
+// What loadScene does to a scene file for a first picture (docs/scenes.md, "Real models"): the
+// framing camera at the frame's aspect, the ground under a lone model, enclosures and unlit
+// meshes out of the shadows, a file camera only when it sees the whole model, the default point
+// light above the model.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "load_as_written.h"
+#include "penumbra/error.h"
+#include "penumbra/scene.h"
+#include "scene_fixtures.h"
+
+namespace penumbra {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratchFolder(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("penumbra_shaping_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+// Axis-aligned boxes as OBJ, each its own material (so its own mesh); faces wound outwards.
+struct ObjBoxes {
+  std::ostringstream obj;
+  std::string mtl;
+  int first = 1;
+  int count = 0;
+
+  void add(glm::vec3 lo, glm::vec3 hi) {
+    const std::string material = "m" + std::to_string(count++);
+    mtl += "newmtl " + material + "\nKd 0.8 0.8 0.8\n";
+    obj << "usemtl " << material << "\n";
+    for (int i = 0; i < 8; ++i) {
+      obj << "v " << (i & 1 ? hi.x : lo.x) << " " << (i & 2 ? hi.y : lo.y) << " "
+          << (i & 4 ? hi.z : lo.z) << "\n";
+    }
+    const int faces[12][3] = {{0, 2, 3}, {0, 3, 1}, {4, 5, 7}, {4, 7, 6}, {0, 1, 5}, {0, 5, 4},
+                              {2, 6, 7}, {2, 7, 3}, {0, 4, 6}, {0, 6, 2}, {1, 3, 7}, {1, 7, 5}};
+    for (const auto& f : faces) {
+      obj << "f " << first + f[0] << " " << first + f[1] << " " << first + f[2] << "\n";
+    }
+    first += 8;
+  }
+
+  fs::path write(const fs::path& dir, const std::string& name) const {
+    testing::writeFile(dir / (name + ".mtl"), mtl);
+    return testing::writeFile(dir / (name + ".obj"), "mtllib " + name + ".mtl\n" + obj.str());
+  }
+};
+
+SceneLoadOptions options(GroundMode ground, float aspect = 16.0f / 9.0f) {
+  SceneLoadOptions o;
+  o.ground = ground;
+  o.aspect = aspect;
+  return o;
+}
+
+// The largest |x| and |y| in normalised device coordinates over the model's vertices.
+glm::vec2 projectedExtent(const Scene& scene, float aspect) {
+  const glm::mat4 clipFromWorld =
+      clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera);
+  glm::vec2 extent(0.0f);
+  for (const Mesh& mesh : scene.meshes) {
+    if (mesh.role != MeshRole::Model) continue;
+    for (const Vertex& v : mesh.vertices) {
+      const glm::vec4 clip = clipFromWorld * glm::vec4(v.position, 1.0f);
+      EXPECT_GT(clip.w, 0.0f);
+      EXPECT_LE(std::abs(clip.z), clip.w) << "clipped by the near or far plane";
+      extent = glm::max(extent, glm::abs(glm::vec2(clip) / clip.w));
+    }
+  }
+  return extent;
+}
+
+// The framing rule: the binding axis at exactly kFramingFill, the other inside it. 1e-4: the
+// distance and projection are float arithmetic on values of order one (relative error ~1e-6).
+TEST(SceneShaping, TheFramingCameraFillsTheStatedShareOfTheFrameAtItsAspect) {
+  const fs::path dir = scratchFolder("framing");
+  struct Case {
+    const char* name;
+    glm::vec3 lo, hi;
+    float aspect;
+    bool widthBinds;
+  };
+  for (const Case& c :
+       {Case{"tall", {-0.5f, 0.0f, -0.5f}, {0.5f, 10.0f, 0.5f}, 16.0f / 9.0f, false},
+        Case{"wide", {-10.0f, 0.0f, -0.5f}, {10.0f, 1.0f, 0.5f}, 16.0f / 9.0f, true},
+        Case{"wide_in_portrait", {-2.0f, 0.0f, -0.5f}, {2.0f, 1.0f, 0.5f}, 9.0f / 16.0f, true},
+        Case{"tiny", {-5e-4f, 0.0f, -5e-4f}, {5e-4f, 1e-3f, 5e-4f}, 16.0f / 9.0f, false}}) {
+    ObjBoxes boxes;
+    boxes.add(c.lo, c.hi);
+    const Scene s =
+        loadScene(boxes.write(dir, c.name).string(), options(GroundMode::Off, c.aspect));
+    const glm::vec2 extent = projectedExtent(s, c.aspect);
+    const float binding = c.widthBinds ? extent.x : extent.y;
+    const float other = c.widthBinds ? extent.y : extent.x;
+    EXPECT_NEAR(binding, kFramingFill, 1e-4f) << c.name;
+    EXPECT_LE(other, kFramingFill + 1e-4f) << c.name;
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SceneShaping, AGroundLiesUnderALoneModelAndNotUnderOneWithAFloor) {
+  const fs::path dir = scratchFolder("ground");
+  ObjBoxes lone;
+  lone.add({-0.5f, 1.0f, -0.5f}, {0.5f, 2.0f, 0.5f});
+  const Scene s = loadScene(lone.write(dir, "lone").string(), options(GroundMode::Auto));
+  ASSERT_EQ(s.meshes.size(), 2u);
+  const Mesh& ground = s.meshes.back();
+  EXPECT_EQ(ground.role, MeshRole::Ground);
+  for (const Vertex& v : ground.vertices) {
+    EXPECT_LT(v.position.y, 1.0f);
+    EXPECT_GT(v.position.y, 1.0f - 1e-2f);  // just under the model, not far below it
+    EXPECT_EQ(v.normal, glm::vec3(0.0f, 1.0f, 0.0f));
+  }
+  // The default light's shadow of every corner of the model lands on the ground.
+  const Bounds g = s.bounds();
+  for (const Vertex& v : s.meshes[0].vertices) {
+    const glm::vec3 d = s.light.direction;
+    const glm::vec3 onGround = v.position + d * ((g.min.y - v.position.y) / d.y);
+    EXPECT_GT(onGround.x, g.min.x);
+    EXPECT_LT(onGround.x, g.max.x);
+    EXPECT_GT(onGround.z, g.min.z);
+    EXPECT_LT(onGround.z, g.max.z);
+  }
+  EXPECT_EQ(s.modelBounds().min.y, 1.0f);  // framing looks at the model, not the ground
+  EXPECT_FALSE(s.notes.empty());
+
+  EXPECT_EQ(loadScene(lone.write(dir, "lone").string(), options(GroundMode::Off)).meshes.size(),
+            1u);
+
+  ObjBoxes onFloor;
+  onFloor.add({-5.0f, -0.1f, -5.0f}, {5.0f, 0.0f, 5.0f});
+  onFloor.add({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f});
+  const fs::path floorFile = onFloor.write(dir, "floor");
+  EXPECT_EQ(loadScene(floorFile.string(), options(GroundMode::Auto)).meshes.size(), 2u);
+  EXPECT_EQ(loadScene(floorFile.string(), options(GroundMode::On)).meshes.size(), 3u);
+  fs::remove_all(dir);
+}
+
+// A closed shell in two pieces (walls, roof) far around a block on a floor: the sky dome's case.
+ObjBoxes domeScene() {
+  ObjBoxes boxes;
+  boxes.add({-4.0f, -0.2f, -4.0f}, {4.0f, 0.0f, 4.0f});        // floor
+  boxes.add({-0.5f, 0.0f, -0.5f}, {0.5f, 1.5f, 0.5f});         // block
+  boxes.add({-20.0f, -1.0f, -20.0f}, {-19.0f, 20.0f, 20.0f});  // walls
+  boxes.add({19.0f, -1.0f, -20.0f}, {20.0f, 20.0f, 20.0f});
+  boxes.add({-20.0f, -1.0f, -20.0f}, {20.0f, 20.0f, -19.0f});
+  boxes.add({-20.0f, -1.0f, 19.0f}, {20.0f, 20.0f, 20.0f});
+  boxes.add({-20.0f, 19.0f, -20.0f}, {20.0f, 20.0f, 20.0f});  // roof
+  return boxes;
+}
+
+TEST(SceneShaping, GeometryEnclosingTheModelCastsNoShadowUnlessAllCast) {
+  const fs::path dir = scratchFolder("dome");
+  const fs::path file = domeScene().write(dir, "dome");
+  const Scene s = loadScene(file.string(), options(GroundMode::Auto));
+  ASSERT_EQ(s.meshes.size(), 7u);  // no ground: the floor is there
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    const bool shell = m >= 2;
+    EXPECT_EQ(s.meshes[m].role, shell ? MeshRole::Enclosure : MeshRole::Model) << m;
+    EXPECT_EQ(s.meshes[m].castsShadow, !shell) << m;
+  }
+  EXPECT_EQ(s.modelBounds().max.y, 1.5f);
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes[0].find("5 meshes enclose"), std::string::npos) << s.notes[0];
+
+  SceneLoadOptions all = options(GroundMode::Auto);
+  all.casters = CasterMode::All;
+  for (const Mesh& mesh : loadScene(file.string(), all).meshes) EXPECT_TRUE(mesh.castsShadow);
+
+  // The same floor and block without the shell: the floor hugs the bounds' bottom only.
+  ObjBoxes open;
+  open.add({-4.0f, -0.2f, -4.0f}, {4.0f, 0.0f, 4.0f});
+  open.add({-0.5f, 0.0f, -0.5f}, {0.5f, 1.5f, 0.5f});
+  for (const Mesh& mesh :
+       loadScene(open.write(dir, "open").string(), options(GroundMode::Auto)).meshes) {
+    EXPECT_EQ(mesh.role, MeshRole::Model);
+    EXPECT_TRUE(mesh.castsShadow);
+  }
+  fs::remove_all(dir);
+}
+
+TEST(SceneShaping, UnlitMaterialsCastNoShadowUnlessAllCast) {
+  const fs::path dir = scratchFolder("unlit");
+  const fs::path file = testing::writeFile(
+      dir / "unlit.gltf",
+      testing::gltfWithMesh(
+          {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}, {0, 1, 2}, R"([{"mesh":0}])", "[0]",
+          R"(,"material":0)",
+          R"(,"extensionsUsed":["KHR_materials_unlit"],"materials":[{"extensions":{"KHR_materials_unlit":{}}}])"));
+  const Scene s = loadScene(file.string(), options(GroundMode::Off));
+  ASSERT_EQ(s.meshes.size(), 1u);
+  EXPECT_TRUE(s.meshes[0].unlit);
+  EXPECT_FALSE(s.meshes[0].castsShadow);
+  SceneLoadOptions all = options(GroundMode::Off);
+  all.casters = CasterMode::All;
+  EXPECT_TRUE(loadScene(file.string(), all).meshes[0].castsShadow);
+  fs::remove_all(dir);
+}
+
+// A unit triangle at the origin and a camera on +z with a 17-degree field of view.
+fs::path cameraFile(const fs::path& dir, float distance) {
+  return testing::writeFile(
+      dir / ("camera_" + std::to_string(int(distance)) + ".gltf"),
+      testing::gltfWithMesh(
+          {{-0.5f, -0.5f, 0}, {0.5f, -0.5f, 0}, {0, 0.5f, 0}}, {0, 1, 2},
+          R"([{"mesh":0},{"camera":0,"translation":[0,0,)" + std::to_string(distance) + "]}]",
+          "[0,1]", "",
+          R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.3,"znear":0.01}}])"));
+}
+
+TEST(SceneShaping, AFileCameraIsTheDefaultOnlyWhenItSeesTheWholeModel) {
+  const fs::path dir = scratchFolder("cameras");
+  const float fileFov = glm::degrees(0.3f);
+  // From 20 units the triangle is well inside the frame: the file's camera.
+  const Scene far = loadScene(cameraFile(dir, 20.0f).string(), options(GroundMode::Off));
+  EXPECT_NEAR(far.camera.verticalFovDegrees, fileFov, 1e-3f);
+  EXPECT_TRUE(far.warnings.empty());
+  // From 1.5 units it crops the triangle (0.22 units of half height in view): the framing camera.
+  const fs::path nearFile = cameraFile(dir, 1.5f);
+  const Scene near = loadScene(nearFile.string(), options(GroundMode::Off));
+  EXPECT_EQ(near.camera.verticalFovDegrees, 45.0f);
+  ASSERT_EQ(near.warnings.size(), 1u);
+  EXPECT_NE(near.warnings[0].find("--camera N picks one"), std::string::npos) << near.warnings[0];
+  // Asked for, it is used as it is.
+  SceneLoadOptions pick = options(GroundMode::Off);
+  pick.camera = 0;
+  EXPECT_NEAR(loadScene(nearFile.string(), pick).camera.verticalFovDegrees, fileFov, 1e-3f);
+  pick.camera = 3;
+  try {
+    loadScene(nearFile.string(), pick);
+    ADD_FAILURE() << "camera 3 of 1 accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("--camera 3 is out of range [0, 0]"), std::string::npos)
+        << e.what();
+  }
+  pick.camera = 0;
+  EXPECT_THROW(loadScene("backyard", pick), Error);
+  fs::remove_all(dir);
+}
+
+TEST(SceneShaping, TheDefaultPointLightStandsAboveTheModelNotInsideIt) {
+  const fs::path dir = scratchFolder("point");
+  ObjBoxes tower;
+  tower.add({-0.5f, 0.0f, -0.5f}, {0.5f, 10.0f, 0.5f});
+  Scene s = loadScene(tower.write(dir, "tower").string(), options(GroundMode::Auto));
+  SceneOverrides point;
+  point.lightKind = LightKind::Point;
+  applyOverrides(s, point);
+  // Halfway towards the sun from the centre is beside the tower at y = 7.2: its top would be
+  // dark, lit from below.
+  EXPECT_GT(s.light.position.y, 10.0f);
+  EXPECT_LT(s.light.position.y, 15.0f);  // not beyond the scene: a quarter radius above the top
+  fs::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace penumbra
