@@ -55,6 +55,8 @@ void setMessage(ViewerState& state, std::string message, bool isError) {
 
 void loadSceneInto(ViewerState& state, SceneLoadOptions options) {
   options.aspect = float(state.settings.render.width) / float(state.settings.render.height);
+  options.ground = state.settings.ground;
+  options.casters = state.settings.casters;
   Scene scene = loadScene(state.settings.scene, options);
   applyOverrides(scene, state.settings.view);
   for (const std::string& w : scene.warnings)

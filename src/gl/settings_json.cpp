@@ -23,7 +23,7 @@ constexpr std::string_view kKeys[] = {
     "blur",           "blur-kernel", "blur-sigma",    "filter",        "aniso",
     "width",          "height",      "normal-offset", "cascades",      "cascade-lambda",
     "cascade-splits", "cascade-fit", "cascade-depth", "cascade-blend", "shadow-distance",
-    "overlay",        "light",       "camera"};
+    "overlay",        "light",       "camera",        "ground",        "casters"};
 // The viewer's split view: a key of the file, no option of the command line (settingsKeys()).
 constexpr std::string_view kSplitKey = "split";
 
@@ -278,6 +278,12 @@ void applyKey(const std::string& key, const json& v, const std::string& source, 
   } else if (key == "overlay") {
     const std::string name = text(v, at);
     r.overlay = withLocation(at, [&] { return parseOverlay(name); });
+  } else if (key == "ground") {
+    const std::string name = text(v, at);
+    s.ground = withLocation(at, [&] { return parseGroundMode(name); });
+  } else if (key == "casters") {
+    const std::string name = text(v, at);
+    s.casters = withLocation(at, [&] { return parseCasterMode(name); });
   } else if (key == "light" || key == "camera") {
     // A light kind in the file replaces the light kind set before (as on the command line).
     if (key == "light") {
@@ -397,6 +403,8 @@ std::string settingsJson(const Settings& s) {
   j["cascade-blend"] = shortest(r.cascades.blendBand);
   j["shadow-distance"] = shortest(r.cascades.maxDistance);
   j["overlay"] = std::string(overlayName(r.overlay));
+  j["ground"] = std::string(groundModeName(s.ground));
+  j["casters"] = std::string(casterModeName(s.casters));
   const SceneOverrides& v = s.view;
   json light = json::object(), camera = json::object();
   if (v.lightKind) light["kind"] = std::string(lightKindName(*v.lightKind));

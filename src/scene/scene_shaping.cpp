@@ -217,9 +217,9 @@ void markEnclosures(Scene& scene) {
   const Bounds b = scene.bounds();
   const glm::vec3 extent = b.max - b.min;
   const float hug = kHugShare * std::max({extent.x, extent.y, extent.z});
-  std::vector<bool> shell(scene.meshes.size(), false);
-  size_t shells = 0;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+  const size_t count = scene.meshes.size();
+  std::vector<bool> rises(count, false), hugs(count, false), flat(count, true);
+  for (size_t m = 0; m < count; ++m) {
     const Mesh& mesh = scene.meshes[m];
     if (mesh.vertices.empty()) continue;
     float top = b.min.y, bottom = b.max.y;
@@ -229,27 +229,59 @@ void markEnclosures(Scene& scene) {
       top = std::max(top, v.position.y);
       bottom = std::min(bottom, v.position.y);
     }
-    // A floor hugs the bottom face only; a dome's or a box's pieces reach up the sides or top.
-    const bool rises = top >= b.max.y - hug || top - bottom >= 0.5f * extent.y;
-    shell[m] = rises && double(hugging) >= 0.95 * double(mesh.vertices.size());
-    shells += shell[m] ? 1 : 0;
+    // A floor lies at the bottom; a dome's or a box's pieces reach the top or span half the
+    // height.
+    rises[m] = top >= b.max.y - hug || top - bottom >= 0.5f * extent.y;
+    hugs[m] = double(hugging) >= 0.95 * double(mesh.vertices.size());
+    flat[m] = top - bottom < hug;
   }
-  if (shells == 0 || shells == scene.meshes.size()) return;
-  // The rest must lie strictly inside: clear of the sides and the top by the hugging distance.
-  Bounds inside{glm::vec3(std::numeric_limits<float>::max()),
-                glm::vec3(std::numeric_limits<float>::lowest())};
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
-    if (shell[m]) continue;
+  // What stands in the scene: meshes that neither rise nor are flat (a floor may reach the
+  // shell). A shell piece keeps 95 % of its vertices outside it, or hugs the bounds (a skybox).
+  Bounds standing{glm::vec3(std::numeric_limits<float>::max()),
+                  glm::vec3(std::numeric_limits<float>::lowest())};
+  for (size_t m = 0; m < count; ++m) {
+    if (rises[m] || flat[m]) continue;
     for (const Vertex& v : scene.meshes[m].vertices) {
-      inside.min = glm::min(inside.min, v.position);
-      inside.max = glm::max(inside.max, v.position);
+      standing.min = glm::min(standing.min, v.position);
+      standing.max = glm::max(standing.max, v.position);
     }
   }
-  const bool enclosed = inside.max.y < b.max.y - hug && inside.min.x > b.min.x + hug &&
-                        inside.max.x < b.max.x - hug && inside.min.z > b.min.z + hug &&
-                        inside.max.z < b.max.z - hug;
-  if (!enclosed) return;
-  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+  std::vector<bool> shell(count, false);
+  size_t shells = 0;
+  for (size_t m = 0; m < count; ++m) {
+    if (!rises[m]) continue;
+    size_t outside = 0;
+    for (const Vertex& v : scene.meshes[m].vertices) {
+      const bool within = glm::all(glm::greaterThan(v.position, standing.min)) &&
+                          glm::all(glm::lessThan(v.position, standing.max));
+      outside += within ? 0 : 1;
+    }
+    shell[m] = hugs[m] || double(outside) >= 0.95 * double(scene.meshes[m].vertices.size());
+    shells += shell[m] ? 1 : 0;
+  }
+  if (shells == 0 || shells == count) return;
+  // The shells surround the rest: together they reach the four sides and the top of the
+  // bounds, and the rest stays clear of the top by the hugging distance.
+  bool reaches[5] = {false, false, false, false, false};
+  float restTop = b.min.y;
+  for (size_t m = 0; m < count; ++m) {
+    for (const Vertex& v : scene.meshes[m].vertices) {
+      const glm::vec3 p = v.position;
+      if (!shell[m]) {
+        restTop = std::max(restTop, p.y);
+        continue;
+      }
+      reaches[0] |= p.x <= b.min.x + hug;
+      reaches[1] |= p.x >= b.max.x - hug;
+      reaches[2] |= p.z <= b.min.z + hug;
+      reaches[3] |= p.z >= b.max.z - hug;
+      reaches[4] |= p.y >= b.max.y - hug;
+    }
+  }
+  const bool surrounds =
+      std::all_of(std::begin(reaches), std::end(reaches), [](bool r) { return r; });
+  if (!surrounds || !(restTop < b.max.y - hug)) return;
+  for (size_t m = 0; m < count; ++m) {
     if (shell[m]) scene.meshes[m].role = MeshRole::Enclosure;
   }
 }

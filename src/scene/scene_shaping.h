@@ -9,8 +9,9 @@
 
 namespace penumbra::scene {
 
-// Meshes whose vertices all hug the scene's bounding box, reach its top or span most of its
-// height, and hold the rest of the scene strictly inside: a sky dome, a skybox.
+// Meshes that reach the top of the scene's bounds or span half their height, whose vertices hug
+// the bounds (a skybox) or stay outside what stands in the scene (a dome), and that together
+// reach the bounds' four sides and top above everything else: a sky dome, a skybox.
 void markEnclosures(Scene& scene);
 
 // True when an upward-facing surface at the bottom of the model's bounds covers a quarter of

@@ -16,10 +16,11 @@ TEST(RenderView, TheRecordNamesTheViewAndItsSettingsFileRendersThePictureAgain) 
   // A view of the user's own, none of it the scene's default: the settings file must carry all
   // of it for the second render to see the same picture.
   const RunResult first = runPenumbra(
-      {"render", "--scene", "planar", "--technique", "vsm", "--light", "spot", "--light-pos",
-       "2,6,3", "--light-target", "0,0,0.5", "--spot-angle", "70", "--camera-pos", "-3,4,6",
-       "--camera-target", "0.5,0,0", "--camera-fov", "50", "--shadow-size", "128", "--width",
-       "96", "--height", "54", "--out", "first"},
+      {"render", "--scene",       "planar", "--technique",     "vsm",     "--light",
+       "spot",   "--light-pos",   "2,6,3",  "--light-target",  "0,0,0.5", "--spot-angle",
+       "70",     "--camera-pos",  "-3,4,6", "--camera-target", "0.5,0,0", "--camera-fov",
+       "50",     "--shadow-size", "128",    "--width",         "96",      "--height",
+       "54",     "--out",         "first"},
       scratch.path());
   ASSERT_EQ(first.exitCode(), 0) << first.output;
   const nlohmann::json record =
@@ -43,6 +44,34 @@ TEST(RenderView, TheRecordNamesTheViewAndItsSettingsFileRendersThePictureAgain) 
   ASSERT_EQ(a.width(), b.width());
   ASSERT_EQ(a.height(), b.height());
   // The same GL, settings and view: the same bits.
+  EXPECT_TRUE(std::equal(a.data().begin(), a.data().end(), b.data().begin()));
+}
+
+// What loading added or left out is part of the picture: a lone box rendered without the ground
+// renders without it again through its settings file.
+TEST(RenderView, TheSettingsFileCarriesTheGroundAndCastersChoices) {
+  ScratchFolder scratch;
+  writeFile(scratch.path() / "box.obj",
+            "v -0.5 0 -0.5\nv 0.5 0 -0.5\nv 0.5 1 -0.5\nv -0.5 1 -0.5\nv -0.5 0 0.5\n"
+            "v 0.5 0 0.5\nv 0.5 1 0.5\nv -0.5 1 0.5\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\n"
+            "f 4 8 7 3\nf 1 5 8 4\nf 2 3 7 6\n");
+  const RunResult first = runPenumbra(
+      {"render", "--scene", "box.obj", "--technique", "hard", "--ground", "off", "--casters", "all",
+       "--shadow-size", "128", "--width", "96", "--height", "54", "--out", "first"},
+      scratch.path());
+  ASSERT_EQ(first.exitCode(), 0) << first.output;
+  const nlohmann::json settings =
+      nlohmann::json::parse(readFile(scratch.path() / "first" / "box_hard_settings.json"));
+  EXPECT_EQ(settings.at("ground"), "off");
+  EXPECT_EQ(settings.at("casters"), "all");
+  const RunResult again = runPenumbra(
+      {"render", "--settings", (scratch.path() / "first" / "box_hard_settings.json").string(),
+       "--out", "again"},
+      scratch.path());
+  ASSERT_EQ(again.exitCode(), 0) << again.output;
+  const Image a = readFloatExr(scratch.path() / "first" / "box_hard_visibility.exr");
+  const Image b = readFloatExr(scratch.path() / "again" / "box_hard_visibility.exr");
+  ASSERT_EQ(a.data().size(), b.data().size());
   EXPECT_TRUE(std::equal(a.data().begin(), a.data().end(), b.data().begin()));
 }
 

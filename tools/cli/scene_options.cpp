@@ -92,6 +92,14 @@ SceneLoadOptions sceneLoadOptions(const SceneOptions& o, float aspect) {
   return options;
 }
 
+SceneLoadOptions sceneLoadOptions(const SceneOptions& o, const gl::Settings& resolved) {
+  SceneLoadOptions options =
+      sceneLoadOptions(o, float(resolved.render.width) / float(resolved.render.height));
+  options.ground = resolved.ground;
+  options.casters = resolved.casters;
+  return options;
+}
+
 bool printCameraListIfAsked(const SceneOptions& o, const std::string& source, float aspect) {
   if (o.camera != "list") return false;
   SceneOptions listing = o;

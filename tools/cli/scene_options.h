@@ -9,6 +9,7 @@
 #include <optional>
 #include <string>
 
+#include "penumbra/gl/settings_json.h"
 #include "penumbra/scene.h"
 
 namespace penumbra::cli {
@@ -37,6 +38,8 @@ SceneOverrides sceneOverrides(const SceneOptions& options, SceneOverrides base =
 // --casters, --camera N. Throws Error for a size that is malformed or out of range, an unknown
 // mode (listing the valid ones), a camera that is neither a number nor 'list'.
 SceneLoadOptions sceneLoadOptions(const SceneOptions& options, float aspect);
+// The same for settings merged with a settings file: its frame's aspect, ground and casters.
+SceneLoadOptions sceneLoadOptions(const SceneOptions& options, const gl::Settings& resolved);
 
 // --camera list: prints the scene file's cameras, each with what it sees of the model at this
 // aspect, and returns true; false when not asked.

@@ -25,6 +25,8 @@ gl::Settings resolveSettings(const CLI::App& command, const std::string& path,
   // the file may supply the count.
   s.render = renderSettingsOf(render);
   s.render.params = defaultTechniqueParams();
+  s.ground = parseGroundMode(scene.ground);
+  s.casters = parseCasterMode(scene.casters);
   if (!path.empty()) {
     std::vector<std::string> given;
     for (std::string_view key : gl::settingsKeys()) {

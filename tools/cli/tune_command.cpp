@@ -80,8 +80,7 @@ tune::TuneRequest requestOf(const TuneOptions& o) {
       resolveSettings(*o.command, o.settingsFile, scene, o.technique, o.render);
   tune::TuneRequest r;
   r.scenes = o.scenes.empty() ? std::vector<std::string>{resolved.scene} : o.scenes;
-  r.sceneLoad =
-      sceneLoadOptions(o.scene, float(resolved.render.width) / float(resolved.render.height));
+  r.sceneLoad = sceneLoadOptions(o.scene, resolved);
   r.view = resolved.view;
   r.techniques = resolved.techniques;
   r.settings = resolved.render;

@@ -30,6 +30,8 @@ struct Settings {
   std::vector<Technique> techniques{Technique::Evsm4};
   RenderSettings render;               // render.technique is unused: see techniques
   SceneOverrides view;                 // camera and light; unset: the scene's own
+  GroundMode ground = GroundMode::Auto;  // what loading a scene file adds (SceneLoadOptions)
+  CasterMode casters = CasterMode::Auto;
   std::optional<SplitSettings> split;  // "split": the viewer's right side
 };
 
