@@ -307,11 +307,39 @@ bool hasFloor(const Scene& scene) {
   return footprint > 0.0 && floorArea >= 0.25 * footprint;
 }
 
+namespace {
+
+// An enclosure's faces turned towards the model and culled from behind: a camera outside it
+// (the framing camera of a city under its dome) sees the model through it, one inside sees the
+// sky.
+void faceInwards(Mesh& mesh, glm::vec3 modelCentre) {
+  double outwards = 0.0;
+  for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+    const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+    const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+    outwards += double(glm::dot(glm::cross(b - a, c - a), (a + b + c) / 3.0f - modelCentre));
+  }
+  if (outwards > 0.0) {
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+    }
+    for (Vertex& v : mesh.vertices) v.normal = -v.normal;
+  }
+  mesh.doubleSided = false;
+}
+
+}  // namespace
+
 void shapeFileScene(Scene& scene, const SceneLoadOptions& options, const std::string& source) {
   if (!(options.aspect > 0.0f && options.aspect <= 100.0f)) {
     throw Error("the frame's aspect " + std::to_string(options.aspect) + " is outside (0, 100]");
   }
   markEnclosures(scene);
+  const glm::vec3 modelCentre = scene.modelBounds().centre();
+  for (Mesh& mesh : scene.meshes) {
+    if (mesh.role == MeshRole::Enclosure) faceInwards(mesh, modelCentre);
+  }
   size_t enclosures = 0, unlit = 0;
   for (Mesh& mesh : scene.meshes) {
     enclosures += mesh.role == MeshRole::Enclosure ? 1 : 0;

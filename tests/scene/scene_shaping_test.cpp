@@ -4,7 +4,6 @@
 // light above the model.
 #include <gtest/gtest.h>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -188,52 +187,27 @@ TEST(SceneShaping, GeometryEnclosingTheModelCastsNoShadowUnlessAllCast) {
   fs::remove_all(dir);
 }
 
-// A city under a hemispherical sky dome in eight pieces, faces inwards, its floor reaching the
-// dome: VC.glb's case.
-fs::path domeCity(const fs::path& dir) {
-  ObjBoxes city;
-  city.add({-60.0f, -0.5f, -60.0f}, {60.0f, 0.0f, 60.0f});  // floor, out to the dome
-  for (int i = 0; i < 9; ++i) {
-    const float x = -30.0f + 30.0f * float(i % 3), z = -30.0f + 30.0f * float(i / 3);
-    city.add({x - 5.0f, 0.0f, z - 5.0f}, {x + 5.0f, 10.0f + 2.0f * float(i), z + 5.0f});
-  }
-  constexpr int kRings = 8, kSegments = 4;
-  constexpr float kRadius = 60.0f;
-  for (int piece = 0; piece < 8; ++piece) {
-    const std::string material = "dome" + std::to_string(piece);
-    city.mtl += "newmtl " + material + "\nKd 0.5 0.6 0.9\n";
-    city.obj << "usemtl " << material << "\n";
-    const int first = city.first;
-    for (int r = 0; r <= kRings; ++r) {
-      const float elevation = glm::radians(90.0f) * float(r) / float(kRings);
-      for (int a = 0; a <= kSegments; ++a) {
-        const float azimuth = glm::radians(45.0f) * (float(piece) + float(a) / float(kSegments));
-        city.obj << "v " << kRadius * std::cos(elevation) * std::cos(azimuth) << " "
-                 << kRadius * std::sin(elevation) << " "
-                 << kRadius * std::cos(elevation) * std::sin(azimuth) << "\n";
-      }
-    }
-    for (int r = 0; r < kRings; ++r) {
-      for (int a = 0; a < kSegments; ++a) {
-        const int v = first + r * (kSegments + 1) + a;
-        city.obj << "f " << v << " " << v + kSegments + 1 << " " << v + 1 << "\nf " << v + 1 << " "
-                 << v + kSegments + 1 << " " << v + kSegments + 2 << "\n";
-      }
-    }
-    city.first += (kRings + 1) * (kSegments + 1);
-  }
-  return city.write(dir, "dome_city");
-}
-
+// tests/data/dome_city.obj (scripts/make-dome-city): nine buildings on a floor that reaches a
+// hemispherical sky dome in eight pieces, faces inwards — VC.glb's case.
 TEST(SceneShaping, AHemisphericalDomeOverACityIsAnEnclosure) {
-  const fs::path dir = scratchFolder("dome_city");
-  const Scene s = loadScene(domeCity(dir).string(), options(GroundMode::Auto));
+  const Scene s = loadScene(PENUMBRA_TEST_DATA_DIR "/dome_city.obj", options(GroundMode::Auto));
   ASSERT_EQ(s.meshes.size(), 18u);  // floor, nine buildings, eight dome pieces; no ground added
   for (size_t m = 0; m < s.meshes.size(); ++m) {
     EXPECT_EQ(s.meshes[m].role, m >= 10 ? MeshRole::Enclosure : MeshRole::Model) << m;
   }
   EXPECT_EQ(s.modelBounds().max.y, 26.0f);  // the tallest building
-  fs::remove_all(dir);
+  // The dome faces the city and is culled from outside, where the framing camera stands.
+  EXPECT_GT(glm::length(s.camera.position - glm::vec3(0.0f)), 60.0f);
+  for (size_t m = 10; m < s.meshes.size(); ++m) {
+    const Mesh& dome = s.meshes[m];
+    EXPECT_FALSE(dome.doubleSided) << m;
+    for (size_t t = 0; t + 2 < dome.indices.size(); t += 3) {
+      const glm::vec3 a = dome.vertices[dome.indices[t]].position;
+      const glm::vec3 b = dome.vertices[dome.indices[t + 1]].position;
+      const glm::vec3 c = dome.vertices[dome.indices[t + 2]].position;
+      ASSERT_LT(glm::dot(glm::cross(b - a, c - a), a + b + c), 0.0f) << m << " " << t;
+    }
+  }
 }
 
 TEST(SceneShaping, UnlitMaterialsCastNoShadowUnlessAllCast) {
