@@ -137,6 +137,51 @@ namespace {
 constexpr float kHugShare = 0.05f;
 constexpr size_t kMaxCamerasJudged = 16;
 
+// Whether the ray from `origin` along `direction` meets the triangle (Moller and Trumbore).
+bool rayMeetsTriangle(glm::vec3 origin, glm::vec3 direction, glm::vec3 a, glm::vec3 b,
+                      glm::vec3 c) {
+  const glm::vec3 ab = b - a, ac = c - a;
+  const glm::vec3 p = glm::cross(direction, ac);
+  const float det = glm::dot(ab, p);
+  if (!(std::abs(det) > 0.0f)) return false;
+  const glm::vec3 t = origin - a;
+  const float u = glm::dot(t, p) / det;
+  if (u < 0.0f || u > 1.0f) return false;
+  const glm::vec3 q = glm::cross(t, ab);
+  const float v = glm::dot(direction, q) / det;
+  if (v < 0.0f || u + v > 1.0f) return false;
+  return glm::dot(ac, q) / det > 0.0f;
+}
+
+// Whether the shell meshes close the sky over `origin`: every ray of the upper hemisphere (the
+// horizon and 30 and 60 degrees up, every 45 degrees round, and straight up) meets one. Legs
+// round a body reach as far as a dome but leave gaps between them.
+bool closesTheSky(const Scene& scene, const std::vector<bool>& shell, glm::vec3 origin) {
+  std::vector<glm::vec3> directions{{0.0f, 1.0f, 0.0f}};
+  for (float elevation : {0.0f, 30.0f, 60.0f}) {
+    for (int k = 0; k < 8; ++k) {
+      const float azimuth = glm::radians(45.0f * float(k) + 22.5f);
+      const float e = glm::radians(elevation);
+      directions.emplace_back(std::cos(e) * std::cos(azimuth), std::sin(e),
+                              std::cos(e) * std::sin(azimuth));
+    }
+  }
+  for (const glm::vec3& direction : directions) {
+    bool met = false;
+    for (size_t m = 0; m < scene.meshes.size() && !met; ++m) {
+      if (!shell[m]) continue;
+      const Mesh& mesh = scene.meshes[m];
+      for (size_t t = 0; t + 2 < mesh.indices.size() && !met; t += 3) {
+        met = rayMeetsTriangle(origin, direction, mesh.vertices[mesh.indices[t]].position,
+                               mesh.vertices[mesh.indices[t + 1]].position,
+                               mesh.vertices[mesh.indices[t + 2]].position);
+      }
+    }
+    if (!met) return false;
+  }
+  return true;
+}
+
 float distanceToFaces(glm::vec3 p, const Bounds& b) {
   const glm::vec3 low = p - b.min, high = b.max - p;
   return std::min({low.x, low.y, low.z, high.x, high.y, high.z});
@@ -263,12 +308,14 @@ void markEnclosures(Scene& scene) {
   // The shells surround the rest: together they reach the four sides and the top of the
   // bounds, and the rest stays clear of the top by the hugging distance.
   bool reaches[5] = {false, false, false, false, false};
-  float restTop = b.min.y;
+  Bounds rest{glm::vec3(std::numeric_limits<float>::max()),
+              glm::vec3(std::numeric_limits<float>::lowest())};
   for (size_t m = 0; m < count; ++m) {
     for (const Vertex& v : scene.meshes[m].vertices) {
       const glm::vec3 p = v.position;
       if (!shell[m]) {
-        restTop = std::max(restTop, p.y);
+        rest.min = glm::min(rest.min, p);
+        rest.max = glm::max(rest.max, p);
         continue;
       }
       reaches[0] |= p.x <= b.min.x + hug;
@@ -280,7 +327,9 @@ void markEnclosures(Scene& scene) {
   }
   const bool surrounds =
       std::all_of(std::begin(reaches), std::end(reaches), [](bool r) { return r; });
-  if (!surrounds || !(restTop < b.max.y - hug)) return;
+  if (!surrounds || !(rest.max.y < b.max.y - hug) || !closesTheSky(scene, shell, rest.centre())) {
+    return;
+  }
   for (size_t m = 0; m < count; ++m) {
     if (shell[m]) scene.meshes[m].role = MeshRole::Enclosure;
   }

@@ -210,6 +210,24 @@ TEST(SceneShaping, AHemisphericalDomeOverACityIsAnEnclosure) {
   }
 }
 
+// spider.obj's case: legs reach the bounds' sides and top round a lower body, but the sky shows
+// between them: a model, not an enclosure.
+TEST(SceneShaping, PartsRoundAModelThatLeaveTheSkyOpenAreNoEnclosure) {
+  const fs::path dir = scratchFolder("legs");
+  ObjBoxes spider;
+  spider.add({-1.0f, 1.0f, -1.0f}, {1.0f, 2.0f, 1.0f});  // body
+  for (int leg = 0; leg < 4; ++leg) {
+    const float x = leg & 1 ? 4.0f : -5.0f, z = leg & 2 ? 4.0f : -5.0f;
+    spider.add({x, 0.0f, z}, {x + 1.0f, 5.0f, z + 1.0f});
+  }
+  const Scene s = loadScene(spider.write(dir, "spider").string(), options(GroundMode::Off));
+  for (const Mesh& mesh : s.meshes) {
+    EXPECT_EQ(mesh.role, MeshRole::Model);
+    EXPECT_TRUE(mesh.castsShadow);
+  }
+  fs::remove_all(dir);
+}
+
 TEST(SceneShaping, UnlitMaterialsCastNoShadowUnlessAllCast) {
   const fs::path dir = scratchFolder("unlit");
   const fs::path file = testing::writeFile(
