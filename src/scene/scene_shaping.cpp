@@ -182,6 +182,29 @@ bool closesTheSky(const Scene& scene, const std::vector<bool>& shell, glm::vec3 
   return true;
 }
 
+// The area-weighted mean of |cos| between the shell triangles' normals and the directions from
+// `origin` to them: about 1 for a dome round it, 0.7 or more for a box, near 0 for legs or
+// columns radiating from it, whose sides face sideways.
+float facingShare(const Scene& scene, const std::vector<bool>& shell, glm::vec3 origin) {
+  double facing = 0.0, area = 0.0;
+  for (size_t m = 0; m < scene.meshes.size(); ++m) {
+    if (!shell[m]) continue;
+    const Mesh& mesh = scene.meshes[m];
+    for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+      const glm::vec3 a = mesh.vertices[mesh.indices[t]].position;
+      const glm::vec3 b = mesh.vertices[mesh.indices[t + 1]].position;
+      const glm::vec3 c = mesh.vertices[mesh.indices[t + 2]].position;
+      const glm::vec3 n = glm::cross(b - a, c - a);
+      const glm::vec3 towards = (a + b + c) / 3.0f - origin;
+      const float lengths = glm::length(n) * glm::length(towards);
+      if (!(lengths > 0.0f) || !std::isfinite(lengths)) continue;
+      facing += double(std::abs(glm::dot(n, towards)) / lengths) * double(glm::length(n));
+      area += double(glm::length(n));
+    }
+  }
+  return area > 0.0 ? float(facing / area) : 0.0f;
+}
+
 float distanceToFaces(glm::vec3 p, const Bounds& b) {
   const glm::vec3 low = p - b.min, high = b.max - p;
   return std::min({low.x, low.y, low.z, high.x, high.y, high.z});
@@ -327,7 +350,8 @@ void markEnclosures(Scene& scene) {
   }
   const bool surrounds =
       std::all_of(std::begin(reaches), std::end(reaches), [](bool r) { return r; });
-  if (!surrounds || !(rest.max.y < b.max.y - hug) || !closesTheSky(scene, shell, rest.centre())) {
+  if (!surrounds || !(rest.max.y < b.max.y - hug) || !closesTheSky(scene, shell, rest.centre()) ||
+      facingShare(scene, shell, rest.centre()) < 0.6f) {
     return;
   }
   for (size_t m = 0; m < count; ++m) {

@@ -12,7 +12,8 @@ namespace penumbra::scene {
 // Meshes that reach the top of the scene's bounds or span half their height, whose vertices hug
 // the bounds (a skybox) or stay outside what stands in the scene (a dome), and that together
 // reach the bounds' four sides and top above everything else and close the sky over it (rays
-// up from the rest's centre all meet them): a sky dome, a skybox.
+// up from the rest's centre all meet them) with faces turned to it (a body's legs turn theirs
+// sideways): a sky dome, a skybox.
 void markEnclosures(Scene& scene);
 
 // True when an upward-facing surface at the bottom of the model's bounds covers a quarter of

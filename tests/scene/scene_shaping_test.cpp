@@ -228,6 +228,13 @@ TEST(SceneShaping, PartsRoundAModelThatLeaveTheSkyOpenAreNoEnclosure) {
   fs::remove_all(dir);
 }
 
+// The real spider: its legs and body surround its eyes and teeth and close the sky over them,
+// but their faces turn sideways, not towards them as a dome's do.
+TEST(SceneShaping, TheSpidersBodyAndLegsAreTheModel) {
+  const Scene s = loadScene("/usr/share/assimp/models/OBJ/spider.obj", options(GroundMode::Off));
+  for (const Mesh& mesh : s.meshes) EXPECT_EQ(mesh.role, MeshRole::Model);
+}
+
 TEST(SceneShaping, UnlitMaterialsCastNoShadowUnlessAllCast) {
   const fs::path dir = scratchFolder("unlit");
   const fs::path file = testing::writeFile(
