@@ -148,7 +148,7 @@ LightRow measureLight(const truth::RayScene& rayScene, gl::Renderer& renderer, c
   truth::TrueShadowRequest request;
   request.camera = scene.camera;
   request.light = light;
-  request.sceneBounds = scene.bounds();
+  request.viewBounds = scene.viewBounds();
   request.width = settings.width;
   request.height = settings.height;
   request.supersample = 4;

@@ -315,7 +315,7 @@ class Viewer {
     truth::TrueShadowRequest request;
     request.camera = resultView_.camera;
     request.light = resultView_.light;
-    request.sceneBounds = state_.scene.bounds();
+    request.viewBounds = state_.scene.viewBounds();
     request.width = resultSettings_.width;
     request.height = resultSettings_.height;
     request.supersample = 1;
@@ -661,7 +661,8 @@ class Viewer {
       // The first frame of a press: the time since the last frame was spent waiting for it.
       const float seconds =
           flying_ ? std::clamp(io.DeltaTime, 0.0f, kLongestFlyStepSeconds) : 1.0f / 60.0f;
-      const float step = kFlySpeedRadiiPerSecond * std::max(state_.scene.bounds().radius(), 0.1f);
+      const float step =
+          kFlySpeedRadiiPerSecond * std::max(state_.scene.modelBounds().radius(), 0.1f);
       glm::vec3 direction(0.0f);
       direction.x = float(held(GLFW_KEY_W)) - float(held(GLFW_KEY_S));
       direction.y = float(held(GLFW_KEY_D)) - float(held(GLFW_KEY_A));
@@ -750,9 +751,10 @@ class Viewer {
       light.direction =
           lightDirectionFrom(azimuth + 0.5f * dx, std::clamp(elevation - 0.5f * dy, 1.0f, 90.0f));
     } else {
-      // Spot: orbit its position about its target; point: about the scene's centre.
+      // Spot: orbit its position about its target; point: about the model's centre (not a sky
+      // dome's).
       const glm::vec3 centre =
-          light.kind == LightKind::Spot ? light.target : state_.scene.bounds().centre();
+          light.kind == LightKind::Spot ? light.target : state_.scene.modelBounds().centre();
       Camera around{light.position, centre, light.spotAngleDegrees};
       orbitCamera(around, 0.01f * dx, -0.01f * dy);
       light.position = around.position;

@@ -194,7 +194,7 @@ int run(const Options& o) {
   const penumbra::LightView lightView = penumbra::fitLightView(light, bounds);
   const penumbra::Camera camera{o.cameraPos, o.cameraTarget, o.cameraFov};
   const glm::mat4 clipFromWorld =
-      penumbra::clipFromView(camera, float(o.width) / float(o.height), bounds) *
+      penumbra::clipFromView(camera, float(o.width) / float(o.height), {bounds, bounds}) *
       penumbra::viewFromWorld(camera);
 
   // The host's light pass: a D32F depth texture, and the linear variant's R32F colour.

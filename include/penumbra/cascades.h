@@ -47,10 +47,10 @@ struct CascadeSettings {
 };
 
 // The shadow distance when none is set: the distance from the camera to the far side of the
-// scene's bounding sphere, rounded up to whole diameters, so that it covers the scene from
-// wherever the camera is and stays constant while the camera moves within a shell (stabilised
-// cascades keep their sizes).
-float defaultShadowDistance(const Camera& camera, const Bounds& sceneBounds);
+// bounding sphere of what takes part in shadows (Scene::shadowBounds: not a sky dome), rounded up
+// to whole diameters, so that it covers them from wherever the camera is and stays constant while
+// the camera moves within a shell (stabilised cascades keep their sizes).
+float defaultShadowDistance(const Camera& camera, const Bounds& shadowBounds);
 
 // Throws Error naming the setting and its range.
 void validateCascadeSettings(const CascadeSettings& settings);
@@ -92,7 +92,7 @@ struct DepthRange {
 // Fits `settings.count` cascades for a directional light over the camera's view from range.near
 // to the shadow distance: splits by the settings, then per split a tight or a stabilised box.
 CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, float aspect,
-                         DepthRange range, const Light& light, const Bounds& sceneBounds,
+                         DepthRange range, const Light& light, const Bounds& shadowBounds,
                          int shadowMapSize);
 
 // The prefilter kernel of a cascade given cascade 0's and `scale` = cascade 0's texel over this

@@ -118,6 +118,16 @@ struct TroubleSpot {
   glm::vec4 rect{0.0f, 0.0f, 1.0f, 1.0f};  // x0, y0, x1, y1
 };
 
+// The extents a frame's depth ranges come from (Scene::viewBounds). The camera's far plane
+// reaches past everything drawn; its near plane, the light's fit and the cascades' shadow
+// distance come from what takes part in shadows, so that a sky dome a thousand times the model's
+// size moves neither the near plane into the model nor the light's map off it (receivers outside
+// the map read as lit: nothing there casts).
+struct ViewBounds {
+  Bounds drawn;     // every mesh (Scene::bounds)
+  Bounds shadowed;  // casters and the model and ground that receive (Scene::shadowBounds)
+};
+
 // A camera a scene file defines, with the name it gives it (may be empty).
 struct NamedCamera {
   std::string name;
@@ -152,14 +162,19 @@ struct Scene {
   // The bounds of the Model meshes (MeshRole): what framing and the default lights look at;
   // bounds() where the scene has none.
   Bounds modelBounds() const;
+  // The bounds of every mesh but enclosures that cast no shadow: every caster, and the model and
+  // ground that receive their shadows; bounds() where the scene has none.
+  Bounds shadowBounds() const;
+  ViewBounds viewBounds() const { return {bounds(), shadowBounds()}; }
   size_t triangleCount() const;
 };
 
 // The light's view of a scene: matrices and the linear depth metric the shadow map stores.
-// Directional lights are orthographic, fitted to the scene's bounding sphere; spot lights are
+// `shadowBounds` holds every caster and the receivers that matter (Scene::shadowBounds).
+// Directional lights are orthographic, fitted to their bounding sphere; spot lights are
 // perspective over their cone; point lights are a translation to the light (each face's rotation
-// and projection: penumbra/point_light.h) with a range reaching the far side of the scene's
-// bounding sphere. Linear depth in [0,1] is the distance along the light direction
+// and projection: penumbra/point_light.h) with a range reaching the far side of their bounding
+// sphere. Linear depth in [0,1] is the distance along the light direction
 // (directional) or from the light (spot, point), mapped from [near, far].
 struct LightView {
   glm::mat4 lightFromWorld{1.0f};  // view
@@ -173,27 +188,27 @@ struct LightView {
   float texelWorldSize(int shadowMapSize) const;
 };
 
-LightView fitLightView(const Light& light, const Bounds& sceneBounds);
+LightView fitLightView(const Light& light, const Bounds& shadowBounds);
 inline LightView fitLightView(const Scene& scene) {
-  return fitLightView(scene.light, scene.bounds());
+  return fitLightView(scene.light, scene.shadowBounds());
 }
 
-// The far plane that keeps the whole scene in view, and the near plane: the scene's bounding
-// radius / kCameraNearPerRadius, but no nearer than kMinCameraNear (or a tenth of the radius
-// for a scene smaller than half a unit, which the framing camera sees from a few radii) — the
-// scene's, not the
-// camera's, so that it holds still while the camera moves (cascade splits start at it). A fp32
-// depth buffer resolves view depth z to about ulp(1) z / near relative: 1.5e-4 of z at the far
-// plane of a camera framing the scene from 3 radii, 1e-3 only from 30 radii, whatever the
+// The far plane that keeps everything drawn in view (ViewBounds::drawn), and the near plane: the
+// bounding radius of what takes part in shadows (ViewBounds::shadowed, the model without its sky
+// dome) / kCameraNearPerRadius, but no nearer than kMinCameraNear (or a tenth of the radius for a
+// scene smaller than half a unit, which the framing camera sees from a few radii) — the scene's,
+// not the camera's, so that it holds still while the camera moves (cascade splits start at it). A
+// fp32 depth buffer resolves view depth z to about ulp(1) z / near relative: 1.5e-4 of z at the
+// far plane of a camera framing the scene from 3 radii, 1e-3 only from 30 radii, whatever the
 // scene's scale (a fixed 0.05 left 2CylinderEngine, framed from 900 units, resolved to 1e-3).
 inline constexpr float kMinCameraNear = 0.05f;
 inline constexpr float kCameraNearPerRadius = 500.0f;
-float cameraFar(const Camera& camera, const Bounds& sceneBounds);
-float cameraNear(const Bounds& sceneBounds);
+float cameraFar(const Camera& camera, const ViewBounds& bounds);
+float cameraNear(const ViewBounds& bounds);
 
 // View and projection of the scene's camera for an image of the given aspect ratio.
 glm::mat4 viewFromWorld(const Camera& camera);
-glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds);
+glm::mat4 clipFromView(const Camera& camera, float aspect, const ViewBounds& bounds);
 
 std::span<const std::string_view> builtinSceneNames();
 std::string builtinSceneNameList();
@@ -251,6 +266,9 @@ CameraSight cameraSight(const Scene& scene, const Camera& camera, float aspect);
 // A file's camera is the default only when it sees the whole model: all but a thousandth of its
 // surface (a camera that crops the model at the frame's aspect is not a first picture to keep).
 inline constexpr float kFileCameraMinSurfaceShare = 0.999f;
+// Each camera's sight costs a pass over the model: the default camera is chosen among a file's
+// first kMaxFileCamerasJudged, and --camera list judges as many.
+inline constexpr size_t kMaxFileCamerasJudged = 16;
 
 struct SceneLoadOptions {
   // Host memory a scene file may take: the files it reads, its geometry with every instance
@@ -262,8 +280,8 @@ struct SceneLoadOptions {
   float aspect = 16.0f / 9.0f;
   GroundMode ground = GroundMode::Auto;
   CasterMode casters = CasterMode::Auto;
-  // The file's camera to use (an index into Scene::fileCameras); unset: the first file camera
-  // that sees the model (kFileCameraMinSurfaceShare), else the framing camera.
+  // The file's camera to use (an index into Scene::fileCameras, as --camera takes it); unset: the
+  // first file camera that sees the model (kFileCameraMinSurfaceShare), else the framing camera.
   std::optional<int> camera;
 };
 
@@ -297,7 +315,7 @@ struct SceneOverrides {
   std::optional<glm::vec3> lightDirection;  // makes the light directional: the way it travels
   // Makes the light a spot light at this position (a point light with lightKind Point).
   std::optional<glm::vec3> lightPosition;
-  std::optional<glm::vec3> lightTarget;   // spot: where it points (default: the scene centre)
+  std::optional<glm::vec3> lightTarget;   // spot: where it points (default: the model's centre)
   std::optional<float> spotAngleDegrees;  // spot: full cone angle, (0, 170]
   std::optional<glm::vec3> cameraPosition;
   std::optional<glm::vec3> cameraTarget;

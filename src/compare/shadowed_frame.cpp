@@ -40,17 +40,20 @@ std::optional<std::string> mostlyShadowedWarning(const Scene& scene, double shar
   out << 100.0 * share
       << "% of the lit surfaces are in shadow for every technique: the frame shows the view more "
          "than the techniques. ";
-  const Bounds bounds = scene.bounds();
+  // What casts shadows and receives them: a sky dome that casts none blocks no light.
+  const Bounds bounds = scene.shadowBounds();
   const Light& light = scene.light;
   if (light.kind != LightKind::Directional && !inside(bounds, light.position)) {
     out << "The " << lightKindName(light.kind) << " light at " << text(light.position)
-        << " is outside the scene's bounds " << text(bounds.min) << " - " << text(bounds.max)
+        << " is outside the bounds of what casts shadows " << text(bounds.min) << " - "
+        << text(bounds.max)
         << ": geometry that encloses the scene (a sky dome, walls) stands between it and "
            "everything; place it inside with --light-pos.";
   } else if (inside(bounds, scene.camera.position)) {
     out << "The camera at " << text(scene.camera.position)
-        << " is inside the scene's bounds: geometry enclosing it (a sky dome, a room) may block "
-           "the light; try --light point --light-pos inside it, or a camera outside.";
+        << " is inside the bounds of what casts shadows: geometry enclosing it (a room, a sky "
+           "dome that casts) may block the light; try --light point --light-pos inside it, or a "
+           "camera outside.";
   } else {
     out << "Most of what the camera sees faces away from the light or lies under other geometry; "
            "try another --light-dir or --camera-pos.";

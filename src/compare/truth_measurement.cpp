@@ -13,7 +13,7 @@ TruthResult measureTruth(const truth::RayScene& rays, const ComparisonRequest& r
   truth::TrueShadowRequest trace;
   trace.camera = camera;
   trace.light = scene.light;
-  trace.sceneBounds = scene.bounds();
+  trace.viewBounds = scene.viewBounds();
   trace.width = request.settings.width;
   trace.height = request.settings.height;
   trace.supersample = request.supersample;

@@ -85,7 +85,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   shadows.bind();
   const float aspect = float(width_) / float(height_);
   const glm::mat4 view = viewFromWorld(frame.camera);
-  program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.sceneBounds) * view);
+  program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.viewBounds) * view);
   program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
   program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
   program.set("lightClipFromView", frame.lightView.clipFromLight);

@@ -21,7 +21,7 @@ struct FrameGeometry {
   Camera camera;
   Camera shadowCamera;  // the cascades' (FrameView::shadowCamera): its view depth selects them
   Light light;
-  Bounds sceneBounds;
+  ViewBounds viewBounds;
   LightView lightView;  // the light's view and depth metric (one map: also its projection)
   bool cascaded = false;
   // A point light: the cascades are its six faces (penumbra/point_light.h), chosen per pixel by

@@ -155,7 +155,9 @@ uint64_t sceneFingerprint(const Scene& scene) {
     hash = hashBytes(hash, m.indices.data(), m.indices.size() * sizeof(uint32_t));
     const float material[5] = {m.albedo.r, m.albedo.g, m.albedo.b, m.opacity,
                                m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f};
-    const int flags[3] = {m.baseColorTexture, m.doubleSided ? 1 : 0, m.castsShadow ? 1 : 0};
+    // The role with castsShadow decides the frame's depth ranges (Scene::shadowBounds).
+    const int flags[4] = {m.baseColorTexture, m.doubleSided ? 1 : 0, m.castsShadow ? 1 : 0,
+                          int(m.role)};
     hash = hashBytes(hash, material, sizeof material);
     hash = hashBytes(hash, flags, sizeof flags);
   }

@@ -60,8 +60,8 @@ void setMaterialUniforms(const Program& program, const GpuScene::Material& mater
 // Seen from the camera, glTF's doubleSided: false culls back faces (shadows are cast by both).
 void setCameraFaceCulling(const GpuScene::Material& material);
 
-// A 64-bit FNV-1a hash of what GpuScene uploads (geometry and materials): equal scenes hash
-// equal, so a renderer re-uploads only a scene whose content changed.
+// A 64-bit FNV-1a hash of what GpuScene uploads (geometry, materials and mesh roles): equal scenes
+// hash equal, so a renderer re-uploads only a scene whose content changed.
 uint64_t sceneFingerprint(const Scene& scene);
 
 }  // namespace penumbra::gl

@@ -118,7 +118,7 @@ void Renderer::setScene(const Scene& scene) {
   }
   s.scene = std::make_unique<GpuScene>(scene);
   s.sceneFingerprint = fingerprint;
-  s.sceneBounds = scene.bounds();
+  s.viewBounds = scene.viewBounds();
   s.sceneDefaults = Scene{};
   s.sceneDefaults.name = scene.name;
   s.sceneDefaults.camera = scene.camera;
@@ -203,17 +203,16 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   frame.camera = view.camera;
   frame.shadowCamera = view.shadowCamera.value_or(view.camera);
   frame.light = view.light;
-  frame.sceneBounds = s.sceneBounds;
+  frame.viewBounds = s.viewBounds;
   frame.shadowMapSize = settings.shadowMapSize;
-  frame.lightView = fitLightView(view.light, s.sceneBounds);
+  frame.lightView = fitLightView(view.light, s.viewBounds.shadowed);
   const float aspect = float(settings.width) / float(settings.height);
-  DepthRange range{cameraNear(s.sceneBounds),
-                   cameraFar(frame.shadowCamera, s.sceneBounds)};
+  DepthRange range{cameraNear(s.viewBounds), cameraFar(frame.shadowCamera, s.viewBounds)};
   s.depthBoundsTimer.reset();
   if (fitsDepthBounds(settings)) {
     s.depthBoundsTimer.begin();
     const glm::mat4 clipFromWorld =
-        clipFromView(frame.shadowCamera, aspect, s.sceneBounds) * viewFromWorld(frame.shadowCamera);
+        clipFromView(frame.shadowCamera, aspect, s.viewBounds) * viewFromWorld(frame.shadowCamera);
     range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
                                   settings.height, range);
     s.depthBoundsTimer.end();
@@ -245,7 +244,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   frame.cascades = frame.pointLight ? pointLightCascadeFrame(frame.lightView)
                    : frame.cascaded
                        ? fitCascades(settings.cascades, frame.shadowCamera, aspect, range,
-                                     view.light, s.sceneBounds, settings.shadowMapSize)
+                                     view.light, s.viewBounds.shadowed, settings.shadowMapSize)
                        : singleMap(frame.lightView);
   const int count = frame.cascades.count;
   s.cascadeBlurs.assign(1, settings.blur);

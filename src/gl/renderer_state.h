@@ -40,7 +40,7 @@ struct Renderer::State {
 
   std::unique_ptr<GpuScene> scene;
   uint64_t sceneFingerprint = 0;
-  Bounds sceneBounds;
+  ViewBounds viewBounds;  // the frame's depth ranges and the light's fit (Scene::viewBounds)
   Scene sceneDefaults;  // name, camera and light of the uploaded scene (no meshes)
 
   DepthBoundsPass depthBounds;

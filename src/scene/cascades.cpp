@@ -121,9 +121,10 @@ void validateCascadeSettings(const CascadeSettings& s) {
   }
 }
 
-float defaultShadowDistance(const Camera& camera, const Bounds& sceneBounds) {
-  const float diameter = std::max(2.0f * sceneBounds.radius(), 1e-3f);
-  const float farSide = glm::length(camera.position - sceneBounds.centre()) + sceneBounds.radius();
+float defaultShadowDistance(const Camera& camera, const Bounds& shadowBounds) {
+  const float diameter = std::max(2.0f * shadowBounds.radius(), 1e-3f);
+  const float farSide =
+      glm::length(camera.position - shadowBounds.centre()) + shadowBounds.radius();
   return diameter * std::max(1.0f, std::ceil(farSide / diameter));
 }
 
@@ -159,12 +160,12 @@ float CascadeFrame::texelWorldSize(int cascade, int shadowMapSize) const {
 }
 
 CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, float aspect,
-                         DepthRange range, const Light& light, const Bounds& sceneBounds,
+                         DepthRange range, const Light& light, const Bounds& shadowBounds,
                          int shadowMapSize) {
   validateCascadeSettings(settings);
   requireCascadableLight(settings, light);
   CascadeFrame frame;
-  frame.light = fitLightView(light, sceneBounds);
+  frame.light = fitLightView(light, shadowBounds);
   frame.count = settings.count;
   frame.blendBand = settings.blendBand;
   // The shadow distance must not follow the camera, or the splits (and with them the stabilised
@@ -173,7 +174,7 @@ CascadeFrame fitCascades(const CascadeSettings& settings, const Camera& camera, 
   // camera is, and stays put while the camera moves within a shell. Fitted depth bounds narrow it
   // to what the camera sees (and give up that stability, as SDSM does).
   float far = settings.maxDistance > 0.0f ? settings.maxDistance
-                                          : defaultShadowDistance(camera, sceneBounds);
+                                          : defaultShadowDistance(camera, shadowBounds);
   float near = range.near;
   if (settings.fitDepthBounds) far = std::min(far, range.far);
   near = std::min(near, far * 0.999f);

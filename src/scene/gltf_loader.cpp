@@ -835,12 +835,15 @@ Scene Importer::run(std::vector<std::string> warnings) {
   for (const PlacedCamera& placed : cameras_) {
     const tinygltf::Camera& c = model_.cameras[size_t(placed.camera)];
     const float fov = float(glm::degrees(c.perspective.yfov));
-    const std::string what =
-        "camera " + std::to_string(placed.camera) + " (node " + std::to_string(placed.node) + ")";
+    // Named by the file's camera index: it is left out of the cameras --camera numbers.
+    const std::string what = "the file's camera " + std::to_string(placed.camera) + " (node " +
+                             std::to_string(placed.node) + ")";
     if (c.type != "perspective") {
-      warn(what + " is " + c.type + "; only perspective cameras are used");
+      warn(what + " is " + c.type +
+           "; only perspective cameras are used (and numbered for --camera)");
     } else if (!(fov > 0.0f && fov <= 170.0f)) {
-      warn(what + "'s yfov " + std::to_string(fov) + " degrees is outside (0, 170]; not used");
+      warn(what + "'s yfov " + std::to_string(fov) +
+           " degrees is outside (0, 170]; not used (nor numbered for --camera)");
     } else {
       const auto [position, target] = aim(placed.world);
       if (std::isfinite(target.x + target.y + target.z)) {

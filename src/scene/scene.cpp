@@ -36,6 +36,13 @@ Bounds Scene::modelBounds() const {
   return model.min.x <= model.max.x ? model : bounds();
 }
 
+Bounds Scene::shadowBounds() const {
+  const Bounds shadowed = boundsOf(meshes, [](const Mesh& m) {
+    return (m.castsShadow || m.role != MeshRole::Enclosure) && !m.vertices.empty();
+  });
+  return shadowed.min.x <= shadowed.max.x ? shadowed : bounds();
+}
+
 std::vector<Camera> Scene::cameraPath(int frames) const {
   std::vector<Camera> path;
   for (int i = 0; i < frames; ++i) {
@@ -112,20 +119,20 @@ glm::mat4 viewFromWorld(const Camera& camera) {
                      upFor(glm::normalize(camera.target - camera.position)));
 }
 
-float cameraFar(const Camera& camera, const Bounds& sceneBounds) {
-  return glm::length(sceneBounds.centre() - camera.position) + 2.0f * sceneBounds.radius();
+float cameraFar(const Camera& camera, const ViewBounds& bounds) {
+  return glm::length(bounds.drawn.centre() - camera.position) + 2.0f * bounds.drawn.radius();
 }
 
-float cameraNear(const Bounds& sceneBounds) {
+float cameraNear(const ViewBounds& bounds) {
   // A scene smaller than the fixed floor (a model in millimetres, framed from a few of its own
   // radii) gets a tenth of its radius instead, so the floor never clips it.
-  const float radius = sceneBounds.radius();
+  const float radius = bounds.shadowed.radius();
   return std::max(std::min(kMinCameraNear, 0.1f * radius), radius / kCameraNearPerRadius);
 }
 
-glm::mat4 clipFromView(const Camera& camera, float aspect, const Bounds& sceneBounds) {
-  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, cameraNear(sceneBounds),
-                          cameraFar(camera, sceneBounds));
+glm::mat4 clipFromView(const Camera& camera, float aspect, const ViewBounds& bounds) {
+  return glm::perspective(glm::radians(camera.verticalFovDegrees), aspect, cameraNear(bounds),
+                          cameraFar(camera, bounds));
 }
 
 }  // namespace penumbra

@@ -151,7 +151,7 @@ void applyOverrides(Scene& scene, const SceneOverrides& o) {
     }
     if (wantsSpot && (o.lightPosition || previous != LightKind::Spot)) {
       scene.light.target =
-          o.lightTarget ? checked(o.lightTarget, "light target") : scene.bounds().centre();
+          o.lightTarget ? checked(o.lightTarget, "light target") : scene.modelBounds().centre();
     } else if (o.lightTarget) {
       scene.light.target = checked(o.lightTarget, "light target");
     }

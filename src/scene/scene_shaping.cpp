@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "penumbra/error.h"
@@ -94,7 +95,7 @@ Camera framingCamera(const Scene& scene, float aspect) {
 
 CameraSight cameraSight(const Scene& scene, const Camera& camera, float aspect) {
   const glm::mat4 clipFromWorld =
-      clipFromView(camera, aspect, scene.bounds()) * viewFromWorld(camera);
+      clipFromView(camera, aspect, scene.viewBounds()) * viewFromWorld(camera);
   double totalArea = 0.0, seenArea = 0.0;
   glm::vec2 low(1.0f), high(-1.0f);
   for (const Mesh& mesh : scene.meshes) {
@@ -135,7 +136,6 @@ namespace {
 
 // Within this share of the bounds' largest extent from one of their faces, a vertex hugs them.
 constexpr float kHugShare = 0.05f;
-constexpr size_t kMaxCamerasJudged = 16;
 
 // Whether the ray from `origin` along `direction` meets the triangle (Moller and Trumbore).
 bool rayMeetsTriangle(glm::vec3 origin, glm::vec3 direction, glm::vec3 a, glm::vec3 b,
@@ -229,9 +229,11 @@ Mesh groundUnder(const Bounds& model) {
   return ground;
 }
 
+// A file camera as --camera names it: its index in Scene::fileCameras (the file's perspective
+// cameras in the order its scene reaches them), not its index in a glTF file's cameras.
 std::string cameraName(const Scene& scene, size_t index) {
   const std::string& name = scene.fileCameras[index].name;
-  return "camera " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
+  return "--camera " + std::to_string(index) + (name.empty() ? "" : " ('" + name + "')");
 }
 
 void chooseCamera(Scene& scene, const SceneLoadOptions& options, const std::string& source) {
@@ -254,8 +256,9 @@ void chooseCamera(Scene& scene, const SceneLoadOptions& options, const std::stri
   float bestShare = -1.0f;
   size_t best = 0;
   // Each sight costs a pass over the model: a file with thousands of cameras is judged by its
-  // first kMaxCamerasJudged.
-  for (size_t i = 0; i < std::min(count, kMaxCamerasJudged); ++i) {
+  // first kMaxFileCamerasJudged.
+  const size_t judged = std::min(count, kMaxFileCamerasJudged);
+  for (size_t i = 0; i < judged; ++i) {
     const CameraSight sight = cameraSight(scene, scene.fileCameras[i].camera, options.aspect);
     if (sight.surfaceShare >= kFileCameraMinSurfaceShare) {
       scene.camera = scene.fileCameras[i].camera;
@@ -271,7 +274,9 @@ void chooseCamera(Scene& scene, const SceneLoadOptions& options, const std::stri
     scene.warnings.push_back(
         source + ": " +
         (count == 1 ? std::string("its camera does not see")
-                    : "none of its " + std::to_string(count) + " cameras sees") +
+                    : "none of the " + std::to_string(judged) + " cameras judged" +
+                          (judged < count ? " (its first, of " + std::to_string(count) + ")" : "") +
+                          " sees") +
         " the whole model at the frame's aspect (" + cameraName(scene, best) + " sees " +
         percent(bestShare) +
         "); a camera framing the model is used instead (--camera N picks one, --camera list "
@@ -281,7 +286,7 @@ void chooseCamera(Scene& scene, const SceneLoadOptions& options, const std::stri
 
 }  // namespace
 
-void markEnclosures(Scene& scene) {
+std::vector<bool> findEnclosures(const Scene& scene) {
   const Bounds b = scene.bounds();
   const glm::vec3 extent = b.max - b.min;
   const float hug = kHugShare * std::max({extent.x, extent.y, extent.z});
@@ -327,7 +332,8 @@ void markEnclosures(Scene& scene) {
     shell[m] = hugs[m] || double(outside) >= 0.95 * double(scene.meshes[m].vertices.size());
     shells += shell[m] ? 1 : 0;
   }
-  if (shells == 0 || shells == count) return;
+  const std::vector<bool> none(count, false);
+  if (shells == 0 || shells == count) return none;
   // The shells surround the rest: together they reach the four sides and the top of the
   // bounds, and the rest stays clear of the top by the hugging distance.
   bool reaches[5] = {false, false, false, false, false};
@@ -350,13 +356,28 @@ void markEnclosures(Scene& scene) {
   }
   const bool surrounds =
       std::all_of(std::begin(reaches), std::end(reaches), [](bool r) { return r; });
-  if (!surrounds || !(rest.max.y < b.max.y - hug) || !closesTheSky(scene, shell, rest.centre()) ||
+  // Something stands inside: a mesh of the rest that is no plate, rising by the hugging share
+  // of its own largest extent. Where nothing stands in the scene's terms (a small model under a
+  // dome a thousand times its size) every rising mesh keeps outside it; but a floor plate alone
+  // under walls and a roof is a house, not what a sky encloses.
+  bool somethingStands = false;
+  for (size_t m = 0; m < count && !somethingStands; ++m) {
+    if (shell[m] || scene.meshes[m].vertices.empty()) continue;
+    Bounds own{glm::vec3(std::numeric_limits<float>::max()),
+               glm::vec3(std::numeric_limits<float>::lowest())};
+    for (const Vertex& v : scene.meshes[m].vertices) {
+      own.min = glm::min(own.min, v.position);
+      own.max = glm::max(own.max, v.position);
+    }
+    const glm::vec3 size = own.max - own.min;
+    somethingStands = size.y > kHugShare * std::max({size.x, size.y, size.z});
+  }
+  if (!surrounds || !somethingStands || !(rest.max.y < b.max.y - hug) ||
+      !closesTheSky(scene, shell, rest.centre()) ||
       facingShare(scene, shell, rest.centre()) < 0.6f) {
-    return;
+    return none;
   }
-  for (size_t m = 0; m < count; ++m) {
-    if (shell[m]) scene.meshes[m].role = MeshRole::Enclosure;
-  }
+  return shell;
 }
 
 bool hasFloor(const Scene& scene) {
@@ -408,14 +429,27 @@ void shapeFileScene(Scene& scene, const SceneLoadOptions& options, const std::st
   if (!(options.aspect > 0.0f && options.aspect <= 100.0f)) {
     throw Error("the frame's aspect " + std::to_string(options.aspect) + " is outside (0, 100]");
   }
-  markEnclosures(scene);
-  const glm::vec3 modelCentre = scene.modelBounds().centre();
-  for (Mesh& mesh : scene.meshes) {
-    if (mesh.role == MeshRole::Enclosure) faceInwards(mesh, modelCentre);
+  // --casters all keeps every mesh the model, as the file has it: a misjudged enclosure (a house
+  // taken for a skybox) is then drawn, framed and casting as written.
+  const std::vector<bool> encloses = findEnclosures(scene);
+  const size_t enclosures = size_t(std::count(encloses.begin(), encloses.end(), true));
+  if (options.casters == CasterMode::Auto) {
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+      if (encloses[m]) scene.meshes[m].role = MeshRole::Enclosure;
+    }
+    const glm::vec3 modelCentre = scene.modelBounds().centre();
+    for (Mesh& mesh : scene.meshes) {
+      if (mesh.role == MeshRole::Enclosure) faceInwards(mesh, modelCentre);
+    }
+  } else if (enclosures > 0) {
+    scene.notes.push_back(source + ": " + std::to_string(enclosures) +
+                          (enclosures == 1 ? " mesh seems" : " meshes seem") +
+                          " to enclose the rest of the scene (a sky dome or box); with --casters "
+                          "all they stay part of the model, cast shadows and are framed and "
+                          "drawn as the file has them");
   }
-  size_t enclosures = 0, unlit = 0;
+  size_t unlit = 0;
   for (Mesh& mesh : scene.meshes) {
-    enclosures += mesh.role == MeshRole::Enclosure ? 1 : 0;
     unlit += mesh.unlit ? 1 : 0;
     mesh.castsShadow =
         options.casters == CasterMode::All || (mesh.role != MeshRole::Enclosure && !mesh.unlit);

@@ -55,10 +55,10 @@ struct CameraRays {
         worldFromView(glm::transpose(glm::mat3(viewFromWorld(request.camera)))),
         subPixelsWide(request.width * request.supersample),
         subPixelsHigh(request.height * request.supersample),
-        nearDepth(cameraNear(request.sceneBounds)),
-        farDepth(cameraFar(request.camera, request.sceneBounds)) {
+        nearDepth(cameraNear(request.viewBounds)),
+        farDepth(cameraFar(request.camera, request.viewBounds)) {
     const glm::mat4 projection = clipFromView(
-        request.camera, float(request.width) / float(request.height), request.sceneBounds);
+        request.camera, float(request.width) / float(request.height), request.viewBounds);
     xScale = 1.0f / projection[0][0];
     yScale = 1.0f / projection[1][1];
   }

@@ -175,7 +175,7 @@ SurfaceMatch matchRasterisedSurfaces(const TrueShadow& trace, const Image& raste
   // The rasteriser's window depth back to view depth through its own projection (glm's
   // OpenGL convention, clip z in [-w, w]): ndc = -P22 + P32 / depth.
   const float aspect = float(request.width) / float(request.height);
-  const glm::mat4 projection = clipFromView(request.camera, aspect, request.sceneBounds);
+  const glm::mat4 projection = clipFromView(request.camera, aspect, request.viewBounds);
   const double p22 = projection[2][2], p32 = projection[3][2];
   SurfaceMatch match;
   match.matched = Image(request.width, request.height, 1, 1.0f);

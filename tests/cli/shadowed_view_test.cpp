@@ -57,7 +57,8 @@ TEST(ShadowedView, RenderWarnsWhenEnclosingGeometryShadowsEverythingAndNotOtherw
     EXPECT_EQ(warned, dome) << run.output;
     if (dome) {
       // The light at y = 30 is above the shell's top (y = 20): the cause named is the light.
-      EXPECT_NE(run.output.find("The point light at (3, 30, 2) is outside the scene's bounds"),
+      EXPECT_NE(run.output.find(
+                    "The point light at (3, 30, 2) is outside the bounds of what casts shadows"),
                 std::string::npos)
           << run.output;
     }

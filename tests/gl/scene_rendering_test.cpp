@@ -80,7 +80,7 @@ RegionMean groundRegionMean(const Image& visibility, const Scene& s, float x0, f
                             float z1) {
   const float aspect = float(visibility.width()) / float(visibility.height());
   const glm::mat4 clipFromWorld =
-      clipFromView(s.camera, aspect, s.bounds()) * viewFromWorld(s.camera);
+      clipFromView(s.camera, aspect, s.viewBounds()) * viewFromWorld(s.camera);
   double sum = 0.0;
   int count = 0, minColumn = INT32_MAX, maxColumn = -1;
   for (int y = 0; y < visibility.height(); ++y) {

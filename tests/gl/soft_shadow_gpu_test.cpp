@@ -44,9 +44,9 @@ EdgeErrors edgeErrors(gl::Renderer& renderer, const Scene& scene, int samples, i
   renderer.setScene(scene);
   const gl::RenderResult r =
       renderer.renderAreaLightReference(s, gl::FrameView{scene.camera, scene.light}, samples, 1);
-  const glm::mat4 worldFromClip =
-      glm::inverse(clipFromView(scene.camera, float(s.width) / float(s.height), scene.bounds()) *
-                   viewFromWorld(scene.camera));
+  const glm::mat4 worldFromClip = glm::inverse(
+      clipFromView(scene.camera, float(s.width) / float(s.height), scene.viewBounds()) *
+      viewFromWorld(scene.camera));
   EdgeErrors e;
   double sum = 0.0;
   for (int y = 0; y < s.height; ++y) {

@@ -98,7 +98,7 @@ TEST_F(TruthComparison, OnlySilhouettesAreLeftOutOfTheSameSurfaceMatch) {
     truth::TrueShadowRequest t;
     t.camera = scene.camera;
     t.light = scene.light;
-    t.sceneBounds = scene.bounds();
+    t.viewBounds = scene.viewBounds();
     t.width = s.width;
     t.height = s.height;
     t.supersample = S;
@@ -109,7 +109,7 @@ TEST_F(TruthComparison, OnlySilhouettesAreLeftOutOfTheSameSurfaceMatch) {
     // rasterised sub-pixels around it differs by more than 0.5% in view depth (or one sees
     // nothing) — five times the match's tolerance; the engine's stacked fins step by about 1%.
     const glm::mat4 projection =
-        clipFromView(scene.camera, float(s.width) / float(s.height), scene.bounds());
+        clipFromView(scene.camera, float(s.width) / float(s.height), scene.viewBounds());
     auto viewDepth = [&](int x, int y) {
       const float w = depth.at(std::clamp(x, 0, depth.width() - 1),
                                std::clamp(y, 0, depth.height() - 1));

@@ -349,7 +349,7 @@ TEST(SceneOverrides, SetTheLightAndCameraAndRefuseNonsense) {
   o.cameraPosition = glm::vec3(1.0f, 2.0f, 3.0f);
   applyOverrides(s, o);
   EXPECT_EQ(s.light.kind, LightKind::Spot);
-  EXPECT_EQ(s.light.target, s.bounds().centre());
+  EXPECT_EQ(s.light.target, s.modelBounds().centre());
   EXPECT_EQ(s.camera.position, glm::vec3(1.0f, 2.0f, 3.0f));
   SceneOverrides zero;
   zero.lightDirection = glm::vec3(0.0f);

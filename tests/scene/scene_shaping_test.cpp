@@ -64,7 +64,7 @@ SceneLoadOptions options(GroundMode ground, float aspect = 16.0f / 9.0f) {
 // The largest |x| and |y| in normalised device coordinates over the model's vertices.
 glm::vec2 projectedExtent(const Scene& scene, float aspect) {
   const glm::mat4 clipFromWorld =
-      clipFromView(scene.camera, aspect, scene.bounds()) * viewFromWorld(scene.camera);
+      clipFromView(scene.camera, aspect, scene.viewBounds()) * viewFromWorld(scene.camera);
   glm::vec2 extent(0.0f);
   for (const Mesh& mesh : scene.meshes) {
     if (mesh.role != MeshRole::Model) continue;
@@ -187,6 +187,82 @@ TEST(SceneShaping, GeometryEnclosingTheModelCastsNoShadowUnlessAllCast) {
   fs::remove_all(dir);
 }
 
+// A house: four walls and a roof, each its own mesh, round a floor plate and nothing else. They
+// reach the bounds' sides and top, close the sky and face the middle as a skybox does, but
+// nothing stands inside: the house is the model, drawn, framed and casting as written.
+TEST(SceneShaping, AHouseOverABareFloorIsTheModelNotAnEnclosure) {
+  const fs::path dir = scratchFolder("house");
+  ObjBoxes house;
+  house.add({-4.8f, -0.2f, -4.8f}, {4.8f, 0.0f, 4.8f});   // floor plate
+  house.add({-5.0f, -0.2f, -5.0f}, {-4.8f, 3.0f, 5.0f});  // walls
+  house.add({4.8f, -0.2f, -5.0f}, {5.0f, 3.0f, 5.0f});
+  house.add({-5.0f, -0.2f, -5.0f}, {5.0f, 3.0f, -4.8f});
+  house.add({-5.0f, -0.2f, 4.8f}, {5.0f, 3.0f, 5.0f});
+  house.add({-5.0f, 3.0f, -5.0f}, {5.0f, 3.2f, 5.0f});  // roof
+  const fs::path file = house.write(dir, "house");
+  const Scene s = loadScene(file.string(), options(GroundMode::Off));
+  ASSERT_EQ(s.meshes.size(), 6u);
+  for (size_t m = 0; m < s.meshes.size(); ++m) {
+    EXPECT_EQ(s.meshes[m].role, MeshRole::Model) << m;
+    EXPECT_TRUE(s.meshes[m].castsShadow) << m;
+    EXPECT_TRUE(s.meshes[m].doubleSided) << m;  // not turned inwards and culled from outside
+  }
+  for (const std::string& note : s.notes) ADD_FAILURE() << note;
+  fs::remove_all(dir);
+}
+
+// --casters all keeps an enclosure the model, as the file has it, and says what it would have
+// been.
+TEST(SceneShaping, AllCastersLeaveAnEnclosureAsWrittenAndSaySo) {
+  const fs::path dir = scratchFolder("dome_all");
+  SceneLoadOptions all = options(GroundMode::Off);
+  all.casters = CasterMode::All;
+  const Scene s = loadScene(domeScene().write(dir, "dome").string(), all);
+  for (const Mesh& mesh : s.meshes) {
+    EXPECT_EQ(mesh.role, MeshRole::Model);
+    EXPECT_TRUE(mesh.castsShadow);
+    EXPECT_TRUE(mesh.doubleSided);
+  }
+  ASSERT_EQ(s.notes.size(), 1u);
+  EXPECT_NE(s.notes[0].find("5 meshes seem to enclose"), std::string::npos) << s.notes[0];
+  fs::remove_all(dir);
+}
+
+// A unit box with no floor inside a skybox a thousand times its radius: the near plane and the
+// light's map come from the box and the ground added under it, the far plane reaches the sky.
+TEST(SceneShaping, ASkyboxMovesNeitherTheNearPlaneNorTheLightsFit) {
+  const fs::path dir = scratchFolder("skybox");
+  ObjBoxes boxes;
+  boxes.add({-0.5f, 0.0f, -0.5f}, {0.5f, 1.0f, 0.5f});
+  const float sky = 900.0f;  // the box's radius is 0.87
+  boxes.add({-sky, -sky, -sky}, {-sky + 10.0f, sky, sky});
+  boxes.add({sky - 10.0f, -sky, -sky}, {sky, sky, sky});
+  boxes.add({-sky, -sky, -sky}, {sky, sky, -sky + 10.0f});
+  boxes.add({-sky, -sky, sky - 10.0f}, {sky, sky, sky});
+  boxes.add({-sky, sky - 10.0f, -sky}, {sky, sky, sky});
+  const Scene s = loadScene(boxes.write(dir, "skybox").string(), options(GroundMode::Auto));
+  ASSERT_EQ(s.meshes.size(), 7u);  // the box, five sky pieces, a ground
+  for (size_t m = 1; m < 6; ++m) EXPECT_EQ(s.meshes[m].role, MeshRole::Enclosure) << m;
+  EXPECT_EQ(s.meshes[6].role, MeshRole::Ground);
+
+  const float modelRadius = s.modelBounds().radius();
+  const Bounds shadowed = s.shadowBounds();
+  EXPECT_LT(shadowed.radius(), 3.0f * modelRadius);  // the box and its ground
+  EXPECT_EQ(shadowed.min.x, s.meshes[6].vertices[0].position.x);
+  // The framing camera sees every vertex of the box in front of the near plane (projectedExtent
+  // checks each against the clip volume), and the far plane reaches past the sky's far corner.
+  const glm::vec2 extent = projectedExtent(s, 16.0f / 9.0f);
+  EXPECT_NEAR(std::max(extent.x, extent.y), kFramingFill, 1e-3f);
+  EXPECT_LE(cameraNear(s.viewBounds()), 0.1f * modelRadius);
+  EXPECT_GT(cameraFar(s.camera, s.viewBounds()), glm::length(glm::vec3(-sky) - s.camera.position));
+  // The directional light's map spans the box and its ground, not the sky: a texel is a
+  // thousandth of the model's size at 1024 texels, not the sky's.
+  const LightView light = fitLightView(s);
+  EXPECT_LE(light.texelWorldSize(1024) * 1024.0f, 2.0f * shadowed.radius() * 1.0001f);
+  EXPECT_LT(light.texelWorldSize(1024), 5.0f * modelRadius / 1024.0f);
+  fs::remove_all(dir);
+}
+
 // tests/data/dome_city.obj (scripts/make-dome-city): nine buildings on a floor that reaches a
 // hemispherical sky dome in eight pieces, faces inwards — VC.glb's case.
 TEST(SceneShaping, AHemisphericalDomeOverACityIsAnEnclosure) {
@@ -277,6 +353,8 @@ TEST(SceneShaping, AFileCameraIsTheDefaultOnlyWhenItSeesTheWholeModel) {
   EXPECT_EQ(near.camera.verticalFovDegrees, 45.0f);
   ASSERT_EQ(near.warnings.size(), 1u);
   EXPECT_NE(near.warnings[0].find("--camera N picks one"), std::string::npos) << near.warnings[0];
+  // Named as --camera takes it.
+  EXPECT_NE(near.warnings[0].find("(--camera 0 sees "), std::string::npos) << near.warnings[0];
   // Asked for, it is used as it is.
   SceneLoadOptions pick = options(GroundMode::Off);
   pick.camera = 0;

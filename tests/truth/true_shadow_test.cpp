@@ -23,7 +23,7 @@ namespace {
 glm::dvec3 groundPoint(const Scene& scene, int width, int height, int supersample, int bx, int by,
                        double planeHeight = 0.0) {
   const glm::dmat4 worldFromClip = glm::inverse(
-      glm::dmat4(clipFromView(scene.camera, float(width) / float(height), scene.bounds())) *
+      glm::dmat4(clipFromView(scene.camera, float(width) / float(height), scene.viewBounds())) *
       glm::dmat4(viewFromWorld(scene.camera)));
   const double ndcX = (double(bx) + 0.5) / double(width * supersample) * 2.0 - 1.0;
   const double ndcY = 1.0 - (double(by) + 0.5) / double(height * supersample) * 2.0;
@@ -39,7 +39,7 @@ TrueShadowRequest requestFor(const Scene& scene, int width, int height, int supe
   TrueShadowRequest r;
   r.camera = scene.camera;
   r.light = scene.light;
-  r.sceneBounds = scene.bounds();
+  r.viewBounds = scene.viewBounds();
   r.width = width;
   r.height = height;
   r.supersample = supersample;

@@ -622,7 +622,7 @@ TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
   truth::TrueShadowRequest request;
   request.camera = scene.camera;
   request.light = scene.light;
-  request.sceneBounds = scene.bounds();
+  request.viewBounds = scene.viewBounds();
   request.width = kWidth;
   request.height = kHeight;
   request.supersample = 1;

@@ -55,7 +55,8 @@ class RayScene {
 struct TrueShadowRequest {
   Camera camera;
   Light light;
-  Bounds sceneBounds;  // the camera's far plane reaches past it (cameraFar), as the rasteriser's
+  // The camera's near and far planes come from them (cameraNear, cameraFar), as the rasteriser's.
+  ViewBounds viewBounds;
   int width = 480;     // output pixels
   int height = 270;
   int supersample = 4;  // sub-pixels per side, [1, 8]: those of the supersampled ground truth
