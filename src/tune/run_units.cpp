@@ -88,14 +88,16 @@ struct FirstFrame {
 
 class SceneTuner {
  public:
-  // onFrame: called as each frame's target is traced.
+  // onLoaded: called with the scene as loaded; onFrame: as each frame's target is traced.
   SceneTuner(const TuneRequest& request, gl::Renderer& renderer, const std::string& source,
+             const std::function<void(const Scene&)>& onLoaded,
              const std::function<void()>& onFrame)
       : request_(request), renderer_(renderer) {
     SceneLoadOptions load = request.sceneLoad;
     load.aspect = float(request.settings.width) / float(request.settings.height);  // the frame's
     scene_ = loadScene(source, load);
     applyOverrides(scene_, request.view);
+    if (onLoaded) onLoaded(scene_);
     requireCascadableLight(request.settings.cascades, scene_.light);
     renderer_.setScene(scene_);
     path_ = scene_.cameraPath(request.frames);
@@ -304,7 +306,7 @@ class SceneTuner {
 
 void runUnits(const TuneRequest& request, const std::vector<WorkUnit>& units,
               gl::Renderer& renderer, const std::function<void(UnitResult)>& finished,
-              const TuneProgress& progress) {
+              const TuneProgress& progress, const std::function<void(const Scene&)>& loaded) {
   validateTuneRequest(request);
   // Steps: each scene's frames traced, and each unit's evaluations and the two settings measured
   // at full size (a third or more, when the best exceeds the time budget there, is not counted).
@@ -317,7 +319,7 @@ void runUnits(const TuneRequest& request, const std::vector<WorkUnit>& units,
   while (next < units.size()) {
     const std::string& source = units[next].scene;
     if (progress) progress(done, total, "the target of " + source);
-    SceneTuner tuner(request, renderer, source, [&] {
+    SceneTuner tuner(request, renderer, source, loaded, [&] {
       ++done;
       if (progress) progress(done, total, "the target of " + source);
     });

@@ -53,10 +53,17 @@ std::string experimentList() {
   return list;
 }
 
-void runPaperExperiments(const BenchOptions& o) {
+// The scene as a bench measures it, shaped for frames of `aspect`; its warnings and notes printed.
+Scene benchScene(const BenchOptions& o, float aspect) {
+  Scene scene = loadScene(o.scene.scene, sceneLoadOptions(o.scene, aspect));
+  applyOverrides(scene, sceneOverrides(o.scene));
+  printSceneWarnings(scene);
+  return scene;
+}
+
+void runPaperExperiments(const BenchOptions& o, float aspect) {
   std::vector<std::string> ids = o.experiments;
   if (ids.size() == 1 && ids[0] == "all") ids = compare::paperExperimentIds();
-  toRenderSettings(o.render);  // the sizes given (the rest are defaults), checked before any work
   compare::BenchSizes sizes;
   sizes.shadowMapSize = o.render.shadowSize;
   sizes.scalingShadowMapSize = std::min(o.render.shadowSize, sizes.scalingShadowMapSize);
@@ -64,9 +71,7 @@ void runPaperExperiments(const BenchOptions& o) {
   sizes.height = o.render.height;
   std::vector<compare::Experiment> experiments;
   for (const std::string& id : ids) experiments.push_back(compare::makePaperExperiment(id, sizes));
-  Scene scene = loadScene(
-      o.scene.scene, sceneLoadOptions(o.scene, float(o.render.width) / float(o.render.height)));
-  applyOverrides(scene, sceneOverrides(o.scene));
+  const Scene scene = benchScene(o, aspect);
   CommandOutput output(o.output);
   InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;
@@ -94,12 +99,17 @@ void runPaperExperiments(const BenchOptions& o) {
 }
 
 void runBench(const BenchOptions& o) {
+  // The sizes given (the rest are defaults), checked before any work: the frame's aspect shapes
+  // a scene file, and --camera list judges its cameras at it.
+  const gl::RenderSettings given = toRenderSettings(o.render);
+  const float aspect = float(given.width) / float(given.height);
+  if (printCameraListIfAsked(o.scene, o.scene.scene, aspect)) return;
   if (o.passes == !o.experiments.empty()) {
     throw Error("choose one: --experiment ID[,ID...] or all (" + experimentList() +
                 "), or --passes (each prefilter pass beside a minimal kernel)");
   }
   if (!o.passes) {
-    runPaperExperiments(o);
+    runPaperExperiments(o, aspect);
     return;
   }
   if (printTechniqueListIfAsked(o.technique)) return;
@@ -117,9 +127,7 @@ void runBench(const BenchOptions& o) {
                 " has no prefilter passes to measure (it filters after the test): choose "
                 "techniques that prefilter, or all");
   }
-  Scene scene = loadScene(
-      o.scene.scene, sceneLoadOptions(o.scene, float(o.render.width) / float(o.render.height)));
-  applyOverrides(scene, sceneOverrides(o.scene));
+  const Scene scene = benchScene(o, aspect);
   CommandOutput output(o.output);
   InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;

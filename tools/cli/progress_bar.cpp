@@ -14,6 +14,11 @@ ProgressBar::~ProgressBar() {
   if (drawn_) std::fprintf(stderr, "\n");
 }
 
+void ProgressBar::breakLine() {
+  if (drawn_) std::fprintf(stderr, "\n");
+  drawn_ = false;
+}
+
 void ProgressBar::update(int done, int total, const std::string& step) {
   if (!enabled_ || total <= 0) return;
   const double elapsed =

@@ -12,6 +12,9 @@ class ProgressBar {
   explicit ProgressBar(bool quiet);
   ~ProgressBar();
   void update(int done, int total, const std::string& step);
+  // Ends the bar's line, so that what is printed next starts a line of its own; the next update
+  // draws the bar again below it.
+  void breakLine();
 
  private:
   bool enabled_;

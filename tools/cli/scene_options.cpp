@@ -4,6 +4,7 @@
 // Light::size}, "camera": {"position": [x, y, z], "target": [...], "fov": deg}}
 #include "scene_options.h"
 
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -105,13 +106,18 @@ bool printCameraListIfAsked(const SceneOptions& o, const std::string& source, fl
   SceneOptions listing = o;
   listing.camera.clear();
   const Scene scene = loadScene(source, sceneLoadOptions(listing, aspect));
+  // Why a camera of the file is not listed (not perspective, a field of view out of range).
+  for (const std::string& w : scene.warnings) std::cerr << "penumbra: warning: " << w << "\n";
   if (scene.fileCameras.empty()) {
     std::cout << source << " defines no cameras; the default camera frames the model\n";
     return true;
   }
-  std::cout << source << " defines " << scene.fileCameras.size()
-            << " cameras (what each sees of the model at aspect " << aspect << "):\n";
-  for (size_t i = 0; i < scene.fileCameras.size(); ++i) {
+  const size_t count = scene.fileCameras.size();
+  const size_t judged = std::min(count, kMaxFileCamerasJudged);
+  std::cout << source << " defines " << count << (count == 1 ? " camera" : " cameras")
+            << ", numbered as --camera takes them (what each sees of the model at aspect " << aspect
+            << "):\n";
+  for (size_t i = 0; i < judged; ++i) {
     const NamedCamera& c = scene.fileCameras[i];
     const CameraSight sight = cameraSight(scene, c.camera, aspect);
     std::cout << "  " << i << "  " << (c.name.empty() ? "(unnamed)" : c.name) << "  at "
@@ -120,6 +126,12 @@ bool printCameraListIfAsked(const SceneOptions& o, const std::string& source, fl
               << " deg: " << std::floor(1000.0f * sight.surfaceShare) / 10.0f
               << "% of the model's surface, " << int(std::lround(100.0f * sight.frameShare))
               << "% of the frame\n";
+  }
+  if (judged < count) {
+    // Each sight costs a pass over the model, as when the default camera is chosen.
+    std::cout << "  " << count - judged << " more (" << judged << " to " << count - 1
+              << ") not judged: the default is chosen among the first " << judged
+              << "; --camera N uses any\n";
   }
   return true;
 }

@@ -41,8 +41,9 @@ SceneLoadOptions sceneLoadOptions(const SceneOptions& options, float aspect);
 // The same for settings merged with a settings file: its frame's aspect, ground and casters.
 SceneLoadOptions sceneLoadOptions(const SceneOptions& options, const gl::Settings& resolved);
 
-// --camera list: prints the scene file's cameras, each with what it sees of the model at this
-// aspect, and returns true; false when not asked.
+// --camera list: prints the scene file's cameras, the first kMaxFileCamerasJudged each with what
+// it sees of the model at this aspect (and how many more it did not judge), and returns true;
+// false when not asked.
 bool printCameraListIfAsked(const SceneOptions& options, const std::string& scene, float aspect);
 
 // Prints the scene's warnings and notes to stderr, one line each.

@@ -129,6 +129,12 @@ void runTune(const TuneOptions& o) {
   }
   if (printTechniqueListIfAsked(o.technique)) return;
   const tune::TuneRequest request = requestOf(o);
+  if (o.scene.camera == "list") {
+    const float aspect = float(request.settings.width) / float(request.settings.height);
+    for (const std::string& source : request.scenes)
+      printCameraListIfAsked(o.scene, source, aspect);
+    return;
+  }
   std::vector<tune::WorkUnit> units = tune::workUnits(request);
   const bool sharded = !o.shard.empty();
   if (sharded) units = tune::shardUnits(units, tune::parseShard(o.shard));
@@ -147,7 +153,11 @@ void runTune(const TuneOptions& o) {
           tune::writeUnitFiles(request, r, staging);
           if (!o.quiet) printSummary(r);
         },
-        [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
+        [&](int done, int total, const std::string& step) { bar.update(done, total, step); },
+        [&](const Scene& scene) {
+          bar.breakLine();
+          printSceneWarnings(scene);
+        });
   }
   if (!sharded) tune::writeTuneReport(staging);
   output.finish(interrupt);

@@ -158,9 +158,12 @@ struct UnitResult {
 using TuneProgress = std::function<void(int done, int total, const std::string& step)>;
 
 // Runs `units` (all of one request), calling `finished` as each completes (the command writes
-// its folder then). Scenes are loaded and their targets traced once for all their techniques.
+// its folder then). Scenes are loaded and their targets traced once for all their techniques;
+// `loaded` sees each scene as loaded, before its targets are traced (the command prints its
+// warnings and notes).
 void runUnits(const TuneRequest& request, const std::vector<WorkUnit>& units,
               gl::Renderer& renderer, const std::function<void(UnitResult)>& finished,
-              const TuneProgress& progress = {});
+              const TuneProgress& progress = {},
+              const std::function<void(const Scene&)>& loaded = {});
 
 }  // namespace penumbra::tune
