@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "penumbra/scene_animation.h"
+
 namespace penumbra {
 
 struct Vertex {
@@ -153,6 +155,9 @@ struct Scene {
   // What a loader decided for the user that they may want to undo (a ground added, enclosures
   // left out of the shadows), with the option that undoes it, for the front ends to print.
   std::vector<std::string> notes;
+  // A glTF file's node animation and skins (penumbra/scene_animation.h); the meshes hold the pose
+  // at the clip's start (poseScene places them at any other time).
+  SceneAnimation animation;
 
   // The camera path for temporal measurements: `frames` cameras from the default one to the
   // default one moved by pathOffset, the target moving alike (frame 0 is the default camera).
@@ -245,6 +250,9 @@ std::string_view groundModeName(GroundMode mode);
 GroundMode parseGroundMode(std::string_view name);
 std::string_view casterModeName(CasterMode mode);
 CasterMode parseCasterMode(std::string_view name);
+// A --camera index as written ("0", "12"), or nothing for text that is not a whole number (the
+// front ends say what they take); loadScene checks it against the file's cameras.
+std::optional<int> parseCameraIndex(std::string_view text);
 
 // The default camera of a scene file: it looks at the centre of the model's bounds
 // (Scene::modelBounds) from the front (+z), above, along kFramingDirection, with a 45-degree

@@ -186,8 +186,14 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   // The truth's BVH, built once from the geometry (the same whatever the shadow map).
   std::unique_ptr<truth::RayScene> rays;
   if (traces) rays = std::make_unique<truth::RayScene>(result.scene);
+  const bool plays = result.scene.animation.moves();
   for (size_t frame = 0; frame < path.size(); ++frame) {
     const gl::FrameView view{path[frame], result.scene.light};
+    if (plays && frame > 0) {
+      // The scene's own animation plays in real time along the path (kClipFramesPerSecond).
+      poseScene(result.scene, clipTime(result.scene, int(frame)));
+      renderer.setScene(result.scene);
+    }
     step("reference, frame " + std::to_string(frame + 1));
     const gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1);
     references.push_back(reference.visibility);
@@ -303,6 +309,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     // follow the path (FrameView::shadowCamera), so the picture changes only where the maps do.
     // The shadow camera also turns (a quarter degree a frame): tight boxes change size as it
     // turns, which is what the stabilised fit's bounding sphere is for.
+    if (plays) poseScene(result.scene, 0.0f);  // the scene holds still: only the maps move
     renderer.setScene(result.scene);
     std::vector<Camera> shadowPath = path;
     for (size_t frame = 0; frame < shadowPath.size(); ++frame) {

@@ -7,15 +7,15 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "penumbra/curves.h"
-#include "penumbra/error.h"
-#include "penumbra/text_file.h"
-#include "penumbra/output_journal.h"
-#include "penumbra/gl/render_record.h"
-#include "penumbra/image_io.h"
-#include "penumbra/params.h"
 #include "penumbra/compare/html_text.h"
 #include "penumbra/compare/report_plots.h"
+#include "penumbra/curves.h"
+#include "penumbra/error.h"
+#include "penumbra/gl/render_record.h"
+#include "penumbra/image_io.h"
+#include "penumbra/output_journal.h"
+#include "penumbra/params.h"
+#include "penumbra/text_file.h"
 
 namespace penumbra::compare {
 namespace fs = std::filesystem;
@@ -236,7 +236,8 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
       {"device", r.device},
       {"settings", settingsJson(r.request)},
       {"view", ordered_json::parse(gl::viewJson(r.scene))},
-      {"view_warning", r.shadowedWarning ? ordered_json(*r.shadowedWarning) : ordered_json(nullptr)},
+      {"view_warning",
+       r.shadowedWarning ? ordered_json(*r.shadowedWarning) : ordered_json(nullptr)},
       {"ranked_by", r.truth ? "rmse against the ray-traced truth (vs_truth)"
                             : "rmse against the filtered reference (vs_filtered_reference)"},
       {"truth", truthJson(r)},
@@ -263,7 +264,8 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
          "vs_truth: against the ray-traced truth over the pixels that see the same surfaces as "
          "the rasterised frame; vs_filtered_reference: rmse, errors, leaks, over-darkening (the "
          "leaks leaving out the pixels where the reference is darker than a lit truth); "
-         "vs_ground_truth: the same including minification aliasing; temporal_flicker: along the camera path against the "
+         "vs_ground_truth: the same including minification aliasing; temporal_flicker: along the "
+         "camera path against the "
          "filtered reference's own change; shimmer (cascades only): the visibility's mean "
          "frame-to-frame change with the view held at the path's first camera while stabilised "
          "or tight cascades follow the path"}}},
@@ -287,8 +289,10 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
         << e.maxAbsolute << "," << e.psnr << "," << e.leakShare << "," << e.leakMeanExcess << ","
         << e.darkShare << "," << e.darkMeanExcess << "," << t.groundTruth.rmse << "," << t.flicker
         << ",";
-    if (t.shimmer) csv << t.shimmer->stabilized << "," << t.shimmer->tight;  // else both empty
-    else csv << ",";
+    if (t.shimmer)
+      csv << t.shimmer->stabilized << "," << t.shimmer->tight;  // else both empty
+    else
+      csv << ",";
     csv << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
         << "," << techniqueBytes(t) << ",";
     if (t.truth && r.truth) {  // else all four empty
@@ -366,7 +370,8 @@ std::string pcfNote(const ComparisonResult& r) {
 std::string truthNote(const ComparisonResult& r) {
   if (!r.truth) {
     return "<p><b>No ray-traced truth</b> (<code>--truth none</code>): the techniques are ranked "
-           "against the " + referenceName(r) + ".</p>\n";
+           "against the " +
+           referenceName(r) + ".</p>\n";
   }
   const TruthResult& t = *r.truth;
   std::ostringstream h;
@@ -417,9 +422,8 @@ std::string shimmerSection(const ComparisonResult& r) {
   if (!measured) return {};
   const CascadeSettings& c = r.request.settings.cascades;
   std::ostringstream h;
-  h << std::setprecision(4) << "<h2>Shimmer</h2>\n<p>" << c.count
-    << " cascades follow the " << r.request.pathFrames << "-frame camera path, turning "
-    << kShimmerTurnDegrees
+  h << std::setprecision(4) << "<h2>Shimmer</h2>\n<p>" << c.count << " cascades follow the "
+    << r.request.pathFrames << "-frame camera path, turning " << kShimmerTurnDegrees
     << "° a frame, while the view holds at its first camera, so the picture changes only where "
        "the shadow maps do. Shimmer: the mean frame-to-frame change of the visibility on lit "
        "surfaces, with the cascades fitted stabilised (bounding sphere, texel snapping) and "
@@ -438,8 +442,10 @@ std::string shimmerSection(const ComparisonResult& r) {
     if (!t.shimmer) continue;
     h << "<tr><td>" << techniqueId(t.technique) << "</td><td>" << t.shimmer->stabilized
       << "</td><td>" << t.shimmer->tight << "</td><td>";
-    if (t.shimmer->stabilized > 0.0) h << t.shimmer->tight / t.shimmer->stabilized;
-    else h << "—";
+    if (t.shimmer->stabilized > 0.0)
+      h << t.shimmer->tight / t.shimmer->stabilized;
+    else
+      h << "—";
     h << "</td></tr>\n";
   }
   h << "</tbody></table>\n";
@@ -466,10 +472,15 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     << "</p>\n<p>Device: " << html(r.device) << ". Shadow map " << r.request.settings.shadowMapSize
     << "², " << (2 * r.request.settings.blur.radius + 1) << "-tap "
     << (r.request.settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " prefilter, "
-    << filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width
-    << "×" << r.request.settings.height << ", ground truth " << r.request.supersample << "×"
+    << filterModeName(r.request.settings.filter) << " lookups, " << r.request.settings.width << "×"
+    << r.request.settings.height << ", ground truth " << r.request.supersample << "×"
     << r.request.supersample << " sub-pixels, flicker over " << r.request.pathFrames
-    << " camera-path frames, τ = " << r.request.tau;
+    << " camera-path frames";
+  if (r.scene.animation.moves()) {
+    h << " as its animation '" << html(r.scene.animation.clip) << "' plays ("
+      << kClipFramesPerSecond << " frames a second from its start)";
+  }
+  h << ", τ = " << r.request.tau;
   const CascadeSettings& cascades = r.request.settings.cascades;
   if (cascades.count > 1) {
     h << ", " << cascades.count << " " << cascadeFitName(cascades.fit) << " cascades ("
@@ -488,9 +499,8 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
                                 html(*r.shadowedWarning) + "</p>\n"
                           : std::string())
     << truthNote(r) << areaLightNote(r)
-    << (r.request.settings.msaaSamples > 1
-            ? "<p><b>MSAA</b>: " + html(msaaNote(r)) + ".</p>\n"
-            : std::string())
+    << (r.request.settings.msaaSamples > 1 ? "<p><b>MSAA</b>: " + html(msaaNote(r)) + ".</p>\n"
+                                           : std::string())
     << "<p><b>Filtered reference</b>: exact PCF of the raw depth map under each technique's "
        "effective kernel "
        "(blur × lookup), each tap tested against the receiver plane. <b>Ground truth</b>: the "
@@ -519,17 +529,18 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     h << "<tr><td><a href=\"#" << techniqueId(t.technique) << "\">" << techniqueId(t.technique)
       << "</a></td><td>" << rank + 1 << "</td><td>";
     if (t.truth) {
-      h << t.truth->rmse << "</td><td>" << t.truth->leakShare << "</td><td>"
-        << t.truth->darkShare << "</td><td>";
+      h << t.truth->rmse << "</td><td>" << t.truth->leakShare << "</td><td>" << t.truth->darkShare
+        << "</td><td>";
     }
-    h << e.rmse << "</td><td>" << e.meanAbsolute
-      << "</td><td>" << e.maxAbsolute << "</td><td>" << e.psnr << "</td><td>" << e.leakShare
-      << "</td><td>" << e.leakMeanExcess << "</td><td>" << e.darkShare << "</td><td>"
-      << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse << "</td><td>" << t.flicker
-      << "</td><td>" << t.failureRatePercent << "</td><td>" << t.wallTimes.total() << "</td><td>"
-      << t.gpuTimes.total() << "</td><td>" << mib(techniqueBytes(t)) << "</td></tr>\n";
+    h << e.rmse << "</td><td>" << e.meanAbsolute << "</td><td>" << e.maxAbsolute << "</td><td>"
+      << e.psnr << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess << "</td><td>"
+      << e.darkShare << "</td><td>" << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse
+      << "</td><td>" << t.flicker << "</td><td>" << t.failureRatePercent << "</td><td>"
+      << t.wallTimes.total() << "</td><td>" << t.gpuTimes.total() << "</td><td>"
+      << mib(techniqueBytes(t)) << "</td></tr>\n";
   }
-  h << "</tbody></table>\n" << shimmerSection(r) << "<h2>Error against cost</h2>\n<div class=\"row\">"
+  h << "</tbody></table>\n"
+    << shimmerSection(r) << "<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
     << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";
   if (hasCurves) {
@@ -567,21 +578,19 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << "<p>";
     if (t.truth) {
       h << "Against the truth: RMSE " << t.truth->rmse << ", leak share " << t.truth->leakShare
-        << ", over-darkening share " << t.truth->darkShare << ". Against the "
-        << referenceName(r) << ": ";
+        << ", over-darkening share " << t.truth->darkShare << ". Against the " << referenceName(r)
+        << ": ";
     }
     h << "RMSE " << t.filtered.rmse << ", leak share " << t.filtered.leakShare
       << ", over-darkening share " << t.filtered.darkShare << ", flicker " << t.flicker
-      << "; parameters: <code>" << html(paramsJson(t.technique, t.params).dump())
-      << "</code></p>\n"
+      << "; parameters: <code>" << html(paramsJson(t.technique, t.params).dump()) << "</code></p>\n"
       << nonFiniteNote(t) << "<div class=\"row\">"
       << "<figure><img src=\"images/" << id << "_shaded.png\" alt=\"" << id
       << " shaded\"><figcaption>shaded</figcaption></figure>"
       << "<figure><img src=\"images/" << id << "_visibility.png\" alt=\"" << id
       << " visibility\"><figcaption>visibility</figcaption></figure>"
       << "<figure><img src=\"images/" << id << "_error.png\" alt=\"" << id
-      << " error\"><figcaption>error against the " << referenceName(r)
-      << "</figcaption></figure>";
+      << " error\"><figcaption>error against the " << referenceName(r) << "</figcaption></figure>";
     if (t.truth) {
       h << "<figure><img src=\"images/" << id << "_truth_error.png\" alt=\"" << id
         << " error against the truth\"><figcaption>error against the ray-traced "
@@ -656,8 +665,8 @@ Image truthPixelsImage(const ComparisonResult& r) {
       for (int c = 0; c < 3; ++c) image.at(x, y, c) = grey;
       glm::vec3 mark(-1.0f);
       const float excluded = r.truth->exclusion.at(x, y);
-      if (excluded == truth::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};     // magenta
-      if (excluded == truth::kExcludedUnlit) mark = {0.0f, 0.8f, 0.9f};  // cyan
+      if (excluded == truth::kExcludedSurface) mark = {1.0f, 0.0f, 1.0f};  // magenta
+      if (excluded == truth::kExcludedUnlit) mark = {0.0f, 0.8f, 0.9f};    // cyan
       if (r.truth->referenceTooDark.at(x, y) > 0.5f) mark = {1.0f, 0.45f, 0.0f};
       if (mark.x < 0.0f) continue;
       for (int c = 0; c < 3; ++c) image.at(x, y, c) = mark[c];
@@ -717,16 +726,16 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   // twice as tall as wide whatever the frame's shape: cairo refuses surfaces beyond 32767 pixels,
   // which a frame's height / width ratio would otherwise reach (1 x 270 gave 113400 per tile).
   const int tileWidth = 420;
-  const int tileHeight = std::clamp(
-      tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width()), 1,
-      2 * tileWidth);
+  const int tileHeight =
+      std::clamp(tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width()), 1,
+                 2 * tileWidth);
   plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
-  plotParetoScatter(byMemory, "technique memory (MiB, log scale)",
-                    rankingName(r), r.scene.name + ": error against memory",
-                    true, dir / "plots" / "error_vs_memory.png");
-  plotParetoScatter(byTime, "frame time (wall ms, log scale)",
-                    rankingName(r), r.scene.name + ": error against time",
-                    true, dir / "plots" / "error_vs_time.png");
+  plotParetoScatter(byMemory, "technique memory (MiB, log scale)", rankingName(r),
+                    r.scene.name + ": error against memory", true,
+                    dir / "plots" / "error_vs_memory.png");
+  plotParetoScatter(byTime, "frame time (wall ms, log scale)", rankingName(r),
+                    r.scene.name + ": error against time", true,
+                    dir / "plots" / "error_vs_time.png");
   const bool hasCurves = !r.worstRegion.empty();
   if (hasCurves) {
     CurvesRequest curves;

@@ -83,7 +83,8 @@ GpuScene::GpuScene(const Scene& scene) {
   const auto vertexBytes = GLsizeiptr(vertices.size() * sizeof(Vertex));
   const auto indexBytes = GLsizeiptr(indices.size() * sizeof(uint32_t));
   glCreateBuffers(1, &vertexBuffer_);
-  glNamedBufferStorage(vertexBuffer_, vertexBytes, vertices.data(), 0);
+  // Dynamic: an animated scene's next pose replaces the vertices in place (updateVertices).
+  glNamedBufferStorage(vertexBuffer_, vertexBytes, vertices.data(), GL_DYNAMIC_STORAGE_BIT);
   glCreateBuffers(1, &indexBuffer_);
   glNamedBufferStorage(indexBuffer_, indexBytes, indices.data(), 0);
   bytes_ = uint64_t(vertexBytes) + uint64_t(indexBytes);
@@ -111,6 +112,17 @@ GpuScene::GpuScene(const Scene& scene) {
                           m.castsShadow});
   }
   checkErrors("uploading the scene");
+}
+
+void GpuScene::updateVertices(const Scene& scene) {
+  GLintptr offset = 0;
+  for (size_t i = 0; i < scene.meshes.size(); ++i) {
+    const std::vector<Vertex>& vertices = scene.meshes[i].vertices;
+    const auto bytes = GLsizeiptr(vertices.size() * sizeof(Vertex));
+    glNamedBufferSubData(vertexBuffer_, offset, bytes, vertices.data());
+    offset += bytes;
+  }
+  checkErrors("updating the scene's vertices");
 }
 
 GpuScene::~GpuScene() {
@@ -146,12 +158,11 @@ uint64_t hashBytes(uint64_t hash, const void* data, size_t bytes) {
 
 }  // namespace
 
-uint64_t sceneFingerprint(const Scene& scene) {
+uint64_t sceneLayoutFingerprint(const Scene& scene) {
   uint64_t hash = 0xcbf29ce484222325ull;
   for (const Mesh& m : scene.meshes) {
     const uint64_t counts[2] = {m.vertices.size(), m.indices.size()};
     hash = hashBytes(hash, counts, sizeof counts);
-    hash = hashBytes(hash, m.vertices.data(), m.vertices.size() * sizeof(Vertex));
     hash = hashBytes(hash, m.indices.data(), m.indices.size() * sizeof(uint32_t));
     const float material[5] = {m.albedo.r, m.albedo.g, m.albedo.b, m.opacity,
                                m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f};
@@ -166,6 +177,13 @@ uint64_t sceneFingerprint(const Scene& scene) {
     hash = hashBytes(hash, size, sizeof size);
     hash = hashBytes(hash, t.rgba.data(), t.rgba.size());
   }
+  return hash;
+}
+
+uint64_t sceneFingerprint(const Scene& scene) {
+  uint64_t hash = sceneLayoutFingerprint(scene);
+  for (const Mesh& m : scene.meshes)
+    hash = hashBytes(hash, m.vertices.data(), m.vertices.size() * sizeof(Vertex));
   return hash;
 }
 

@@ -36,6 +36,10 @@ class GpuScene {
   void draw(const std::function<void(const Material&)>& beforeMesh,
             Meshes meshes = Meshes::All) const;
 
+  // Replaces the vertices with `scene`'s, which must have this scene's layout (its meshes'
+  // vertex and index counts: sceneLayoutFingerprint equal): an animated scene's next pose.
+  void updateVertices(const Scene& scene);
+
   // Bytes of the vertex, index and texture storage (textures with their full mip chains).
   uint64_t bytes() const { return bytes_; }
 
@@ -63,5 +67,8 @@ void setCameraFaceCulling(const GpuScene::Material& material);
 // A 64-bit FNV-1a hash of what GpuScene uploads (geometry, materials and mesh roles): equal scenes
 // hash equal, so a renderer re-uploads only a scene whose content changed.
 uint64_t sceneFingerprint(const Scene& scene);
+// The same of everything but the vertices (counts, indices, materials, textures): equal for two
+// poses of an animated scene, whose next pose then replaces only the vertices.
+uint64_t sceneLayoutFingerprint(const Scene& scene);
 
 }  // namespace penumbra::gl

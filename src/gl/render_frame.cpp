@@ -116,8 +116,14 @@ void Renderer::setScene(const Scene& scene) {
   if (scene.meshes.empty() || scene.triangleCount() == 0) {
     throw Error("scene '" + scene.name + "' has no triangles to draw");
   }
-  s.scene = std::make_unique<GpuScene>(scene);
+  const uint64_t layout = sceneLayoutFingerprint(scene);
+  if (s.scene && layout == s.sceneLayoutFingerprint) {
+    s.scene->updateVertices(scene);  // a new pose of the same scene
+  } else {
+    s.scene = std::make_unique<GpuScene>(scene);
+  }
   s.sceneFingerprint = fingerprint;
+  s.sceneLayoutFingerprint = layout;
   s.viewBounds = scene.viewBounds();
   s.sceneDefaults = Scene{};
   s.sceneDefaults.name = scene.name;

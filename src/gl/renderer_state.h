@@ -40,6 +40,7 @@ struct Renderer::State {
 
   std::unique_ptr<GpuScene> scene;
   uint64_t sceneFingerprint = 0;
+  uint64_t sceneLayoutFingerprint = 0;  // sceneLayoutFingerprint: a new pose updates vertices
   ViewBounds viewBounds;  // the frame's depth ranges and the light's fit (Scene::viewBounds)
   Scene sceneDefaults;  // name, camera and light of the uploaded scene (no meshes)
 

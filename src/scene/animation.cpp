@@ -8,7 +8,7 @@
 namespace penumbra {
 namespace {
 
-constexpr std::string_view kNames[] = {"orbit", "dolly", "light"};
+constexpr std::string_view kNames[] = {"orbit", "dolly", "light", "clip"};
 
 glm::vec3 turnAboutVertical(glm::vec3 v, float radians) {
   return glm::vec3(glm::rotate(glm::mat4(1.0f), radians, glm::vec3(0.0f, 1.0f, 0.0f)) *
@@ -21,14 +21,18 @@ Animation parseAnimation(std::string_view name) {
   for (size_t i = 0; i < std::size(kNames); ++i) {
     if (name == kNames[i]) return Animation(i);
   }
-  throw Error("unknown animation '" + std::string(name) + "'; valid animations: " +
-              animationNameList());
+  throw Error("unknown animation '" + std::string(name) +
+              "'; valid animations: " + animationNameList());
 }
 
 std::string animationNameList() {
   std::string list;
   for (std::string_view n : kNames) list += (list.empty() ? "" : ", ") + std::string(n);
   return list;
+}
+
+std::vector<Animation> defaultAnimations(const Scene& scene) {
+  return {scene.animation.moves() ? Animation::Clip : Animation::Orbit};
 }
 
 AnimatedView animatedView(const Scene& scene, std::span<const Animation> animations, int frame,
@@ -50,6 +54,7 @@ AnimatedView animatedView(const Scene& scene, std::span<const Animation> animati
         view.light.position =
             view.light.target + turnAboutVertical(view.light.position - view.light.target, turn);
         break;
+      case Animation::Clip: break;
     }
   }
   return view;

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "file_scene.h"
+#include "gltf_animation.h"
 #include "gltf_json_types.h"
 #include "image_decoding.h"
 #include "penumbra/error.h"
@@ -144,12 +145,15 @@ class Importer {
   std::vector<glm::vec3> readVec3(int accessor, const std::string& what) const;
   std::vector<glm::vec2> readTexcoords(int accessor, const std::string& what) const;
   std::vector<uint32_t> readIndices(int accessor, const std::string& what) const;
+  std::vector<float> readNumbers(int accessor, int components, AccessorNumbers numbers,
+                                 const std::string& what) const;
   void refuseNonFinite(std::span<const float> element, int accessor, size_t index,
                        const std::string& what) const;
 
   // A node of the scene's trees and where it sits in the world.
   struct NodeInstance {
     int node;
+    int parent;  // -1 for a root
     glm::mat4 worldFromNode;
   };
   // What a mesh expands to, once per node that draws it.
@@ -163,7 +167,7 @@ class Importer {
   MeshCost meshCost(int mesh, std::set<int>& imagesUsed) const;
   void budgetMemory(const std::vector<NodeInstance>& instances);
   std::span<const uint8_t> encodedImage(int image) const;
-  void addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& worldFromMesh);
+  void addPrimitive(int node, int meshIndex, int primitiveIndex, const glm::mat4& worldFromMesh);
   void applyMaterial(Mesh& mesh, int material, const std::string& where, int& texcoordSet);
   int sceneTexture(int texture, const std::string& where);
   void noteCamera(int node, const glm::mat4& worldFromNode);
@@ -185,6 +189,7 @@ class Importer {
   std::vector<PlacedCamera> cameras_;  // in the order the walk meets their nodes
   std::optional<glm::mat4> lightWorld_;
   int lightIndex_ = -1;
+  std::optional<GltfMotion> motion_;  // where the file has animations or skins
 };
 
 // Doubles from here up (FLT_MAX plus half its last place) round to infinity as float.
@@ -403,6 +408,45 @@ std::vector<uint32_t> Importer::readIndices(int accessor, const std::string& wha
   return out;
 }
 
+std::vector<float> Importer::readNumbers(int accessor, int components, AccessorNumbers numbers,
+                                         const std::string& what) const {
+  const View v = view(accessor, what);
+  const int t = v.componentType;
+  const bool small =
+      t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE || t == TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT;
+  const bool normalizedInteger = v.normalized && (small || t == TINYGLTF_COMPONENT_TYPE_BYTE ||
+                                                  t == TINYGLTF_COMPONENT_TYPE_SHORT);
+  const bool isFloat = t == TINYGLTF_COMPONENT_TYPE_FLOAT;
+  bool typeOk = false;
+  const char* expected = "";
+  switch (numbers) {
+    case AccessorNumbers::Float: typeOk = isFloat, expected = "FLOAT"; break;
+    case AccessorNumbers::FloatOrNormalized:
+      typeOk = isFloat || normalizedInteger;
+      expected = "FLOAT or normalized integers";
+      break;
+    case AccessorNumbers::SmallUnsigned:
+      typeOk = small && !v.normalized;
+      expected = "UNSIGNED_BYTE or UNSIGNED_SHORT";
+      break;
+  }
+  if (v.components != components || !typeOk) {
+    fail(what + " (accessor " + std::to_string(accessor) + ") must have " +
+         std::to_string(components) + " components of " + expected + "; it has " +
+         std::to_string(v.components) + " of " + componentTypeName(t) +
+         (v.normalized ? " (normalized)" : ""));
+  }
+  std::vector<float> out(v.count * size_t(components));
+  for (size_t i = 0; i < v.count; ++i) {
+    const uint8_t* p = v.data + i * v.stride;
+    for (int c = 0; c < components; ++c)
+      out[i * size_t(components) + size_t(c)] = component(p, t, v.normalized, c);
+    refuseNonFinite(std::span<const float>(&out[i * size_t(components)], size_t(components)),
+                    accessor, i, what);
+  }
+  return out;
+}
+
 glm::mat4 Importer::localTransform(int index) const {
   const tinygltf::Node& node = model_.nodes[size_t(index)];
   const std::string where = "node " + std::to_string(index);
@@ -477,7 +521,7 @@ std::vector<Importer::NodeInstance> Importer::walkHierarchy(const std::vector<in
            "strict trees");
     }
     const glm::mat4 worldFromNode = worldFromParent * localTransform(node);
-    instances.push_back({node, worldFromNode});
+    instances.push_back({node, path.empty() ? -1 : path.back().node, worldFromNode});
     path.push_back({node, worldFromNode, 0});
     onPath[size_t(node)] = true;
   };
@@ -549,6 +593,10 @@ void Importer::budgetMemory(const std::vector<NodeInstance>& instances) {
     std::optional<MeshCost>& cost = costs[size_t(mesh)];
     if (!cost) cost = meshCost(mesh, imagesUsed);
     budget_.addGeometry(cost->triangles, cost->bytes);
+    // A mesh that may move keeps its vertices as the file gives them beside the posed ones, with
+    // joints and weights: under twice the bytes of the posed vertices (PosedMesh).
+    if (!model_.animations.empty() || !model_.skins.empty())
+      budget_.addGeometry(0, saturatingMultiply(cost->bytes, 2));
   }
   for (int image : imagesUsed) {
     if (const std::optional<ImageSize> size = readImageSize(encodedImage(image))) {
@@ -662,7 +710,7 @@ void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where,
   }
 }
 
-void Importer::addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& world) {
+void Importer::addPrimitive(int node, int meshIndex, int primitiveIndex, const glm::mat4& world) {
   const tinygltf::Primitive& p =
       model_.meshes[size_t(meshIndex)].primitives[size_t(primitiveIndex)];
   const std::string where =
@@ -742,7 +790,9 @@ void Importer::addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& 
 
   const glm::mat3 linear(world);
   const float determinant = glm::determinant(linear);
-  if (!(std::abs(determinant) > 0.0f) || !std::isfinite(determinant)) {
+  // A moving mesh may be scaled from nothing; poseScene places it.
+  const bool moves = motion_ && motion_->moves(node);
+  if (!moves && (!(std::abs(determinant) > 0.0f) || !std::isfinite(determinant))) {
     warn(where + " sits under a singular transform (a zero scale): it covers nothing, skipped");
     return;
   }
@@ -758,8 +808,25 @@ void Importer::addPrimitive(int meshIndex, int primitiveIndex, const glm::mat4& 
   if (determinant < 0.0f) {
     for (size_t t = 0; t + 2 < order.size(); t += 3) std::swap(order[t + 1], order[t + 2]);
   }
+  // Where each final vertex comes from in the file: itself, or each corner's vertex once flat
+  // normals give every triangle its own three.
+  std::vector<uint32_t> source;
+  if (moves) {
+    source = normals.empty() ? order : std::vector<uint32_t>();
+    if (!normals.empty()) {
+      source.resize(positions.size());
+      for (size_t i = 0; i < source.size(); ++i) source[i] = uint32_t(i);
+    }
+  }
   mesh.indices = std::move(order);
   if (normals.empty()) computeFlatNormals(mesh);
+  if (moves) {
+    std::vector<glm::vec3> sourcePositions(source.size()), sourceNormals;
+    for (size_t i = 0; i < source.size(); ++i) sourcePositions[i] = positions[source[i]];
+    if (!normals.empty()) sourceNormals = normals;
+    motion_->addMesh(scene_.meshes.size(), node, meshIndex, primitiveIndex,
+                     std::move(sourcePositions), std::move(sourceNormals), source);
+  }
   scene_.meshes.push_back(std::move(mesh));
 }
 
@@ -806,6 +873,16 @@ Scene Importer::run(std::vector<std::string> warnings) {
   const std::vector<NodeInstance> instances =
       walkHierarchy(model_.scenes[size_t(sceneIndex)].nodes);
   budgetMemory(instances);
+  if (!model_.animations.empty() || !model_.skins.empty()) {
+    std::vector<WalkedNode> walk;
+    for (const NodeInstance& instance : instances) walk.push_back({instance.node, instance.parent});
+    const ReadNumbers read = [this](int accessor, int components, AccessorNumbers numbers,
+                                    const std::string& what) {
+      return readNumbers(accessor, components, numbers, what);
+    };
+    motion_.emplace(model_, walk, name_, read, budget_,
+                    [this](const std::string& what) { warn(what); });
+  }
   for (const NodeInstance& instance : instances) {
     const int node = instance.node;
     const tinygltf::Node& n = model_.nodes[size_t(node)];
@@ -815,13 +892,16 @@ Scene Importer::run(std::vector<std::string> warnings) {
              ", but the file has " + std::to_string(model_.meshes.size()) + " meshes");
       }
       for (size_t p = 0; p < model_.meshes[size_t(n.mesh)].primitives.size(); ++p)
-        addPrimitive(n.mesh, int(p), instance.worldFromNode);
+        addPrimitive(node, n.mesh, int(p), instance.worldFromNode);
     }
-    if (n.skin >= 0) warn("node " + std::to_string(node) + " is skinned; drawn in its bind pose");
     noteCamera(node, instance.worldFromNode);
     noteLight(node, instance.worldFromNode);
   }
   if (scene_.meshes.empty()) fail("the scene has no triangles to render");
+  if (motion_ && !motion_->empty()) {
+    scene_.animation = motion_->take();
+    poseScene(scene_, 0.0f);  // a skinned mesh's bind pose is not its pose at the start
+  }
 
   // The file's camera and light, placed once the bounds are known.
   const Bounds bounds = scene_.bounds();

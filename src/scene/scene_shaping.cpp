@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <array>
+#include <charconv>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -53,6 +54,13 @@ CasterMode parseCasterMode(std::string_view name) {
   }
   throw Error("unknown casters mode '" + std::string(name) +
               "'; valid modes: " + nameList(kCasterModeNames));
+}
+
+std::optional<int> parseCameraIndex(std::string_view text) {
+  int index = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), index);
+  if (text.empty() || error != std::errc() || end != text.data() + text.size()) return {};
+  return index;
 }
 
 Camera framingCamera(const Scene& scene, float aspect) {

@@ -12,6 +12,7 @@
 #include "penumbra/compare/error_regions.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/scene.h"
+#include "penumbra/scene_animation.h"
 #include "penumbra/technique.h"
 
 namespace penumbra {
@@ -189,6 +190,37 @@ TEST_F(SceneRenderingTest, NodeHierarchyRendersAsItsFlattenedGeometry) {
   // The file's quaternion has 9 digits and the two sides compose in different orders: positions
   // agree to ~1e-6 m, far below a texel (1.1 cm), so at most a handful of edge pixels differ.
   EXPECT_LE(differing, 5u);
+}
+
+// The waving-bars fixture (scripts/make-waving-bars) at the clip's start and at 1 s, its bars
+// bent by 8 to 44 degrees: the shadows move, and the renderer's in-place update of the vertices
+// for the new pose renders exactly what a fresh upload of that pose does.
+TEST_F(SceneRenderingTest, AnAnimatedSceneShadowMovesAndANewPoseRendersAsAFreshUpload) {
+  if (!renderer) GTEST_SKIP();
+  Scene scene = loadScene(PENUMBRA_SOURCE_DIR "/tests/data/waving_bars.gltf");
+  ASSERT_TRUE(scene.animation.moves());
+  gl::RenderSettings settings;
+  settings.technique = Technique::Pcf;
+  settings.shadowMapSize = 512;
+  settings.width = 320;
+  settings.height = 180;
+  const gl::RenderResult start = renderer->render(scene, settings);
+  poseScene(scene, 1.0f);
+  const gl::RenderResult bent = renderer->render(scene, settings);  // vertices updated in place
+  gl::Renderer fresh(*context);
+  const gl::RenderResult uploaded = fresh.render(scene, settings);
+  size_t moved = 0, differing = 0;
+  for (size_t i = 0; i < bent.visibility.data().size(); ++i) {
+    moved += std::abs(bent.visibility.data()[i] - start.visibility.data()[i]) > 0.5f;
+    differing += bent.visibility.data()[i] != uploaded.visibility.data()[i];
+  }
+  // The same vertices on the same GL: the same bits.
+  EXPECT_EQ(differing, 0u);
+  // The frame holds the 14 m ground at about 11 pixels a metre: each bar's shadow is about 3 by
+  // 33 pixels, of which the part cast by its bending upper two thirds swings off itself; about
+  // 30 pixels a bar, 750 in all, change between lit and shadowed (733 measured on llvmpipe).
+  // Not updating the vertices moves none.
+  EXPECT_GT(moved, 300u);
 }
 
 TEST_F(SceneRenderingTest, RealGltfModelRendersFiniteWithEveryTechnique) {

@@ -39,7 +39,7 @@ struct RenderCommandOptions {
   OutputOptions output{"out/render"};
   int repeat = 1;
   int frames = 1;
-  std::vector<std::string> animate{"orbit"};
+  std::vector<std::string> animate;  // empty: defaultAnimations
   std::string settingsFile;
   const CLI::App* command = nullptr;  // to tell options given explicitly from defaults
 };
@@ -55,22 +55,33 @@ void requireFfmpeg() {
 
 // Writes frames/<stem>_NNNN.png for each frame of the animation and encodes <stem>.mp4 with
 // ffmpeg (H.264, yuv420p: plays everywhere). Returns the last frame's result.
-gl::RenderResult renderSequence(gl::Renderer& renderer, const Scene& scene,
+gl::RenderResult renderSequence(gl::Renderer& renderer, Scene& scene,
                                 const gl::RenderSettings& settings,
                                 const RenderCommandOptions& options,
                                 const std::filesystem::path& dir, const std::string& stem,
                                 std::map<std::string, std::string>& files) {
   std::vector<Animation> animations;
   for (const std::string& name : options.animate) animations.push_back(parseAnimation(name));
+  if (animations.empty()) animations = defaultAnimations(scene);
+  const bool clip =
+      std::find(animations.begin(), animations.end(), Animation::Clip) != animations.end();
   namespace fs = std::filesystem;
   createOutputDirectory(dir / "frames");
   gl::RenderResult result;
   for (int frame = 0; frame < options.frames; ++frame) {
     const AnimatedView view = animatedView(scene, animations, frame, options.frames);
+    if (clip) {
+      poseScene(scene, clipTime(scene, frame));
+      renderer.setScene(scene);  // the new pose's vertices
+    }
     result = renderer.render(settings, gl::FrameView{view.camera, view.light});
     char name[32];
     std::snprintf(name, sizeof name, "_%04d.png", frame);
     writeColorPng(result.color, dir / "frames" / (stem + name));
+  }
+  if (clip) {
+    poseScene(scene, 0.0f);  // the next technique starts from the clip's start again
+    renderer.setScene(scene);
   }
   files["frames"] = "frames/" + stem + "_%04d.png";
   files["video"] = stem + ".mp4";
@@ -116,7 +127,12 @@ void runRender(const RenderCommandOptions& options) {
   applyOverrides(scene, overrides);
   printSceneWarnings(scene);
   const std::vector<Technique>& techniques = resolved.techniques;
-  for (const std::string& name : options.animate) parseAnimation(name);  // before any GL work
+  for (const std::string& name : options.animate) {  // before any GL work
+    if (parseAnimation(name) == Animation::Clip && !scene.animation.moves()) {
+      throw Error("--animate clip plays a scene file's own animation; scene '" + scene.name +
+                  "' has none (" + animationNameList() + ")");
+    }
+  }
   if (options.frames > 1) requireFfmpeg();
   gl::RenderSettings settings = resolved.render;
   requireCascadableLight(settings.cascades, scene.light);
@@ -216,7 +232,9 @@ void registerRenderCommand(CLI::App& app) {
           ->check(CLI::Range(1, 10000))
           ->capture_default_str();
   cmd->add_option("--animate", o->animate,
-                  "animations for --frames: " + animationNameList() + " (comma-separated)")
+                  "animations for --frames: " + animationNameList() +
+                      " (comma-separated; clip plays a scene file's own animation at 30 frames "
+                      "a second, looped; default: clip where the scene has one, else orbit)")
       ->needs(frames)
       ->delimiter(',')
       ->capture_default_str();

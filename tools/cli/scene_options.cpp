@@ -78,17 +78,10 @@ SceneLoadOptions sceneLoadOptions(const SceneOptions& o, float aspect) {
   options.ground = parseGroundMode(o.ground);
   options.casters = parseCasterMode(o.casters);
   if (!o.camera.empty() && o.camera != "list") {
-    size_t end = 0;
-    int index = -1;
-    try {
-      index = std::stoi(o.camera, &end);
-    } catch (const std::exception&) {
-      end = 0;
-    }
-    if (end == 0 || end != o.camera.size()) {
+    options.camera = parseCameraIndex(o.camera);
+    if (!options.camera) {
       throw Error("--camera '" + o.camera + "' must be a camera's index (0, 1, ...) or 'list'");
     }
-    options.camera = index;
   }
   return options;
 }
