@@ -49,12 +49,34 @@ int main(int argc, char** argv) {
                  "this machine's memory, " +
                      penumbra::memorySizeText(penumbra::defaultSceneMemoryLimit()) +
                      " (docs/untrusted-input.md)");
+  std::string scene, ground, casters, camera;
+  app.add_option("--scene", scene,
+                 "built-in scene or a .gltf, .glb or .obj file (default: the settings file's, "
+                 "else backyard)");
+  app.add_option("--ground", ground,
+                 "auto: a ground plane under a scene file's model that stands on no floor of its "
+                 "own; on; off (default: the settings file's, else auto; docs/scenes.md)");
+  app.add_option("--casters", casters,
+                 "auto: enclosures and unlit materials cast no shadows; all: every mesh casts "
+                 "(default: the settings file's, else auto)");
+  app.add_option("--camera", camera,
+                 "N: start from the scene file's camera N (penumbra render --camera list names "
+                 "them)");
   CLI11_PARSE(app, argc, argv);
   if (probe.size() == 2) {
     options.probeX = probe[0];
     options.probeY = probe[1];
   }
   try {
+    if (!scene.empty()) options.scene = scene;
+    if (!ground.empty()) options.ground = penumbra::parseGroundMode(ground);
+    if (!casters.empty()) options.casters = penumbra::parseCasterMode(casters);
+    if (!camera.empty()) {
+      options.sceneLoad.camera = penumbra::parseCameraIndex(camera);
+      if (!options.sceneLoad.camera) {
+        throw penumbra::Error("--camera '" + camera + "' must be a camera's index (0, 1, ...)");
+      }
+    }
     if (!maxMemory.empty()) {
       options.sceneLoad.maxMemoryBytes = penumbra::parseMemorySize(maxMemory, "--max-memory");
     }

@@ -145,9 +145,9 @@ std::string viewLabel(View v) {
   return std::string(viewName(v));
 }
 
-constexpr FilterMode kFilters[] = {FilterMode::Point, FilterMode::Bilinear, FilterMode::Trilinear,
-                                   FilterMode::Anisotropic, FilterMode::AnisotropicDriver,
-                                   FilterMode::SummedArea};
+constexpr FilterMode kFilters[] = {
+    FilterMode::Point,       FilterMode::Bilinear,          FilterMode::Trilinear,
+    FilterMode::Anisotropic, FilterMode::AnisotropicDriver, FilterMode::SummedArea};
 constexpr int kShadowSizes[] = {64, 128, 256, 512, 1024, 2048, 4096};
 constexpr int kMsaa[] = {1, 2, 4, 8};
 
@@ -171,6 +171,14 @@ void sceneSection(ViewerState& state, Changes& changes) {
     changes.scene = true;
   }
   if (ImGui::IsItemHovered()) ImGui::SetTooltip("a .gltf, .glb or .obj file, as --scene takes");
+  const SceneAnimation& animation = state.scene.animation;
+  if (animation.moves()) {
+    ImGui::Checkbox(("play '" + animation.clip + "'").c_str(), &state.playing);
+    if (ImGui::SliderFloat("time (s)", &state.clipSeconds, 0.0f, animation.duration, "%.2f")) {
+      state.playing = false;  // a time picked by hand holds
+      changes.pose = true;
+    }
+  }
 }
 
 void techniqueSection(ViewerState& state, Changes& changes) {
@@ -228,11 +236,9 @@ void renderSection(ViewerState& state, Changes& changes) {
   }
   if (!box)
     changes.render |= ImGui::SliderFloat("blur sigma", &r.blur.sigma, gl::kMinBlurSigma,
-                                         gl::kMaxBlurSigma, "%.2f",
-                                         ImGuiSliderFlags_Logarithmic);
-  changes.render |=
-      ImGui::SliderFloat("normal offset", &r.normalOffsetTexels, 0.0f,
-                         gl::kMaxNormalOffsetTexels, "%.2f texels");
+                                         gl::kMaxBlurSigma, "%.2f", ImGuiSliderFlags_Logarithmic);
+  changes.render |= ImGui::SliderFloat("normal offset", &r.normalOffsetTexels, 0.0f,
+                                       gl::kMaxNormalOffsetTexels, "%.2f texels");
   changes.render |= ImGui::SliderInt("frame width", &r.width, 16, 1920);
   changes.render |= ImGui::SliderInt("frame height", &r.height, 16, 1080);
   if (state.light.kind == LightKind::Directional) {
@@ -357,7 +363,7 @@ void viewSection(ViewerState& state, const FrameStats& stats, Changes& changes) 
   if (state.view == View::TrueError) {
     ImGui::TextDisabled("red: leaks light, blue: over-darkens (+-%.1f saturates)",
                         double(kErrorRange));
-    const auto swatch = [](const uint8_t (&c)[3]) {
+    const auto swatch = [](const uint8_t(&c)[3]) {
       return ImVec4(float(c[0]) / 255.0f, float(c[1]) / 255.0f, float(c[2]) / 255.0f, 1.0f);
     };
     ImGui::TextColored(swatch(kSilhouetteColour), "green: silhouettes, not measured");

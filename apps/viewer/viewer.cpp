@@ -63,6 +63,7 @@ void loadSceneInto(ViewerState& state, SceneLoadOptions options) {
     std::cerr << "penumbra-viewer: warning: " << w << "\n";
   for (const std::string& n : scene.notes) std::cerr << "penumbra-viewer: note: " << n << "\n";
   state.scene = std::move(scene);
+  state.clipSeconds = 0.0f;  // a scene file's clip starts again
   state.camera = state.scene.camera;
   state.light = state.scene.light;
   if (state.light.kind != LightKind::Directional) state.settings.render.cascades.count = 1;
@@ -114,12 +115,22 @@ class Viewer {
       applyFileChanges(changes);
       if (changes.scene) {
         if (tryOrReport([&] {
-              loadSceneInto(state_, options_.sceneLoad);
+              SceneLoadOptions reload = options_.sceneLoad;
+              reload.camera.reset();  // --camera named a camera of the first scene
+              loadSceneInto(state_, reload);
               renderer_.setScene(state_.scene);
               forgetRayScene();
             })) {
           renderNeeded = true;
         }
+      }
+      if (advanceClip(changes, frame)) {
+        tryOrReport([&] {
+          poseScene(state_.scene, state_.clipSeconds);
+          renderer_.setScene(state_.scene);  // the new pose's vertices
+          forgetRayScene();                  // the truth traces the new pose
+        });
+        renderNeeded = true;
       }
       renderNeeded |= changes.render;
       const bool rendered = renderNeeded;
@@ -340,6 +351,27 @@ class Viewer {
   }
 
   // A new scene: its BVH is built again when the view needs it.
+  // Moves the clip time on while the scene's animation plays (by the time since the last frame;
+  // scripted runs by a frame's worth of the clip, holding still after their last frame so that
+  // its references finish); whether the scene needs posing.
+  bool advanceClip(const Changes& changes, int frame) {
+    const SceneAnimation& animation = state_.scene.animation;
+    if (!animation.moves()) return false;
+    const Clock::time_point now = Clock::now();
+    const double elapsed =
+        clipClock_ ? std::chrono::duration<double>(now - *clipClock_).count() : 0.0;
+    clipClock_ = now;
+    const bool scripted = options_.frames > 0;
+    if (!state_.playing || changes.scene || (scripted && frame >= options_.frames)) {
+      return changes.pose || changes.scene;
+    }
+    // Scripted frame f shows the clip at f / 30 s, as render --frames does.
+    state_.clipSeconds =
+        scripted ? clipTime(state_.scene, frame)
+                 : float(std::fmod(state_.clipSeconds + elapsed, double(animation.duration)));
+    return true;
+  }
+
   void forgetRayScene() {
     retireTruthJob();
     raySceneSlot_.reset();
@@ -794,6 +826,7 @@ class Viewer {
   int truthFrames_ = 0;          // frames drawn while it traced, and the longest
   double longestTruthFrameMs_ = 0.0;
   Clock::time_point referenceShownAt_;
+  std::optional<Clock::time_point> clipClock_;  // when the clip last moved on
   int pendingFrames_ = 0;  // frames drawn while the reference computed, and the longest
   double longestPendingFrameMs_ = 0.0;
   // The last render's light-pass depth per cascade, read when the probe or the reference needs it.
@@ -878,6 +911,13 @@ void runViewer(const ViewerOptions& options) {
   parseView(options.show);
   if (!options.split.empty()) parseTechnique(options.split);
   gl::Settings settings = loadViewerSettings(options.settingsFile);
+  if (options.scene) {
+    checkSceneSource(*options.scene);
+    if (*options.scene != settings.scene) settings.view = {};  // the scene's own view
+    settings.scene = *options.scene;
+  }
+  if (options.ground) settings.ground = *options.ground;
+  if (options.casters) settings.casters = *options.casters;
   ViewerWindow window(options.windowWidth, options.windowHeight, "penumbra-viewer");
   Viewer viewer(options, std::move(settings), window);
   viewer.run();

@@ -2,6 +2,7 @@
 // the frame or a diagnostic in the scene area at the window's top left, the panel at its right.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "penumbra/scene.h"
@@ -20,7 +21,13 @@ struct ViewerOptions {
   int probeX = -1, probeY = -1;  // >= 0: the pixel under the cursor at start (scripted runs)
   int windowWidth = 1280;
   int windowHeight = 800;
-  SceneLoadOptions sceneLoad;  // --max-memory: what loading a scene file may take
+  // --max-memory: what loading a scene file may take; --camera: the file's camera to start from
+  // (a scene opened later from the panel starts from its default camera).
+  SceneLoadOptions sceneLoad;
+  // --scene, --ground, --casters: in place of the settings file's.
+  std::optional<std::string> scene;
+  std::optional<GroundMode> ground;
+  std::optional<CasterMode> casters;
 };
 
 // Runs until the window closes (or the scripted frames are done); throws Error for bad settings

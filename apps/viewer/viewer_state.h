@@ -40,11 +40,16 @@ struct ViewerState {
   // The error-against-the-truth view: the trace's progress, or its time, the silhouettes left
   // out and the errors once done.
   std::string truthStatus;
+  // A scene file's animation (Scene::animation): whether it plays (in real time; scripted runs
+  // a frame at kClipFramesPerSecond) and the clip time the scene is posed at.
+  bool playing = true;
+  float clipSeconds = 0.0f;
 };
 
 // What the panel changed this frame, so that only what depends on it is redone.
 struct Changes {
   bool scene = false;    // reload the scene (and take its camera and light)
+  bool pose = false;     // pose the scene at ViewerState::clipSeconds
   bool render = false;   // render the frame again
   bool display = false;  // compose the scene area again from the last render
   bool saveSettings = false;

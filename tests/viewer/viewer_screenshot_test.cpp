@@ -10,6 +10,7 @@
 #include <regex>
 
 #include "../scene/scene_fixtures.h"
+#include "display_image.h"  // the viewer's colours for pixels it does not measure
 #include "penumbra/diagnostic_images.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/settings_json.h"
@@ -19,7 +20,6 @@
 #include "penumbra/scene.h"
 #include "penumbra/technique.h"
 #include "penumbra/truth/true_shadow.h"
-#include "display_image.h"  // the viewer's colours for pixels it does not measure
 #include "run_penumbra.h"
 
 namespace penumbra::test {
@@ -145,6 +145,52 @@ TEST(Viewer, ScreenshotOfEachSceneEqualsTheHeadlessRender) {
               << " steps, largest " << d.maxSteps << "\n";
     EXPECT_LE(d.meanSteps, kMeanStepsTolerance) << "largest channel difference " << d.maxSteps;
   }
+}
+
+// A scene file's animation plays as render --frames plays it: the viewer's 31st scripted frame
+// is render's frame 30 (the clip at 1 s), pixel for pixel, and differs from its first. --scene,
+// --ground and --casters replace the settings file's.
+TEST(Viewer, PlaysASceneFilesAnimationAsRenderFramesDo) {
+  REQUIRE_XVFB();
+  ScratchFolder scratch;
+  const fs::path settings = scratch.path() / "bars.json";
+  writeFile(settings,
+            "{\"scene\": \"backyard\", \"technique\": \"pcf\", \"shadow-size\": 256, "
+            "\"blur\": 3, \"filter\": \"bilinear\", \"width\": " +
+                std::to_string(kFrameWidth) + ", \"height\": " + std::to_string(kFrameHeight) +
+                ", \"ground\": \"on\"}\n");
+  const std::string bars = PENUMBRA_SOURCE_DIR "/tests/data/waving_bars.gltf";
+  const fs::path out = scratch.path() / "render";
+  const RunResult render = runPenumbra({"render", "--settings", settings.string(), "--scene", bars,
+                                        "--ground", "off", "--frames", "31", "--out", out.string()},
+                                       scratch.path());
+  ASSERT_EQ(render.exitCode(), 0) << render.output;
+  const fs::path shot = scratch.path() / "bars_viewer.png";
+  std::vector<std::string> args{"xvfb-run",
+                                "-a",
+                                "-s",
+                                "-screen 0 1280x800x24",
+                                PENUMBRA_VIEWER_EXECUTABLE,
+                                "--settings",
+                                settings.string(),
+                                "--scene",
+                                bars,
+                                "--ground",
+                                "off",
+                                "--frames",
+                                "31",
+                                "--screenshot",
+                                shot.string(),
+                                "--hide-panel"};
+  const RunResult viewer = runProgram(args, scratch.path());
+  ASSERT_EQ(viewer.exitCode(), 0) << viewer.output;
+  const Image window = readEncodedColorPng(shot);
+  const Image last = readEncodedColorPng(out / "frames" / "waving_bars_pcf_0030.png");
+  const Image first = readEncodedColorPng(out / "frames" / "waving_bars_pcf_0000.png");
+  EXPECT_LE(sceneAreaDifference(window, last, kFrameWidth, kFrameHeight).meanSteps,
+            kMeanStepsTolerance);
+  // The bars bend by up to 44 degrees between the two: the frame changes visibly.
+  EXPECT_GT(sceneAreaDifference(window, first, kFrameWidth, kFrameHeight).meanSteps, 1.0);
 }
 
 TEST(Viewer, ThePanelDrawsBesideTheSceneArea) {
@@ -298,11 +344,27 @@ TEST(Viewer, SavesSettingsThatPenumbraRenderTurnsIntoTheSamePicture) {
 TEST(Viewer, LoadsATunedSettingAndShowsWhereItStillFails) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
-  const RunResult tuned = runPenumbra(
-      {"tune", "--scene", "contact", "--technique", "vsm", "--evaluations", "5", "--width",
-       std::to_string(kFrameWidth), "--height", std::to_string(kFrameHeight), "--shadow-size",
-       "256", "--frames", "2", "--supersample", "1", "-q", "--out", "tuned"},
-      scratch.path());
+  const RunResult tuned = runPenumbra({"tune",
+                                       "--scene",
+                                       "contact",
+                                       "--technique",
+                                       "vsm",
+                                       "--evaluations",
+                                       "5",
+                                       "--width",
+                                       std::to_string(kFrameWidth),
+                                       "--height",
+                                       std::to_string(kFrameHeight),
+                                       "--shadow-size",
+                                       "256",
+                                       "--frames",
+                                       "2",
+                                       "--supersample",
+                                       "1",
+                                       "-q",
+                                       "--out",
+                                       "tuned"},
+                                      scratch.path());
   ASSERT_EQ(tuned.exitCode(), 0) << tuned.output;
   const fs::path best = scratch.path() / "tuned" / "best" / "vsm.json";
   ASSERT_TRUE(fs::exists(best));
@@ -315,15 +377,14 @@ TEST(Viewer, LoadsATunedSettingAndShowsWhereItStillFails) {
   const RunResult render =
       runPenumbra({"render", "--settings", best.string(), "--out", "render"}, scratch.path());
   ASSERT_EQ(render.exitCode(), 0) << render.output;
-  const Difference d =
-      sceneAreaDifference(readEncodedColorPng(shot),
-                          readEncodedColorPng(scratch.path() / "render" / "contact_vsm.png"),
-                          kFrameWidth, kFrameHeight);
+  const Difference d = sceneAreaDifference(
+      readEncodedColorPng(shot), readEncodedColorPng(scratch.path() / "render" / "contact_vsm.png"),
+      kFrameWidth, kFrameHeight);
   EXPECT_LE(d.meanSteps, kMeanStepsTolerance);
 
   const fs::path errorShot = scratch.path() / "error.png";
-  const RunResult error = runViewer(best, errorShot, scratch.path(),
-                                    {"--show", "truth-error", "--hide-panel"});
+  const RunResult error =
+      runViewer(best, errorShot, scratch.path(), {"--show", "truth-error", "--hide-panel"});
   ASSERT_EQ(error.exitCode(), 0) << error.output;
   // The tuned VSM still errs by 0.1 or more somewhere, and the view shows where in the heat
   // map's colours.
@@ -660,7 +721,8 @@ TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
       } else if (trace.visibility.at(x, y) < 0.0f) {
         bytes = glm::vec3(viewer::kNoSurfaceColour[0], viewer::kNoSurfaceColour[1],
                           viewer::kNoSurfaceColour[2]);
-      } else if (litSurfaceMask(frame.lookup).at(x, y) > 0.0f && trace.reachedByLight.at(x, y) == 0.0f) {
+      } else if (litSurfaceMask(frame.lookup).at(x, y) > 0.0f &&
+                 trace.reachedByLight.at(x, y) == 0.0f) {
         bytes = glm::vec3(viewer::kTerminatorColour[0], viewer::kTerminatorColour[1],
                           viewer::kTerminatorColour[2]);
       } else {
