@@ -20,7 +20,6 @@
 namespace penumbra::bench {
 namespace {
 
-
 RecordedRay makeRay(glm::vec3 origin, glm::vec3 direction, float tnear, float tfar) {
   return {origin, direction, tnear, tfar};
 }
@@ -51,18 +50,18 @@ RecordedRays recordTrueShadowRays(const truth::RayScene& rayScene,
           if (kept) camera.push_back(cameraRay);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
-          RTCRayHit rayHit = truth::embreeRayHit(cameraRays.origin, direction,
-                                                 cameraRays.nearDepth, cameraRays.farDepth);
+          RTCRayHit rayHit = truth::embreeRayHit(cameraRays.origin, direction, cameraRays.nearDepth,
+                                                 cameraRays.farDepth);
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
           const truth::SurfacePoint hit =
-              truth::surfacePoint(scene.meshes[rayHit.hit.geomID], rayHit.hit.primID,
-                                  rayHit.hit.u, rayHit.hit.v, direction);
-          truth::lightVisibility(light, hit.position, hit.geometricNormal,
-                                 truth::gridShift(bx, by),
+              truth::surfacePoint(scene.meshes[rayHit.hit.geomID], rayHit.hit.primID, rayHit.hit.u,
+                                  rayHit.hit.v, direction);
+          truth::lightVisibility(light, hit.position, hit.geometricNormal, truth::gridShift(bx, by),
                                  [&](glm::vec3 origin, glm::vec3 towards, float reach) {
                                    ++rowShadowRays;
-                                   if (kept) shadow.push_back(makeRay(origin, towards, 0.0f, reach));
+                                   if (kept)
+                                     shadow.push_back(makeRay(origin, towards, 0.0f, reach));
                                    return true;
                                  });
         }
@@ -105,10 +104,11 @@ BareTiming castBare(const truth::RayScene& rayScene, const RecordedRays& rays) {
     uint64_t chunkUnblocked = 0;
     for (size_t k = size_t(chunk) * kChunk; k < end; ++k) {
       const RecordedRay& r = rays.shadow[k];
-      RTCIntersectContext context;
-      rtcInitIntersectContext(&context);
+      // The truth's context: a translucent caster's filter keeps its transmittance there.
+      truth::ShadowRayContext context;
+      rtcInitIntersectContext(&context.embree);
       RTCRay ray = truth::embreeRay(r.origin, r.direction, r.tnear, r.tfar);
-      rtcOccluded1(scene, &context, &ray);
+      rtcOccluded1(scene, &context.embree, &ray);
       chunkUnblocked += ray.tfar >= 0.0f;
     }
     unblocked.fetch_add(chunkUnblocked, std::memory_order_relaxed);

@@ -37,8 +37,10 @@ struct TextureImage {
 enum class MeshRole { Model, Enclosure, Ground };
 
 // How a material's alpha (texture alpha x factor alpha) decides coverage. The light and camera
-// passes test Mask against alphaCutoff; Blend is treated as Mask at 0.5 (the loaders warn):
-// shadow maps hold one depth per texel, there is nothing to blend into.
+// passes test Mask against alphaCutoff. Blend lets 1 - alpha of the light through: the light pass
+// covers a dithered alpha share of the shadow map's texels, which filtering averages
+// (shared/alpha_mask.h), the ray-traced truth attenuates its shadow rays by 1 - alpha; the
+// camera sees it as a mask at 0.5.
 enum class AlphaMode { Opaque, Mask, Blend };
 
 struct Mesh {
@@ -264,8 +266,8 @@ inline constexpr glm::vec3 kFramingDirection{0.45f, 0.55f, 1.0f};  // from the m
 Camera framingCamera(const Scene& scene, float aspect);
 
 // What a camera sees of a scene's model at an aspect: the share of the Model meshes' surface
-// area whose triangles lie wholly in its view (all three corners), and the share of the frame their bounding
-// box's projection covers (clipped to the frame).
+// area whose triangles lie wholly in its view (all three corners), and the share of the frame their
+// bounding box's projection covers (clipped to the frame).
 struct CameraSight {
   float surfaceShare = 0.0f;
   float frameShare = 0.0f;

@@ -12,6 +12,8 @@
 
 namespace penumbra {
 
+struct Scene;
+
 enum class Technique { Hard, Pcf, Vsm, Lvsm, Evsm2, Evsm4, Esm, Csm, PowerCdf, Msm };
 
 // Channel reductions for filtering, mirroring the shared kReduce* constants.
@@ -49,6 +51,15 @@ float reconstructVisibility(Technique technique, const TechniqueParams& params,
                             std::span<const float> filteredChannels, float receiverDepth);
 // PCF filters the test results, not the channels.
 bool filtersAfterTest(Technique technique);
+// Whether a translucent (BLEND) caster's shadow keeps its 1 - alpha through the technique: the
+// light pass covers a dithered alpha share of the texels (shared/alpha_mask.h) and filtering
+// averages the dither. Not the hard test (no filter: the dither shows), EVSM2 (its positive warp
+// alone over-lights the mixture: 0.82 for 0.75) nor the power-function CDF (0.11 for 0.75);
+// measured by SceneRenderingTest.ATranslucentCardLetsThroughOneMinusAlpha.
+bool carriesTranslucency(Technique technique);
+// For a scene with translucent casters: a warning naming those of `techniques` that cannot carry
+// them (carriesTranslucency); empty otherwise.
+std::string translucencyWarning(const Scene& scene, std::span<const Technique> techniques);
 // Whether the technique encodes depth into channels that are filtered before the test (blur,
 // mips, summed-area table): every technique but PCF (which filters after the test) and the hard
 // test (which does not filter). The one answer to "does it prefilter" for the GPU passes, the

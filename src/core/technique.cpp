@@ -2,6 +2,8 @@
 // (src/shaders/shared/technique_dispatch.h).
 #include "penumbra/technique.h"
 
+#include "penumbra/scene.h"
+
 #include <algorithm>
 #include <array>
 #include <cassert>
@@ -160,6 +162,29 @@ float reconstructVisibility(Technique technique, const TechniqueParams& params,
 
 bool filtersAfterTest(Technique technique) {
   return shaders::techniqueFiltersAfterTest(sharedId(technique));
+}
+
+bool carriesTranslucency(Technique technique) {
+  return technique != Technique::Hard && technique != Technique::Evsm2 &&
+         technique != Technique::PowerCdf;
+}
+
+std::string translucencyWarning(const Scene& scene, std::span<const Technique> techniques) {
+  const bool translucent = std::any_of(scene.meshes.begin(), scene.meshes.end(), [](const Mesh& m) {
+    return m.castsShadow && m.alphaMode == AlphaMode::Blend;
+  });
+  std::string names;
+  for (Technique t : techniques) {
+    if (!carriesTranslucency(t)) names += (names.empty() ? "" : ", ") + std::string(techniqueId(t));
+  }
+  if (!translucent || names.empty()) return {};
+  return "scene '" + scene.name +
+         "' has translucent (BLEND) casters, whose shadows let through "
+         "1 - alpha, but " +
+         names +
+         " cannot carry it: the hard test shows the light pass's "
+         "dither, EVSM2 and the power-function CDF misjudge it (docs/techniques.md, "
+         "\"Translucent casters\")";
 }
 
 bool prefiltersChannels(Technique technique) {

@@ -43,6 +43,7 @@ void setMaterialUniforms(const Program& program, const GpuScene::Material& mater
   program.set("baseColorAlpha", material.opacity);
   program.set("alphaCutoff", material.alphaCutoff);
   program.set("hasBaseColorTexture", material.texture != 0 ? 1 : 0);
+  program.set("alphaBlend", material.translucent ? 1 : 0);
 }
 
 void setCameraFaceCulling(const GpuScene::Material& material) {
@@ -109,7 +110,7 @@ GpuScene::GpuScene(const Scene& scene) {
     const bool textured = m.baseColorTexture >= 0 && size_t(m.baseColorTexture) < textures_.size();
     materials_.push_back({m.albedo, m.opacity, m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f,
                           textured ? textures_[size_t(m.baseColorTexture)] : 0u, m.doubleSided,
-                          m.castsShadow});
+                          m.castsShadow, m.alphaMode == AlphaMode::Blend});
   }
   checkErrors("uploading the scene");
 }
@@ -167,8 +168,8 @@ uint64_t sceneLayoutFingerprint(const Scene& scene) {
     const float material[5] = {m.albedo.r, m.albedo.g, m.albedo.b, m.opacity,
                                m.alphaTested() ? m.effectiveAlphaCutoff() : -1.0f};
     // The role with castsShadow decides the frame's depth ranges (Scene::shadowBounds).
-    const int flags[4] = {m.baseColorTexture, m.doubleSided ? 1 : 0, m.castsShadow ? 1 : 0,
-                          int(m.role)};
+    const int flags[5] = {m.baseColorTexture, m.doubleSided ? 1 : 0, m.castsShadow ? 1 : 0,
+                          int(m.role), int(m.alphaMode)};
     hash = hashBytes(hash, material, sizeof material);
     hash = hashBytes(hash, flags, sizeof flags);
   }

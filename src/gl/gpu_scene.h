@@ -22,6 +22,7 @@ class GpuScene {
     unsigned texture = 0;       // the base-colour texture, 0 for none
     bool doubleSided = true;    // false: the camera pass culls back faces
     bool castsShadow = true;    // false: the light pass skips it (Mesh::castsShadow)
+    bool translucent = false;   // BLEND: the light pass dithers its coverage (alpha_mask.h)
   };
 
   explicit GpuScene(const Scene& scene);

@@ -23,6 +23,12 @@ struct FileView {
 // above) the file did not give.
 void finishFileScene(Scene& scene, const std::string& source, const FileView& view);
 
+// How a translucent (AlphaMode::Blend) material is drawn, for the loaders' warnings.
+inline constexpr const char* kTranslucentMaterialRule =
+    "its shadow lets through 1 - alpha (the light pass covers a dithered alpha share of the "
+    "shadow map's texels, which filtering averages; the hard test shows the dither; the "
+    "ray-traced truth attenuates exactly); the camera draws it as a mask at 0.5";
+
 // Flat normals for triangles without normals: each triangle gets its own three vertices
 // (glTF 2.0 §3.7.2.1: "client implementations MUST calculate flat normals").
 void computeFlatNormals(Mesh& mesh);

@@ -692,7 +692,7 @@ void Importer::applyMaterial(Mesh& mesh, int material, const std::string& where,
     if (blendWarned_.insert(material).second) {
       warn(what + (m.name.empty() ? "" : " ('" + m.name + "')") +
            " is BLEND (baseColorFactor alpha " + std::to_string(mesh.opacity) +
-           "): drawn as a mask at 0.5");
+           "): " + kTranslucentMaterialRule);
     }
   } else if (m.alphaMode == "OPAQUE" || m.alphaMode.empty()) {
     mesh.alphaMode = AlphaMode::Opaque;

@@ -1,5 +1,5 @@
-// OBJ import: tinyobjloader parses (polygons triangulated by ear clipping), this file checks every number
-// and index and groups the faces by material into meshes, one vertex per distinct
+// OBJ import: tinyobjloader parses (polygons triangulated by ear clipping), this file checks every
+// number and index and groups the faces by material into meshes, one vertex per distinct
 // position/normal/texcoord.
 #include "obj_loader.h"
 
@@ -450,7 +450,7 @@ Scene loadObj(const std::string& objText, const std::string& name, const ObjFile
       } else if (mesh.opacity < 1.0f) {
         mesh.alphaMode = AlphaMode::Blend;
         scene.warnings.push_back(name + ": material '" + m.name + "' is partly transparent (d " +
-                                 std::to_string(mesh.opacity) + "): drawn as a mask at 0.5");
+                                 std::to_string(mesh.opacity) + "): " + kTranslucentMaterialRule);
       }
     }
     meshOfMaterial[material] = scene.meshes.size();

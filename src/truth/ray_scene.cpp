@@ -65,14 +65,22 @@ void filterCameraHit(const RTCFilterFunctionNArguments* args) {
 
 // Filter for shadow rays: every caster casts from both sides (the light pass draws without
 // culling); the alpha mask cuts out what it cuts out in the light pass; a mesh that casts no
-// shadow (the light pass skips it) lets every ray through.
+// shadow (the light pass skips it) lets every ray through; a translucent (BLEND) one lets the ray
+// on with 1 - alpha of its light (each triangle the ray crosses once: the BVH's medium quality
+// makes no spatial splits, so Embree meets each triangle once; a ray exactly through an edge
+// shared by two may be dimmed by both).
 void filterShadowHit(const RTCFilterFunctionNArguments* args) {
   const RayMesh& mesh = *static_cast<const RayMesh*>(args->geometryUserPtr);
   for (unsigned i = 0; i < args->N; ++i) {
     if (args->valid[i] != -1) continue;
-    if (!mesh.castsShadow ||
-        !mesh.covers(RTCHitN_primID(args->hit, args->N, i), RTCHitN_u(args->hit, args->N, i),
-                     RTCHitN_v(args->hit, args->N, i))) {
+    const uint32_t primitive = RTCHitN_primID(args->hit, args->N, i);
+    const float u = RTCHitN_u(args->hit, args->N, i), v = RTCHitN_v(args->hit, args->N, i);
+    if (mesh.translucent && mesh.castsShadow) {
+      // rtcOccluded1 in true_shadow.cpp: one ray (N == 1) with a ShadowRayContext.
+      auto* context = reinterpret_cast<ShadowRayContext*>(args->context);
+      context->transmittance *= 1.0f - std::clamp(mesh.baseColor(primitive, u, v).a, 0.0f, 1.0f);
+      args->valid[i] = 0;
+    } else if (!mesh.castsShadow || !mesh.covers(primitive, u, v)) {
       args->valid[i] = 0;
     }
   }
@@ -144,6 +152,7 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     m.alphaCutoff = mesh.alphaTested() ? mesh.effectiveAlphaCutoff() : -1.0f;
     m.doubleSided = mesh.doubleSided;
     m.castsShadow = mesh.castsShadow;
+    m.translucent = mesh.alphaMode == AlphaMode::Blend;
     s.triangles += m.indices.size() / 3;
   }
   for (size_t id = 0; id < s.meshes.size(); ++id) {
@@ -172,7 +181,7 @@ RayScene::RayScene(const Scene& scene) : impl_(std::make_unique<Impl>()) {
     if (!m.doubleSided || m.alphaCutoff >= 0.0f) {
       rtcSetGeometryIntersectFilterFunction(geometry, filterCameraHit);
     }
-    if (m.alphaCutoff >= 0.0f || !m.castsShadow) {
+    if (m.alphaCutoff >= 0.0f || !m.castsShadow || m.translucent) {
       rtcSetGeometryOccludedFilterFunction(geometry, filterShadowHit);
     }
     rtcCommitGeometry(geometry);

@@ -38,7 +38,8 @@ struct RayMesh {
   const RayTexture* texture = nullptr;  // into RayScene::Impl::textures
   float alphaCutoff = -1.0f;            // < 0: opaque (shared/alpha_mask.h)
   bool doubleSided = true;
-  bool castsShadow = true;  // false: shadow rays pass through it (Mesh::castsShadow)
+  bool castsShadow = true;   // false: shadow rays pass through it (Mesh::castsShadow)
+  bool translucent = false;  // BLEND: shadow rays pass through it, keeping 1 - alpha
 
   std::array<uint32_t, 3> triangle(uint32_t primitive) const {
     return {indices[3 * primitive], indices[3 * primitive + 1], indices[3 * primitive + 2]};
@@ -54,6 +55,13 @@ struct RayMesh {
   glm::vec4 baseColor(uint32_t primitive, float u, float v) const;
   // Whether the alpha mask keeps the surface at (u, v) (the light and camera passes' test).
   bool covers(uint32_t primitive, float u, float v) const;
+};
+
+// A shadow ray's query context: Embree's, then what the occlusion filter accumulates along the
+// ray (Embree hands the filter the context it was given; the struct starts with Embree's).
+struct ShadowRayContext {
+  RTCIntersectContext embree;
+  float transmittance = 1.0f;  // the product of 1 - alpha of the translucent hits so far
 };
 
 struct RayScene::Impl {

@@ -97,8 +97,8 @@ inline SurfacePoint surfacePoint(const RayMesh& mesh, uint32_t primitive, float 
 // Each sub-pixel shifts the grid its own way (gridShift).
 struct SampledLight {
   Light light;
-  bool atInfinity = false;  // directional
-  int side = 0;             // 0: a hard light
+  bool atInfinity = false;      // directional
+  int side = 0;                 // 0: a hard light
   glm::vec3 hardTowards{0.0f};  // hard: the direction to the light (directional) or its position
   LightDisk disk{};             // a disk light's frame
 };
@@ -152,29 +152,30 @@ inline void spokes(const std::vector<float>& v, glm::vec3 a, glm::vec3 b,
 
 // The share of the light a surface point sees from the side its unit geometric normal points
 // to (the camera's): each of the light's samples is a ray from the point moved off its triangle
-// (offsetRayOrigin) that `unblocked(origin, direction, reach)` decides — reach in units of
-// direction. A sample behind that side is blocked by the surface itself (a thin surface's far
-// side is another surface) and takes no ray. The tracer and the benchmark's bare Embree loop
+// (offsetRayOrigin) whose share of light `unblocked(origin, direction, reach)` gives (a bool,
+// or the transmittance in [0, 1] through translucent casters) — reach in units of direction. A
+// sample behind that side is blocked by the surface itself (a thin surface's far side is another
+// surface) and takes no ray. The tracer and the benchmark's bare Embree loop
 // (bench/bare_embree_rays.cpp) both cast these rays.
 template <typename Unblocked>
 float lightVisibility(const SampledLight& light, glm::vec3 position, glm::vec3 normal,
                       glm::vec2 shift, Unblocked&& unblocked) {
   const glm::vec3 origin = offsetRayOrigin(position, normal);
   auto seen = [&](glm::vec3 direction, float reach) {
-    if (!(glm::dot(direction, normal) > 0.0f)) return 0;
-    return unblocked(origin, direction, reach) ? 1 : 0;
+    if (!(glm::dot(direction, normal) > 0.0f)) return 0.0f;
+    return float(unblocked(origin, direction, reach));
   };
   constexpr float kForever = std::numeric_limits<float>::infinity();
   if (light.side == 0) {
     // A point is reached at t = 1 (nothing lies beyond it on the way); a direction never.
-    return float(light.atInfinity ? seen(light.hardTowards, kForever)
-                                  : seen(light.hardTowards - origin, 1.0f));
+    return light.atInfinity ? seen(light.hardTowards, kForever)
+                            : seen(light.hardTowards - origin, 1.0f);
   }
   thread_local std::vector<float> u, v;
   thread_local std::vector<glm::vec3> azimuths;
   gridAxis(light.side, shift.x, u);
   gridAxis(light.side, shift.y, v);
-  int count = 0;
+  float count = 0.0f;
   if (light.light.kind == LightKind::Point) {
     // The cone of directions from the receiver towards the sphere of radius r at distance d, half
     // angle alpha = asin(r / d), sampled by Archimedes' map cos(theta) = 1 - u (1 - cos(alpha)),
@@ -195,8 +196,8 @@ float lightVisibility(const SampledLight& light, glm::vec3 position, glm::vec3 n
       const double cosTheta = 1.0 - double(u[size_t(i)]) * (1.0 - cosAlpha);
       const double sinTheta = std::sqrt(std::max(0.0, 1.0 - cosTheta * cosTheta));
       const double across = distance * sinTheta;
-      const float reach = float(distance * cosTheta -
-                                std::sqrt(std::max(0.0, radius * radius - across * across)));
+      const float reach =
+          float(distance * cosTheta - std::sqrt(std::max(0.0, radius * radius - across * across)));
       for (const glm::vec3& azimuth : azimuths) {
         count += seen(float(sinTheta) * azimuth + float(cosTheta) * axis, reach);
       }
@@ -216,7 +217,7 @@ float lightVisibility(const SampledLight& light, glm::vec3 position, glm::vec3 n
       }
     }
   }
-  return float(count) / float(light.side * light.side);
+  return count / float(light.side * light.side);
 }
 
 }  // namespace penumbra::truth

@@ -9,24 +9,26 @@
 
 #include "../core/parallel.h"
 #include "penumbra/error.h"
-#include "ray_scene_impl.h"
 #include "penumbra/shared/shading.h"
+#include "ray_scene_impl.h"
 #include "trace_rays.h"
 
 namespace penumbra::truth {
 namespace {
 
-constexpr int kMaxTraceSide = 16384;             // output pixels per side
+constexpr int kMaxTraceSide = 16384;  // output pixels per side
 constexpr int64_t kMaxSubPixels = int64_t(1) << 28;
 
-// Whether the ray from `origin` along `direction` reaches `reach` (in units of direction)
-// unblocked.
-bool unblocked(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float reach) {
-  RTCIntersectContext context;
-  rtcInitIntersectContext(&context);
+// The share of light the ray from `origin` along `direction` carries to `reach` (in units of
+// direction): 0 where an opaque caster blocks it, else the product of 1 - alpha of the
+// translucent casters it passes (ShadowRayContext, filterShadowHit).
+float transmittance(RTCScene scene, glm::vec3 origin, glm::vec3 direction, float reach) {
+  ShadowRayContext context;
+  rtcInitIntersectContext(&context.embree);
   RTCRay ray = embreeRay(origin, direction, 0.0f, reach);
-  rtcOccluded1(scene, &context, &ray);
-  return ray.tfar >= 0.0f;  // Embree sets tfar to -infinity when the ray is blocked
+  rtcOccluded1(scene, &context.embree, &ray);
+  // Embree sets tfar to -infinity when the ray is blocked.
+  return ray.tfar >= 0.0f ? context.transmittance : 0.0f;
 }
 
 }  // namespace
@@ -75,8 +77,7 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
   out.visibility = Image(request.width, request.height, 1, -1.0f);
   out.color = Image(request.width, request.height, 4, 0.0f);
   out.reachedByLight = Image(request.width, request.height, 1, 1.0f);
-  out.subPixelViewDepth =
-      Image(bigWidth, bigHeight, 1, std::numeric_limits<float>::infinity());
+  out.subPixelViewDepth = Image(bigWidth, bigHeight, 1, std::numeric_limits<float>::infinity());
   std::atomic<uint64_t> cameraRays{0}, shadowRays{0};
   const auto start = std::chrono::steady_clock::now();
   std::atomic<bool> stopped{false};
@@ -97,8 +98,8 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const glm::vec3 direction = camera.direction(bx, by);
           RTCIntersectContext context;
           rtcInitIntersectContext(&context);
-          RTCRayHit rayHit = embreeRayHit(camera.origin, direction, camera.nearDepth,
-                                          camera.farDepth);
+          RTCRayHit rayHit =
+              embreeRayHit(camera.origin, direction, camera.nearDepth, camera.farDepth);
           rtcIntersect1(scene.scene, &context, &rayHit);
           if (rayHit.hit.geomID == RTC_INVALID_GEOMETRY_ID) {
             color += shaders::kSkyColour;
@@ -112,18 +113,18 @@ std::optional<TrueShadow> traceTrueShadow(const RayScene& rayScene,
           const glm::vec3 blend =
               (1.0f - u - v) * mesh.normals[a] + u * mesh.normals[b] + v * mesh.normals[c];
           // Opposite vertex normals can cancel: the triangle's own normal then (never NaN).
-          const glm::vec3 smooth = glm::dot(blend, blend) > 1e-12f
-                                       ? glm::normalize(blend)
-                                       : (hit.frontFacing ? hit.geometricNormal
-                                                          : -hit.geometricNormal);
+          const glm::vec3 smooth =
+              glm::dot(blend, blend) > 1e-12f
+                  ? glm::normalize(blend)
+                  : (hit.frontFacing ? hit.geometricNormal : -hit.geometricNormal);
           const glm::vec3 shadingNormal = hit.frontFacing ? smooth : -smooth;
           out.subPixelViewDepth.at(bx, by) = rayHit.ray.tfar;
-          const float visibility = lightVisibility(
-              light, hit.position, hit.geometricNormal, gridShift(bx, by),
-              [&](glm::vec3 origin, glm::vec3 towards, float reach) {
-                ++rowShadowRays;
-                return unblocked(scene.scene, origin, towards, reach);
-              });
+          const float visibility =
+              lightVisibility(light, hit.position, hit.geometricNormal, gridShift(bx, by),
+                              [&](glm::vec3 origin, glm::vec3 towards, float reach) {
+                                ++rowShadowRays;
+                                return transmittance(scene.scene, origin, towards, reach);
+                              });
           visibilitySum += visibility;
           ++hits;
           // Shading as the camera pass's (passes/camera.frag): Lambert with the smooth normal

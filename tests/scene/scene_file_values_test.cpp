@@ -268,7 +268,10 @@ TEST(UntrustedGltf, WarnsOncePerMaterialThatBlendIsDrawnAsAMask) {
   ASSERT_EQ(s.warnings.size(), 1u);
   EXPECT_EQ(s.warnings[0], file.string() +
                                ": material 0 ('glass') is BLEND (baseColorFactor alpha 0.250000): "
-                               "drawn as a mask at 0.5");
+                               "its shadow lets through 1 - alpha (the light pass covers a "
+                               "dithered alpha share of the shadow map's texels, which filtering "
+                               "averages; the hard test shows the dither; the ray-traced truth "
+                               "attenuates exactly); the camera draws it as a mask at 0.5");
 }
 
 }  // namespace

@@ -80,8 +80,8 @@ TEST(TrueShadow, SquareOccludersHardShadowIsExactToTheSubPixel) {
         const glm::dvec3 g = groundPoint(scene, width, height, S, x * S + s % S, y * S + s / S);
         if (std::max(std::abs(g.x), std::abs(g.z)) >= 4.0) decidable = false;  // off the ground
         // The camera sees the ground here, not the square's top.
-        const glm::dvec3 top = groundPoint(scene, width, height, S, x * S + s % S, y * S + s / S,
-                                           kHeight);
+        const glm::dvec3 top =
+            groundPoint(scene, width, height, S, x * S + s % S, y * S + s / S, kHeight);
         if (std::abs(top.x) <= kHalf + 1e-4 && std::abs(top.z) <= kHalf + 1e-4) decidable = false;
         // The square's shadow: the ray to the light meets the square's plane inside it.
         const glm::dvec3 q = g + toLight * (kHeight / toLight.y);
@@ -126,7 +126,8 @@ EdgeErrors edgeErrors(Scene scene, int lightSamples, double halfBand,
       if (std::abs(centre.x) > halfBand || std::abs(centre.z) > 1.2) continue;
       double expected = 0.0;
       for (int s = 0; s < S * S; ++s) {
-        expected += analytic(glm::vec3(groundPoint(scene, width, height, S, x * S + s % S, y * S + s / S)));
+        expected +=
+            analytic(glm::vec3(groundPoint(scene, width, height, S, x * S + s % S, y * S + s / S)));
       }
       const double error = double(t.visibility.at(x, y)) - expected / (S * S);
       sum += error * error;
@@ -143,9 +144,10 @@ TEST(TrueShadow, DiskLightPenumbraEqualsTheClosedFormAndConverges) {
   const auto analytic = [](glm::vec3 g) { return analyticDiskEdgeVisibility(g.x); };
   const EdgeErrors coarse = edgeErrors(scene, 64, 0.2, analytic);
   const EdgeErrors fine = edgeErrors(scene, 4096, 0.2, analytic);
-  std::printf("true shadow vs analytic disk-edge penumbra: 64 samples RMSE %.5f max %.5f, 4096 "
-              "samples RMSE %.5f max %.5f (%d pixels)\n",
-              coarse.rmse, coarse.maxAbsolute, fine.rmse, fine.maxAbsolute, fine.pixels);
+  std::printf(
+      "true shadow vs analytic disk-edge penumbra: 64 samples RMSE %.5f max %.5f, 4096 "
+      "samples RMSE %.5f max %.5f (%d pixels)\n",
+      coarse.rmse, coarse.maxAbsolute, fine.rmse, fine.maxAbsolute, fine.pixels);
   ASSERT_GT(fine.pixels, 300);  // the penumbra fills most of the zoomed frame
   // The bound at N = 4096. A chord crosses at most about 2 side cells of the stratified
   // grid, each off by at most 1/N: max <= 2 / side (0.031 at 4096, 0.25 at 64).
@@ -161,9 +163,10 @@ TEST(TrueShadow, SphereLightPenumbraEqualsTheClosedFormAndConverges) {
   const auto analytic = [](glm::vec3 g) { return analyticSphereEdgeVisibility(g, 2000); };
   const EdgeErrors coarse = edgeErrors(scene, 64, 0.35, analytic);
   const EdgeErrors fine = edgeErrors(scene, 4096, 0.35, analytic);
-  std::printf("true shadow vs analytic sphere-edge penumbra: 64 samples RMSE %.5f max %.5f, "
-              "4096 samples RMSE %.5f max %.5f (%d pixels)\n",
-              coarse.rmse, coarse.maxAbsolute, fine.rmse, fine.maxAbsolute, fine.pixels);
+  std::printf(
+      "true shadow vs analytic sphere-edge penumbra: 64 samples RMSE %.5f max %.5f, "
+      "4096 samples RMSE %.5f max %.5f (%d pixels)\n",
+      coarse.rmse, coarse.maxAbsolute, fine.rmse, fine.maxAbsolute, fine.pixels);
   ASSERT_GT(fine.pixels, 300);
   EXPECT_LT(fine.rmse, 1e-3);
   EXPECT_LT(fine.rmse, 0.25 * coarse.rmse);
@@ -188,7 +191,8 @@ TEST(TrueShadow, AlphaMaskedCheckerCardCastsItsPattern) {
   Mesh ground, card;
   addQuad(ground, -3.0f, 3.0f, -3.0f, 3.0f, 0.0f);
   addQuad(card, -1.0f, 1.0f, -1.0f, 1.0f, 1.0f);
-  for (Vertex& v : card.vertices) v.texcoord = (glm::vec2(v.position.x, v.position.z) + 1.0f) * 0.5f;
+  for (Vertex& v : card.vertices)
+    v.texcoord = (glm::vec2(v.position.x, v.position.z) + 1.0f) * 0.5f;
   card.baseColorTexture = 0;
   card.alphaMode = AlphaMode::Mask;
   card.alphaCutoff = 0.5f;
@@ -217,6 +221,45 @@ TEST(TrueShadow, AlphaMaskedCheckerCardCastsItsPattern) {
   // The pattern's coverage: half the texels are opaque (the pixels sample them unevenly in
   // perspective, hence the 0.1).
   EXPECT_NEAR(shadowedShare / compared, 0.5, 0.1);
+}
+
+TEST(TrueShadow, TranslucentCardsLetThroughTheProductOfOneMinusAlpha) {
+  // Two BLEND cards under the sun straight above: alpha 0.25 at height 1 over [-1, 1]^2, alpha
+  // 0.5 at height 1.5 over x in [0, 1]. The ground under the first alone keeps 0.75 of the light,
+  // under both 0.75 x 0.5 = 0.375 (each a few float products: exact). The camera looks from under
+  // the cards (the camera sees BLEND as a mask at 0.5, so the upper card would hide the ground).
+  Scene scene;
+  Mesh ground, low, high;
+  addQuad(ground, -3.0f, 3.0f, -3.0f, 3.0f, 0.0f);
+  addGrid(low, -1.0, 1.0, -1.0, 1.0, 1.0f, 4);  // shared edges: each crossed once
+  addQuad(high, 0.0f, 1.0f, -1.0f, 1.0f, 1.5f);
+  low.alphaMode = high.alphaMode = AlphaMode::Blend;
+  low.opacity = 0.25f;
+  high.opacity = 0.5f;
+  scene.meshes = {ground, low, high};
+  scene.camera = {glm::vec3(0.0f, 0.7f, 2.6f), glm::vec3(0.0f, 0.0f, 0.0f), 50.0f};
+  scene.light.direction = glm::vec3(0.0f, -1.0f, 0.0f);
+  const int width = 128, height = 96;
+  const TrueShadow t = traceTrueShadow(RayScene(scene), requestFor(scene, width, height, 1));
+  int underOne = 0, underBoth = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const glm::dvec3 g = groundPoint(scene, width, height, 1, x, y);
+      // Clear of the cards' edges and of the low card's inner edges (x, z in {-0.5, 0, 0.5}).
+      const auto nearInnerEdge = [](double v) {
+        return std::abs(v - std::round(v * 2.0) / 2.0) < 0.02;
+      };
+      if (std::abs(g.x) >= 0.98 || std::abs(g.z) >= 0.98 || nearInnerEdge(g.x) ||
+          nearInnerEdge(g.z)) {
+        continue;
+      }
+      const bool both = g.x > 0.0;
+      ASSERT_EQ(t.visibility.at(x, y), both ? 0.375f : 0.75f) << "pixel " << x << "," << y;
+      ++(both ? underBoth : underOne);
+    }
+  }
+  EXPECT_GT(underOne, 500);
+  EXPECT_GT(underBoth, 500);
 }
 
 TEST(TrueShadow, PlaneUnderAGrazingLightDoesNotShadowItself) {

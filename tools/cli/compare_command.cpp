@@ -98,6 +98,9 @@ void runCompare(const CompareOptions& o) {
         [&](int done, int total, const std::string& step) { bar.update(done, total, step); });
   }
   printSceneWarnings(result.scene);
+  if (const std::string w = translucencyWarning(result.scene, request.techniques); !w.empty()) {
+    std::cerr << "penumbra: warning: " << w << "\n";
+  }
   if (result.shadowedWarning) std::cout << "warning: " << *result.shadowedWarning << "\n";
   compare::writeReportFiles(result, staging);
   output.finish(interrupt);

@@ -127,6 +127,9 @@ void runRender(const RenderCommandOptions& options) {
   applyOverrides(scene, overrides);
   printSceneWarnings(scene);
   const std::vector<Technique>& techniques = resolved.techniques;
+  if (const std::string w = translucencyWarning(scene, techniques); !w.empty()) {
+    std::cerr << "penumbra: warning: " << w << "\n";
+  }
   for (const std::string& name : options.animate) {  // before any GL work
     if (parseAnimation(name) == Animation::Clip && !scene.animation.moves()) {
       throw Error("--animate clip plays a scene file's own animation; scene '" + scene.name +

@@ -1,11 +1,13 @@
 // A mesh's material as the light, depth-only and camera passes read it (GpuScene::Material, set
 // by setMaterialUniforms): base colour = factor x sRGB texture (read linear), and the alpha mask
-// of glTF 2.0 §3.9.4 (shared/alpha_mask.h).
+// of glTF 2.0 §3.9.4 (shared/alpha_mask.h); the camera sees a BLEND material as a mask at 0.5, the
+// light pass lets 1 - alpha through it (materialCastsAt).
 #include "../shared/alpha_mask.h"
 
 uniform vec3 albedo;            // base-colour factor, linear
 uniform float baseColorAlpha;   // its alpha
 uniform float alphaCutoff;      // < 0: opaque, no test
+uniform int alphaBlend;         // 1: a translucent (BLEND) material
 uniform int hasBaseColorTexture;
 layout(binding = PENUMBRA_BASE_COLOR_TEXTURE_UNIT) uniform sampler2D baseColorTexture;
 
@@ -18,4 +20,11 @@ vec4 materialBaseColor(vec2 texcoord) {
 
 bool materialCovers(vec2 texcoord) {
   return alphaCutoff < 0.0f || alphaCovers(materialBaseColor(texcoord).a, alphaCutoff);
+}
+
+// Whether the material blocks the light at this shadow-map texel: the mask, and for a
+// translucent material the dither that lets through 1 - alpha (shared/alpha_mask.h).
+bool materialCastsAt(vec2 texcoord, ivec2 texel) {
+  if (alphaBlend == 0) return materialCovers(texcoord);
+  return translucentCovers(materialBaseColor(texcoord).a, texel.x, texel.y);
 }

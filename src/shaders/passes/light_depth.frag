@@ -2,6 +2,7 @@
 // directional lights, Euclidean distance for spot lights, thesis §4.1.3), mapped from [near, far].
 // Alpha-masked casters are tested against their base colour's alpha, so leaves cast the shadow
 // of their shape, not of their cards; with MSAA the renderer runs masked draws per sample.
+// Translucent (BLEND) casters cover a dithered 1 - alpha share of the texels.
 #include "../lib/material.glsl"
 #include "../shared/light_depth.h"
 
@@ -15,7 +16,7 @@ uniform float lightFar;
 layout(location = 0) out float linearDepth;
 
 void main() {
-  if (!materialCovers(baseColorTexcoord)) discard;
+  if (!materialCastsAt(baseColorTexcoord, ivec2(gl_FragCoord.xy))) discard;
   linearDepth = clamp(
       lightLinearDepth(lightViewPosition, lightPerspective != 0, lightNear, lightFar), 0.0f, 1.0f);
 }
