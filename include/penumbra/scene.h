@@ -165,6 +165,7 @@ struct Scene {
   // default one moved by pathOffset, the target moving alike (frame 0 is the default camera).
   std::vector<Camera> cameraPath(int frames) const;
 
+  // Every mesh, and where the animation takes the moving ones over its clip (sweepClip).
   Bounds bounds() const;
   // The bounds of the Model meshes (MeshRole): what framing and the default lights look at;
   // bounds() where the scene has none.

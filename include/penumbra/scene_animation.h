@@ -60,6 +60,7 @@ struct PosedMesh {
   std::vector<glm::vec3> normals;  // empty: flat normals, one triangle per three vertices
   std::vector<glm::uvec4> joints;  // skinned: four indices into the skin's joints per vertex
   std::vector<glm::vec4> weights;  // skinned: their weights, summing to 1
+  bool mirrored = false;           // rigid: the winding is turned for a mirroring transform
 };
 
 struct SceneAnimation {
@@ -69,6 +70,9 @@ struct SceneAnimation {
   std::vector<AnimationChannel> channels;
   std::vector<Skin> skins;
   std::vector<PosedMesh> meshes;
+  // Where the moving meshes reach over the clip (sweepClip): the renderer's depth ranges and the
+  // light's fit hold still over it. Empty (min > max) until swept.
+  glm::vec3 sweepMin{1.0f}, sweepMax{-1.0f};
 
   // Whether posing at different times gives different geometry.
   bool moves() const { return !channels.empty() && duration > 0.0f; }
@@ -82,9 +86,17 @@ glm::vec4 sampleChannel(const AnimationChannel& channel, float seconds);
 std::vector<glm::mat4> nodeWorldTransforms(const SceneAnimation& animation, float seconds);
 
 // Places the scene's animated meshes as they are at `seconds` of its clip (vertex positions and
-// normals); a scene without an animation is left as it is. Bounds, cameras and lights are not
-// changed.
+// normals, and the winding where a node's transform turns mirroring or back, glTF 2.0 §3.7.4); a
+// scene without an animation is left as it is. Cameras and lights are not changed. Throws Error
+// naming the time where a vertex would not be finite.
 void poseScene(Scene& scene, float seconds);
+
+// Poses the clip at its keys' times (at most kMaxSweepPoses of them, else that many spread over
+// it) and keeps the union of the poses' bounds (SceneAnimation::sweepMin/Max), then poses it at
+// 0 s. Throws Error "<source>: ..." naming the time of a pose whose extent is not finite in
+// single precision.
+inline constexpr int kMaxSweepPoses = 256;
+void sweepClip(Scene& scene, const std::string& source);
 
 // Frame sequences (render --frames, compare's frames) play a clip in real time at this rate,
 // which is also the rate of render's video: frame f shows the clip at f / 30 s, looped.

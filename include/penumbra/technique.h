@@ -53,9 +53,10 @@ float reconstructVisibility(Technique technique, const TechniqueParams& params,
 bool filtersAfterTest(Technique technique);
 // Whether a translucent (BLEND) caster's shadow keeps its 1 - alpha through the technique: the
 // light pass covers a dithered alpha share of the texels (shared/alpha_mask.h) and filtering
-// averages the dither. Not the hard test (no filter: the dither shows), EVSM2 (its positive warp
-// alone over-lights the mixture: 0.82 for 0.75) nor the power-function CDF (0.11 for 0.75);
-// measured by SceneRenderingTest.ATranslucentCardLetsThroughOneMinusAlpha.
+// averages the dither. Not the hard test (no filter: the dither would show), EVSM2 (its positive
+// warp alone over-lights the mixture: 0.82 for 0.75) nor the power-function CDF (0.11 for 0.75),
+// measured by SceneRenderingTest.ATranslucentCardLetsThroughOneMinusAlpha: their light pass
+// draws translucent casters as a mask at alpha 0.5.
 bool carriesTranslucency(Technique technique);
 // For a scene with translucent casters: a warning naming those of `techniques` that cannot carry
 // them (carriesTranslucency); empty otherwise.

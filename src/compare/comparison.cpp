@@ -304,13 +304,14 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   for (size_t k = 0; k < request.techniques.size(); ++k) {
     result.techniques[k].flicker = temporalFlicker(visibilities[k], references, masks[k]);
   }
+  // The result's scene as its first frame showed it (the report describes that frame).
+  if (plays) poseScene(result.scene, 0.0f);
   if (measuresShimmer) {
     // Both fits side by side: the view holds at the path's first camera while the cascades
     // follow the path (FrameView::shadowCamera), so the picture changes only where the maps do.
     // The shadow camera also turns (a quarter degree a frame): tight boxes change size as it
     // turns, which is what the stabilised fit's bounding sphere is for.
-    if (plays) poseScene(result.scene, 0.0f);  // the scene holds still: only the maps move
-    renderer.setScene(result.scene);
+    renderer.setScene(result.scene);  // held at its first pose: only the maps move
     std::vector<Camera> shadowPath = path;
     for (size_t frame = 0; frame < shadowPath.size(); ++frame) {
       Camera& c = shadowPath[frame];

@@ -182,8 +182,7 @@ std::string translucencyWarning(const Scene& scene, std::span<const Technique> t
          "' has translucent (BLEND) casters, whose shadows let through "
          "1 - alpha, but " +
          names +
-         " cannot carry it: the hard test shows the light pass's "
-         "dither, EVSM2 and the power-function CDF misjudge it (docs/techniques.md, "
+         " cannot carry it and draw them as a mask at alpha 0.5 (docs/techniques.md, "
          "\"Translucent casters\")";
 }
 

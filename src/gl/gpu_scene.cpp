@@ -43,7 +43,6 @@ void setMaterialUniforms(const Program& program, const GpuScene::Material& mater
   program.set("baseColorAlpha", material.opacity);
   program.set("alphaCutoff", material.alphaCutoff);
   program.set("hasBaseColorTexture", material.texture != 0 ? 1 : 0);
-  program.set("alphaBlend", material.translucent ? 1 : 0);
 }
 
 void setCameraFaceCulling(const GpuScene::Material& material) {
@@ -182,7 +181,11 @@ uint64_t sceneLayoutFingerprint(const Scene& scene) {
 }
 
 uint64_t sceneFingerprint(const Scene& scene) {
-  uint64_t hash = sceneLayoutFingerprint(scene);
+  return sceneFingerprint(scene, sceneLayoutFingerprint(scene));
+}
+
+uint64_t sceneFingerprint(const Scene& scene, uint64_t layout) {
+  uint64_t hash = layout;
   for (const Mesh& m : scene.meshes)
     hash = hashBytes(hash, m.vertices.data(), m.vertices.size() * sizeof(Vertex));
   return hash;

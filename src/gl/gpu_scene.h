@@ -22,7 +22,7 @@ class GpuScene {
     unsigned texture = 0;       // the base-colour texture, 0 for none
     bool doubleSided = true;    // false: the camera pass culls back faces
     bool castsShadow = true;    // false: the light pass skips it (Mesh::castsShadow)
-    bool translucent = false;   // BLEND: the light pass dithers its coverage (alpha_mask.h)
+    bool translucent = false;   // BLEND: the light pass may dither its coverage (LightPass)
   };
 
   explicit GpuScene(const Scene& scene);
@@ -71,5 +71,7 @@ uint64_t sceneFingerprint(const Scene& scene);
 // The same of everything but the vertices (counts, indices, materials, textures): equal for two
 // poses of an animated scene, whose next pose then replaces only the vertices.
 uint64_t sceneLayoutFingerprint(const Scene& scene);
+// sceneFingerprint from the scene's layout fingerprint, computed once (the textures hashed once).
+uint64_t sceneFingerprint(const Scene& scene, uint64_t layout);
 
 }  // namespace penumbra::gl

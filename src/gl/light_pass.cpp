@@ -54,7 +54,7 @@ void LightPass::prepare(const LightPassShape& shape) {
 }
 
 void LightPass::render(ProgramCache& programs, const GpuScene& scene,
-                       std::span<const LightLayerView> views) {
+                       std::span<const LightLayerView> views, bool ditherTranslucent) {
   const Program& program =
       programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
   program.use();
@@ -80,6 +80,7 @@ void LightPass::render(ProgramCache& programs, const GpuScene& scene,
     scene.draw(
         [&](const GpuScene::Material& material) {
           setMaterialUniforms(program, material);
+          program.set("alphaBlend", material.translucent && ditherTranslucent ? 1 : 0);
           // MSAA: a masked caster is tested per sample, so each sample's coverage follows the
           // texture's alpha edge (a per-pixel discard would drop or keep all samples at once).
           if (multisampled() && material.alphaCutoff >= 0.0f) {

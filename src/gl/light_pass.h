@@ -41,8 +41,11 @@ class LightPass {
 
   // (Re)creates the targets when the shape differs from the current one.
   void prepare(const LightPassShape& shape);
-  // Draws the scene into layer i with views[i] (views.size() == shape.cascades).
-  void render(ProgramCache& programs, const GpuScene& scene, std::span<const LightLayerView> views);
+  // Draws the scene into layer i with views[i] (views.size() == shape.cascades). Translucent
+  // casters cover a dithered alpha share of the texels where `ditherTranslucent` (a technique
+  // whose filtering carries it, carriesTranslucency, and the references), else a mask at 0.5.
+  void render(ProgramCache& programs, const GpuScene& scene, std::span<const LightLayerView> views,
+              bool ditherTranslucent);
 
   const LightPassShape& shape() const { return shape_; }
   bool multisampled() const { return shape_.samples > 1; }

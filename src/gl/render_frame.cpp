@@ -15,12 +15,12 @@
 #include "penumbra/gl/renderer.h"
 #include "penumbra/point_light.h"
 #include "penumbra/shadow_lookup.h"
-#include "renderer_state.h"
 #include "penumbra/shared/cascade_selection.h"
 #include "penumbra/shared/point_light_faces.h"
 #include "penumbra/shared/shading.h"
 #include "penumbra/shared/soft_shadow.h"
 #include "penumbra/shared/summed_area.h"
+#include "renderer_state.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -106,7 +106,8 @@ LookupPixel lookupPixelAt(const RenderResult& r, int x, int y) {
 
 void Renderer::setScene(const Scene& scene) {
   State& s = *state_;
-  const uint64_t fingerprint = sceneFingerprint(scene);
+  const uint64_t layout = sceneLayoutFingerprint(scene);
+  const uint64_t fingerprint = sceneFingerprint(scene, layout);
   if (s.scene && fingerprint == s.sceneFingerprint) {
     s.sceneDefaults.name = scene.name;
     s.sceneDefaults.camera = scene.camera;
@@ -116,7 +117,6 @@ void Renderer::setScene(const Scene& scene) {
   if (scene.meshes.empty() || scene.triangleCount() == 0) {
     throw Error("scene '" + scene.name + "' has no triangles to draw");
   }
-  const uint64_t layout = sceneLayoutFingerprint(scene);
   if (s.scene && layout == s.sceneLayoutFingerprint) {
     s.scene->updateVertices(scene);  // a new pose of the same scene
   } else {
@@ -273,7 +273,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     layer.perspective = frame.lightView.perspective;
     layers.push_back(layer);
   }
-  s.light.render(s.programs, *s.scene, layers);
+  // Translucent casters: dithered for the references and the techniques that average the
+  // dither to 1 - alpha, a mask at 0.5 for the others (docs/techniques.md).
+  s.light.render(s.programs, *s.scene, layers,
+                 reference || carriesTranslucency(settings.technique));
 
   // The filter: the renderer is a host of the public filtering API like any other.
   FilterSettings filterSettings = filterSettingsFor(settings);
@@ -435,9 +438,9 @@ Image Renderer::readChannels(int level, int cascade) const {
   const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};
   // Every cascade's layers come back, cascade by cascade; channel c of a cascade is component
   // c of its layers (4 per layer when there are several).
-  Image all =
-      readTexture(s.shadows.state().maps.channels().id(), level, size, size, layout.layers * shape.cascades,
-                  layout.componentsPerTexel, formats[layout.componentsPerTexel], false);
+  Image all = readTexture(s.shadows.state().maps.channels().id(), level, size, size,
+                          layout.layers * shape.cascades, layout.componentsPerTexel,
+                          formats[layout.componentsPerTexel], false);
   Image trimmed(size, size, layout.channels);
   for (int y = 0; y < size; ++y) {
     for (int x = 0; x < size; ++x) {
@@ -479,13 +482,15 @@ double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) 
   struct Stats {
     double centre, step;
   };
-  std::vector<Stats> stats(size_t(s.shadows.state().maps.shape().layout.channels * s.shadows.state().maps.shape().cascades));
+  std::vector<Stats> stats(size_t(s.shadows.state().maps.shape().layout.channels *
+                                  s.shadows.state().maps.shape().cascades));
   s.shadows.state().maps.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
   auto prefix = [&](int x, int y) -> uint64_t {
     if (x < 0 || y < 0) return 0;
     uint64_t v = 0;
     const size_t index = (size_t(channel) * size_t(size) + size_t(y)) * size_t(size) + size_t(x);
-    glGetNamedBufferSubData(s.shadows.state().maps.summedAreaSums().id(), GLintptr(index * 8), 8, &v);
+    glGetNamedBufferSubData(s.shadows.state().maps.summedAreaSums().id(), GLintptr(index * 8), 8,
+                            &v);
     return v;
   };
   const uint64_t wrapped =

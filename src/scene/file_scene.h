@@ -26,8 +26,8 @@ void finishFileScene(Scene& scene, const std::string& source, const FileView& vi
 // How a translucent (AlphaMode::Blend) material is drawn, for the loaders' warnings.
 inline constexpr const char* kTranslucentMaterialRule =
     "its shadow lets through 1 - alpha (the light pass covers a dithered alpha share of the "
-    "shadow map's texels, which filtering averages; the hard test shows the dither; the "
-    "ray-traced truth attenuates exactly); the camera draws it as a mask at 0.5";
+    "shadow map's texels, which filtering averages; the ray-traced truth attenuates exactly; "
+    "techniques that cannot carry it draw a mask at 0.5, as the camera does)";
 
 // Flat normals for triangles without normals: each triangle gets its own three vertices
 // (glTF 2.0 §3.7.2.1: "client implementations MUST calculate flat normals").

@@ -224,9 +224,10 @@ bool GltfMotion::moves(int gltfNode) const {
 
 void GltfMotion::addMesh(size_t sceneMesh, int gltfNode, int meshIndex, int primitiveIndex,
                          std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
-                         std::span<const uint32_t> source) {
+                         std::span<const uint32_t> source, bool mirrored) {
   PosedMesh posed;
   posed.mesh = sceneMesh;
+  posed.mirrored = mirrored;
   posed.node = nodeIndex_[size_t(gltfNode)];
   posed.positions = std::move(positions);
   posed.normals = std::move(normals);

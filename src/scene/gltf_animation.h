@@ -52,10 +52,11 @@ class GltfMotion {
   // Records how a Scene::meshes entry follows its node: `positions` and `normals` as the file
   // gives them (normals empty for flat shading), one per final vertex, with `source[i]` the
   // file's vertex behind final vertex i (for the skinning attributes, read here from the
-  // primitive's JOINTS_0 and WEIGHTS_0).
+  // primitive's JOINTS_0 and WEIGHTS_0); `mirrored`: its winding was turned for a mirroring
+  // transform (PosedMesh::mirrored).
   void addMesh(size_t sceneMesh, int gltfNode, int meshIndex, int primitiveIndex,
                std::vector<glm::vec3> positions, std::vector<glm::vec3> normals,
-               std::span<const uint32_t> source);
+               std::span<const uint32_t> source, bool mirrored);
 
   // Whether anything was recorded to pose.
   bool empty() const { return animation_.meshes.empty(); }

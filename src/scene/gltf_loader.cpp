@@ -804,8 +804,12 @@ void Importer::addPrimitive(int node, int meshIndex, int primitiveIndex, const g
     v.normal = normals.empty() ? glm::vec3(0.0f) : normalFromMesh * normals[i];
     if (!texcoords.empty()) v.texcoord = texcoords[i];
   }
-  // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners back.
-  if (determinant < 0.0f) {
+  // A mirroring transform turns counter-clockwise triangles clockwise: swap two corners back (a
+  // skinned mesh's node transform does not apply, glTF 2.0 §3.7.3.1; poseScene turns a moving
+  // mesh's winding as its transform mirrors or not).
+  const bool skinned = moves && model_.nodes[size_t(node)].skin >= 0;
+  const bool mirrored = determinant < 0.0f && !skinned;
+  if (mirrored) {
     for (size_t t = 0; t + 2 < order.size(); t += 3) std::swap(order[t + 1], order[t + 2]);
   }
   // Where each final vertex comes from in the file: itself, or each corner's vertex once flat
@@ -825,7 +829,7 @@ void Importer::addPrimitive(int node, int meshIndex, int primitiveIndex, const g
     for (size_t i = 0; i < source.size(); ++i) sourcePositions[i] = positions[source[i]];
     if (!normals.empty()) sourceNormals = normals;
     motion_->addMesh(scene_.meshes.size(), node, meshIndex, primitiveIndex,
-                     std::move(sourcePositions), std::move(sourceNormals), source);
+                     std::move(sourcePositions), std::move(sourceNormals), source, mirrored);
   }
   scene_.meshes.push_back(std::move(mesh));
 }
@@ -900,7 +904,9 @@ Scene Importer::run(std::vector<std::string> warnings) {
   if (scene_.meshes.empty()) fail("the scene has no triangles to render");
   if (motion_ && !motion_->empty()) {
     scene_.animation = motion_->take();
-    poseScene(scene_, 0.0f);  // a skinned mesh's bind pose is not its pose at the start
+    // Its reach over the clip, checked; then its pose at the start (a skinned mesh's bind pose is
+    // not it).
+    sweepClip(scene_, name_);
   }
 
   // The file's camera and light, placed once the bounds are known.

@@ -26,8 +26,19 @@ Bounds boundsOf(const std::vector<Mesh>& meshes, Keep keep) {
 
 }  // namespace
 
+namespace {
+
+// The bounds grown by where the scene's animation takes its moving meshes (sweepClip): the
+// frame's depth ranges and the light's fit hold still while the clip plays.
+Bounds withSweep(Bounds b, const SceneAnimation& animation) {
+  if (!(animation.sweepMin.x <= animation.sweepMax.x)) return b;
+  return {glm::min(b.min, animation.sweepMin), glm::max(b.max, animation.sweepMax)};
+}
+
+}  // namespace
+
 Bounds Scene::bounds() const {
-  return boundsOf(meshes, [](const Mesh&) { return true; });
+  return withSweep(boundsOf(meshes, [](const Mesh&) { return true; }), animation);
 }
 
 Bounds Scene::modelBounds() const {
@@ -40,7 +51,7 @@ Bounds Scene::shadowBounds() const {
   const Bounds shadowed = boundsOf(meshes, [](const Mesh& m) {
     return (m.castsShadow || m.role != MeshRole::Enclosure) && !m.vertices.empty();
   });
-  return shadowed.min.x <= shadowed.max.x ? shadowed : bounds();
+  return shadowed.min.x <= shadowed.max.x ? withSweep(shadowed, animation) : bounds();
 }
 
 std::vector<Camera> Scene::cameraPath(int frames) const {

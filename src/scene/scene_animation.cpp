@@ -5,7 +5,10 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <string>
 
+#include "penumbra/error.h"
 #include "penumbra/scene.h"
 
 namespace penumbra {
@@ -102,7 +105,7 @@ std::vector<glm::mat4> nodeWorldTransforms(const SceneAnimation& animation, floa
 }
 
 void poseScene(Scene& scene, float seconds) {
-  const SceneAnimation& animation = scene.animation;
+  SceneAnimation& animation = scene.animation;
   if (animation.meshes.empty()) return;
   const std::vector<glm::mat4> world = nodeWorldTransforms(animation, seconds);
   // Each skin's joint matrices: bind space to world (the skinned node's own transform does not
@@ -114,11 +117,18 @@ void poseScene(Scene& scene, float seconds) {
       jointMatrices[s].push_back(world[size_t(skin.joints[j])] * skin.inverseBindMatrices[j]);
     }
   }
-  for (const PosedMesh& posed : animation.meshes) {
+  for (PosedMesh& posed : animation.meshes) {
     Mesh& mesh = scene.meshes[posed.mesh];
     const bool flat = posed.normals.empty();
     const glm::mat4& rigid = world[size_t(posed.node)];
     const glm::mat3 rigidNormals = normalMatrix(glm::mat3(rigid));
+    // A rigid mesh whose transform mirrors it (a negative scale) has its winding turned back.
+    const bool mirrored = posed.skin < 0 && glm::determinant(glm::mat3(rigid)) < 0.0f;
+    if (mirrored != posed.mirrored) {
+      for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+        std::swap(mesh.indices[t + 1], mesh.indices[t + 2]);
+      posed.mirrored = mirrored;
+    }
     for (size_t i = 0; i < posed.positions.size(); ++i) {
       glm::mat4 m = rigid;
       glm::mat3 n = rigidNormals;
@@ -131,18 +141,62 @@ void poseScene(Scene& scene, float seconds) {
       }
       Vertex& v = mesh.vertices[i];
       v.position = glm::vec3(m * glm::vec4(posed.positions[i], 1.0f));
+      if (!std::isfinite(v.position.x + v.position.y + v.position.z)) {
+        throw Error(scene.name + ": at " + std::to_string(seconds) + " s of its animation '" +
+                    animation.clip + "' a vertex of mesh " + std::to_string(posed.mesh) +
+                    " is not finite in single precision");
+      }
       if (!flat) v.normal = unitOr(n * posed.normals[i], v.normal);
     }
-    if (flat) {
-      for (size_t t = 0; t + 2 < mesh.vertices.size(); t += 3) {
-        Vertex* corner = &mesh.vertices[t];
-        const glm::vec3 normal = unitOr(glm::cross(corner[1].position - corner[0].position,
-                                                   corner[2].position - corner[0].position),
-                                        glm::vec3(0.0f, 1.0f, 0.0f));
-        for (int k = 0; k < 3; ++k) corner[k].normal = normal;
+    if (flat) {  // each triangle has its own three vertices; its winding says its front
+      for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+        Vertex& a = mesh.vertices[mesh.indices[t]];
+        Vertex& b = mesh.vertices[mesh.indices[t + 1]];
+        Vertex& c = mesh.vertices[mesh.indices[t + 2]];
+        const glm::vec3 normal =
+            unitOr(glm::cross(b.position - a.position, c.position - a.position),
+                   glm::vec3(0.0f, 1.0f, 0.0f));
+        a.normal = b.normal = c.normal = normal;
       }
     }
   }
+}
+
+void sweepClip(Scene& scene, const std::string& source) {
+  SceneAnimation& animation = scene.animation;
+  if (animation.meshes.empty()) return;
+  std::vector<float> times{0.0f, animation.duration};
+  size_t keys = 0;
+  for (const AnimationChannel& c : animation.channels) keys += c.times.size();
+  if (keys + 2 <= size_t(kMaxSweepPoses)) {
+    for (const AnimationChannel& c : animation.channels)
+      times.insert(times.end(), c.times.begin(), c.times.end());
+  } else {
+    for (int k = 1; k + 1 < kMaxSweepPoses; ++k)
+      times.push_back(animation.duration * float(k) / float(kMaxSweepPoses - 1));
+  }
+  glm::vec3 lo(std::numeric_limits<float>::infinity()), hi(-lo);
+  for (float t : times) {
+    try {
+      poseScene(scene, t);
+    } catch (const Error& e) {
+      throw Error(source + ": " + e.what());
+    }
+    for (const PosedMesh& posed : animation.meshes) {
+      for (const Vertex& v : scene.meshes[posed.mesh].vertices) {
+        lo = glm::min(lo, v.position);
+        hi = glm::max(hi, v.position);
+      }
+    }
+    const glm::vec3 extent = hi - lo;
+    if (!std::isfinite(extent.x + extent.y + extent.z) || !std::isfinite(glm::length(extent))) {
+      throw Error(source + ": at " + std::to_string(t) + " s of its animation '" + animation.clip +
+                  "' the moving meshes' extent is not finite in single precision");
+    }
+  }
+  animation.sweepMin = lo;
+  animation.sweepMax = hi;
+  poseScene(scene, 0.0f);
 }
 
 float clipTime(const Scene& scene, int frame) {

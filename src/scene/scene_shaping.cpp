@@ -300,6 +300,10 @@ std::vector<bool> findEnclosures(const Scene& scene) {
   const float hug = kHugShare * std::max({extent.x, extent.y, extent.z});
   const size_t count = scene.meshes.size();
   std::vector<bool> rises(count, false), hugs(count, false), flat(count, true);
+  // A mesh the animation moves is the model's (an animated shell's poses would undo the inward
+  // turn, and a shell that moves is not a backdrop).
+  std::vector<bool> moving(count, false);
+  for (const PosedMesh& posed : scene.animation.meshes) moving[posed.mesh] = true;
   for (size_t m = 0; m < count; ++m) {
     const Mesh& mesh = scene.meshes[m];
     if (mesh.vertices.empty()) continue;
@@ -312,7 +316,7 @@ std::vector<bool> findEnclosures(const Scene& scene) {
     }
     // A floor lies at the bottom; a dome's or a box's pieces reach the top or span half the
     // height.
-    rises[m] = top >= b.max.y - hug || top - bottom >= 0.5f * extent.y;
+    rises[m] = !moving[m] && (top >= b.max.y - hug || top - bottom >= 0.5f * extent.y);
     hugs[m] = double(hugging) >= 0.95 * double(mesh.vertices.size());
     flat[m] = top - bottom < hug;
   }

@@ -80,24 +80,36 @@ double hardFlicker(const nlohmann::json& metrics) {
   return -1.0;
 }
 
-TEST(CompareAnimation, FlickerIsMeasuredWhileTheClipPlays) {
+// The hard test's flicker with the clip playing against the same file without its animation.
+struct Flickers {
+  double moving = -1.0, still = -1.0;
+};
+Flickers movingAndStill(const std::string& file, const std::string& clip) {
   std::string html;
-  const nlohmann::json skin =
-      compareFlicker("/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf", html);
-  EXPECT_NE(html.find("flicker over 4 camera-path frames as its animation"), std::string::npos);
-  EXPECT_GT(hardFlicker(skin), 0.0);
-  const std::string bars = PENUMBRA_SOURCE_DIR "/tests/data/waving_bars.gltf";
-  const nlohmann::json moving = compareFlicker(bars, html);
-  EXPECT_NE(html.find("as its animation 'wave' plays"), std::string::npos);
+  Flickers f;
+  f.moving = hardFlicker(compareFlicker(file, html));
+  EXPECT_NE(html.find("flicker over 4 camera-path frames as its animation '" + clip + "' plays"),
+            std::string::npos);
   ScratchFolder scratch;
-  nlohmann::json still = nlohmann::json::parse(readFile(bars));
+  nlohmann::json still = nlohmann::json::parse(readFile(file));
   still.erase("animations");
-  const fs::path stillBars = scratch.path() / "still_bars.gltf";
-  writeFile(stillBars, still.dump());
-  const nlohmann::json held = compareFlicker(stillBars.string(), html);
+  const fs::path stillFile = scratch.path() / "still.gltf";
+  writeFile(stillFile, still.dump());
+  f.still = hardFlicker(compareFlicker(stillFile.string(), html));
   EXPECT_EQ(html.find("as its animation"), std::string::npos);
-  std::printf("hard flicker: moving %g, still %g\n", hardFlicker(moving), hardFlicker(held));
-  EXPECT_GT(hardFlicker(moving), 2.0 * hardFlicker(held));
+  std::printf("%s: hard flicker moving %g, still %g\n", file.c_str(), f.moving, f.still);
+  return f;
+}
+
+TEST(CompareAnimation, FlickerIsMeasuredWhileTheClipPlays) {
+  // The depth ranges and the light's fit hold still over the clip (sweepClip), so what differs is
+  // the shadows' motion: measured 0.0191 against 0.0062 (bars), 0.0024 against 0.0002
+  // (simple_skin).
+  const Flickers bars = movingAndStill(PENUMBRA_SOURCE_DIR "/tests/data/waving_bars.gltf", "wave");
+  EXPECT_GT(bars.moving, 2.0 * bars.still);
+  const Flickers skin =
+      movingAndStill("/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf", "animation 0");
+  EXPECT_GT(skin.moving, 2.0 * skin.still);
 }
 
 TEST(CompareCascades, OneMapHasNoShimmerToReport) {

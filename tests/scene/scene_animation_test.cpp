@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <glm/gtc/constants.hpp>
@@ -14,6 +15,7 @@
 #include "penumbra/error.h"
 #include "penumbra/scene.h"
 #include "penumbra/scene_animation.h"
+#include "scene_fixtures.h"
 
 namespace penumbra {
 namespace {
@@ -155,18 +157,52 @@ TEST(SceneAnimation, ChannelsInterpolateAsGltfDefines) {
   EXPECT_NEAR(mid.y, 0.0f, 1e-6f);
   EXPECT_NEAR(mid.z, 0.5f, 1e-6f);
   EXPECT_EQ(sampleChannel(cubic, 2.0f), v1);
+  // A CUBICSPLINE rotation with zero tangents, halfway: the keys' average renormalised, which for
+  // a quarter turn is the eighth turn.
+  const glm::vec4 zero{0.0f}, still{0.0f, 0.0f, 0.0f, 1.0f},
+      quarterTurn{0.0f, std::sqrt(0.5f), 0.0f, std::sqrt(0.5f)};
+  const AnimationChannel cubicTurn =
+      channel(AnimatedProperty::Rotation, KeyInterpolation::CubicSpline, {0.0f, 1.0f},
+              {zero, still, zero, zero, quarterTurn, zero});
+  const glm::vec4 eighth = sampleChannel(cubicTurn, 0.5f);
+  EXPECT_NEAR(eighth.y, s, 1e-6f);
+  EXPECT_NEAR(eighth.w, c, 1e-6f);
 }
 
-// The fixture's JSON changed by `edit`, written beside the test's other files and loaded.
-void expectRefused(const std::function<void(nlohmann::json&)>& edit, const std::string& fault) {
+// Appends a buffer of these floats to the document with its view and a `type` accessor over it;
+// returns the accessor's index.
+int addFloats(nlohmann::json& d, const std::vector<float>& values, const std::string& type,
+              int components) {
+  std::vector<uint8_t> bytes(values.size() * sizeof(float));
+  std::memcpy(bytes.data(), values.data(), bytes.size());
+  d["buffers"].push_back(
+      {{"byteLength", bytes.size()},
+       {"uri", "data:application/octet-stream;base64," + testing::base64(bytes)}});
+  d["bufferViews"].push_back(
+      {{"buffer", d["buffers"].size() - 1}, {"byteOffset", 0}, {"byteLength", bytes.size()}});
+  d["accessors"].push_back({{"bufferView", d["bufferViews"].size() - 1},
+                            {"componentType", 5126},
+                            {"count", values.size() / size_t(components)},
+                            {"type", type}});
+  return int(d["accessors"].size()) - 1;
+}
+
+// The fixture's JSON changed by `edit`, written beside the test's other files.
+std::filesystem::path editedBars(const std::function<void(nlohmann::json&)>& edit) {
   std::ifstream in(kBars);
   nlohmann::json document = nlohmann::json::parse(in);
   edit(document);
   const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "penumbra_broken_animation.gltf";
+      std::filesystem::path(::testing::TempDir()) / "penumbra_edited_animation.gltf";
   std::ofstream(path) << document.dump();
+  return path;
+}
+
+void expectRefused(const std::function<void(nlohmann::json&)>& edit, const std::string& fault,
+                   SceneLoadOptions options = {}) {
+  const std::filesystem::path path = editedBars(edit);
   try {
-    testing::loadAsWritten(path.string());
+    testing::loadAsWritten(path.string(), options);
     ADD_FAILURE() << "loaded; expected a refusal naming '" << fault << "'";
   } catch (const Error& e) {
     EXPECT_NE(std::string(e.what()).find(fault), std::string::npos) << e.what();
@@ -215,6 +251,61 @@ TEST(SceneAnimation, MalformedAnimationsAndSkinsAreRefusedWithTheFault) {
         d["skins"][0].erase("inverseBindMatrices");
       },
       "names joint 2 of skin 0, which has 2");
+  // A pose far beyond single precision's reach (the box slides to +-3e38): refused at load, not a
+  // blank frame later.
+  expectRefused(
+      [](nlohmann::json& d) {
+        d["animations"][0]["samplers"][0]["output"] =
+            addFloats(d, {-5.0f, 0.0f, 5.5f, 3e38f, 0.0f, 5.5f, -3e38f, 0.0f, 5.5f}, "VEC3", 3);
+      },
+      "s of its animation 'wave' the moving meshes' extent is not finite");
+  // Ten million keys are charged before they are read: refused by the memory budget.
+  SceneLoadOptions small;
+  small.maxMemoryBytes = uint64_t(64) << 20;
+  expectRefused(
+      [](nlohmann::json& d) {
+        d["accessors"][d["animations"][0]["samplers"][0]["input"].get<int>()]["count"] = 10000000;
+      },
+      "of host memory", small);
+}
+
+// A node whose scale turns negative mirrors its mesh: the winding turns back with it, so the box's
+// faces keep facing out (glTF 2.0 §3.7.4).
+TEST(SceneAnimation, AMirroringScaleTurnsTheWindingBack) {
+  const std::filesystem::path path = editedBars([](nlohmann::json& d) {
+    const int times = addFloats(d, {0.0f, 1.0f}, "SCALAR", 1);
+    const int scales = addFloats(d, {1.0f, 1.0f, 1.0f, -1.0f, 1.0f, 1.0f}, "VEC3", 3);
+    d["animations"][0]["samplers"].push_back(
+        {{"input", times}, {"output", scales}, {"interpolation", "STEP"}});
+    d["animations"][0]["channels"].push_back(
+        {{"sampler", d["animations"][0]["samplers"].size() - 1},
+         {"target", {{"node", 1}, {"path", "scale"}}}});
+  });
+  Scene scene = testing::loadAsWritten(path.string());
+  std::filesystem::remove(path);
+  const auto outward = [&](const std::string& when) {
+    // Every flat-shaded triangle's normal points away from the box's centre.
+    const Mesh& box = scene.meshes[kBoxMesh];
+    glm::vec3 centre(0.0f);
+    for (const Vertex& v : box.vertices) centre += v.position / float(box.vertices.size());
+    for (size_t t = 0; t + 2 < box.indices.size(); t += 3) {
+      const Vertex& a = box.vertices[box.indices[t]];
+      const Vertex& b = box.vertices[box.indices[t + 1]];
+      const Vertex& c = box.vertices[box.indices[t + 2]];
+      const glm::vec3 wound = glm::cross(b.position - a.position, c.position - a.position);
+      const glm::vec3 middle = (a.position + b.position + c.position) / 3.0f;
+      EXPECT_GT(glm::dot(wound, middle - centre), 0.0f) << "triangle " << t / 3 << ", " << when;
+      EXPECT_GT(glm::dot(a.normal, middle - centre), 0.0f) << "triangle " << t / 3 << ", " << when;
+    }
+  };
+  outward("at 0 s");
+  const std::vector<uint32_t> upright = scene.meshes[kBoxMesh].indices;
+  poseScene(scene, 1.5f);  // mirrored in x
+  EXPECT_NE(scene.meshes[kBoxMesh].indices, upright);
+  outward("mirrored at 1.5 s");
+  poseScene(scene, 0.5f);
+  EXPECT_EQ(scene.meshes[kBoxMesh].indices, upright);
+  outward("upright again at 0.5 s");
 }
 
 }  // namespace

@@ -270,8 +270,8 @@ TEST(UntrustedGltf, WarnsOncePerMaterialThatBlendIsDrawnAsAMask) {
                                ": material 0 ('glass') is BLEND (baseColorFactor alpha 0.250000): "
                                "its shadow lets through 1 - alpha (the light pass covers a "
                                "dithered alpha share of the shadow map's texels, which filtering "
-                               "averages; the hard test shows the dither; the ray-traced truth "
-                               "attenuates exactly); the camera draws it as a mask at 0.5");
+                               "averages; the ray-traced truth attenuates exactly; techniques "
+                               "that cannot carry it draw a mask at 0.5, as the camera does)");
 }
 
 }  // namespace
