@@ -3,6 +3,7 @@
 // against its closed form, and malformed animations refused with the fault named.
 #include <gtest/gtest.h>
 
+#include <unistd.h>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -192,8 +193,12 @@ std::filesystem::path editedBars(const std::function<void(nlohmann::json&)>& edi
   std::ifstream in(kBars);
   nlohmann::json document = nlohmann::json::parse(in);
   edit(document);
+  // Named after the test and the process: ctest runs tests as processes side by side.
+  static int edits = 0;
   const std::filesystem::path path =
-      std::filesystem::path(::testing::TempDir()) / "penumbra_edited_animation.gltf";
+      std::filesystem::path(::testing::TempDir()) /
+      ("penumbra_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()) +
+       "_" + std::to_string(getpid()) + "_" + std::to_string(edits++) + ".gltf");
   std::ofstream(path) << document.dump();
   return path;
 }
