@@ -142,8 +142,10 @@ void poseScene(Scene& scene, float seconds) {
       Vertex& v = mesh.vertices[i];
       v.position = glm::vec3(m * glm::vec4(posed.positions[i], 1.0f));
       if (!std::isfinite(v.position.x + v.position.y + v.position.z)) {
-        throw Error(scene.name + ": at " + std::to_string(seconds) + " s of its animation '" +
-                    animation.clip + "' a vertex of mesh " + std::to_string(posed.mesh) +
+        // Named by sweepClip's caller while loading, when the scene has no name yet.
+        throw Error((scene.name.empty() ? "" : scene.name + ": ") + "at " +
+                    std::to_string(seconds) + " s of its animation '" + animation.clip +
+                    "' a vertex of mesh " + std::to_string(posed.mesh) +
                     " is not finite in single precision");
       }
       if (!flat) v.normal = unitOr(n * posed.normals[i], v.normal);
