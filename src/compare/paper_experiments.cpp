@@ -221,6 +221,7 @@ Experiment kernelScaling(const BenchSizes& z) {
     fused.fusePrefilter = true;
     if (k == 1 || gl::fusesPrefilter(fused, fused.blur.radius)) {
       add("VSM, fused blur", Technique::Vsm, FilterMode::Bilinear);
+      e.cases.back().settings.fusePrefilter = true;
     }
     add("VSM, summed-area table", Technique::Vsm, FilterMode::SummedArea);
   }

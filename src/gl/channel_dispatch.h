@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "penumbra/channel_layout.h"
+#include "penumbra/filters.h"
 #include "penumbra/gl/program.h"
 #include "program_cache.h"
 
@@ -22,6 +23,18 @@ std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout);
 std::vector<ShaderDefine> reductionDefines(Technique technique, const TechniqueParams& params,
                                            const ChannelLayout& layout);
 void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int level);
+// One layer of a channel texture (level 0) as a 2D image at `unit`, GL_READ_ONLY or GL_WRITE_ONLY.
+void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout,
+                      int layer, unsigned access);
+// A blur kernel as compile-time constants: RADIUS and WEIGHTS (a GLSL float array of its 2r+1
+// weights, each written as its exact bits). A loop bounded by a uniform radius, or layers by a
+// uniform count, costs llvmpipe 1.4-2x the same loop of constant trip count
+// (docs/results/passes-llvmpipe-2026-12-04.md); one program per kernel is cheap beside that.
+// The minimal kernels take both; the prefilter passes take RADIUS only (blurRadiusDefine) and
+// their weights as the uniform array `weights` (setBlurWeights): see blur.comp for why.
+std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
+ShaderDefine blurRadiusDefine(const BlurSpec& spec);
+void setBlurWeights(const Program& p, const BlurSpec& spec);
 void setSize(const Program& p, const char* name, int size);
 
 }  // namespace penumbra::gl

@@ -48,6 +48,63 @@ struct MinimalKernel {
   double median() const { return penumbra::median(times); }
 };
 
+// The yardstick's kernels (../shared/yardsticks/rawblur.c, passes/yardstick_*.comp) on 2D
+// textures of its float format with the layout's components, once per channel layer: its copy and
+// its box blur of the same taps through a sampler. An independent check on the minimal kernels.
+struct Yardstick {
+  Yardstick(ProgramCache& programs, const ChannelLayout& layout, int texels, int radius)
+      : layers(layout.layers),
+        size(texels),
+        format(layout.componentsPerTexel == 1   ? GL_R32F
+               : layout.componentsPerTexel == 2 ? GL_RG32F
+                                                : GL_RGBA32F),
+        name(format == GL_R32F ? "r32f" : format == GL_RG32F ? "rg32f" : "rgba32f") {
+    for (Texture* t : {&source, &target}) {
+      *t = Texture(GL_TEXTURE_2D);
+      glTextureStorage2D(t->id(), 1, format, size, size);
+    }
+    // rawblur's contents: (i mod 997) / 997 in every component.
+    std::vector<float> data(size_t(size) * size_t(size) * 4);
+    for (size_t i = 0; i < data.size(); ++i) data[i] = float(i % 997) / 997.0f;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+    glTextureSubImage2D(source.id(), 0, 0, 0, size, size, GL_RGBA, GL_FLOAT, data.data());
+    const std::vector<ShaderDefine> defines{{"CHANNEL_FORMAT", name},
+                                            {"RADIUS", std::to_string(radius)}};
+    blurProgram = &programs.compute("passes/yardstick_blur.comp", defines);
+    copyProgram = &programs.compute("passes/yardstick_copy.comp", defines);
+  }
+  void blurBothAxes() const {
+    const GLint dir = glGetUniformLocation(blurProgram->id(), "dir");
+    for (int layer = 0; layer < layers; ++layer) {
+      glProgramUniform2i(blurProgram->id(), dir, 1, 0);
+      glBindTextureUnit(0, source.id());
+      glBindImageTexture(0, target.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+      blurProgram->dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+      glProgramUniform2i(blurProgram->id(), dir, 0, 1);
+      glBindTextureUnit(0, target.id());
+      glBindImageTexture(0, source.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+      blurProgram->dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    }
+  }
+  void copy() const {
+    for (int layer = 0; layer < layers; ++layer) {
+      glBindTextureUnit(0, source.id());
+      glBindImageTexture(0, target.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, format);
+      copyProgram->dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    }
+  }
+  std::string describe(const std::string& what) const {
+    return "rawblur " + what + ", " + name + (layers > 1 ? " x " + std::to_string(layers) : "");
+  }
+
+  int layers, size;
+  unsigned format;
+  std::string name;
+  Texture source, target;
+  const Program* blurProgram = nullptr;
+  const Program* copyProgram = nullptr;
+};
+
 // The renderer's own pass times over `repeats` frames after a warm-up frame (shader compilation,
 // resources), each frame followed by one timed run of every minimal kernel in `kernels`
 // (warmed up too). Times are GPU timer queries where they measure execution, else wall time
@@ -119,33 +176,35 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   Texture channels = arrayTexture(format, size, layout.layers, levels);
   Texture scratch = arrayTexture(format, size, layout.layers, 1);
 
-  const Program& copyProgram = programs.compute("passes/baseline_copy.comp", defines);
+  std::vector<ShaderDefine> copyDefines = defines;
+  copyDefines.push_back({"LAYER_COUNT", std::to_string(layout.layers)});
+  const Program& copyProgram = programs.compute("passes/baseline_copy.comp", copyDefines);
   setSize(copyProgram, "size", size);
-  copyProgram.set("layerCount", layout.layers);
   MinimalKernel copy{[&] {
     glBindTextureUnit(0, depth.id());
     bindChannelImage(channels, layout, 0);
     copyProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
   }};
 
-  const Program& blurProgram = programs.compute("passes/baseline_blur.comp", defines);
-  const std::vector<float> weights = blurWeights(settings.blur);
-  glProgramUniform1fv(blurProgram.id(), glGetUniformLocation(blurProgram.id(), "weights"),
-                      GLsizei(weights.size()), weights.data());
-  blurProgram.set("radius", settings.blur.radius);
-  blurProgram.set("layerCount", layout.layers);
+  std::vector<ShaderDefine> blurDefines = defines;
+  for (ShaderDefine& d : blurKernelDefines(settings.blur)) blurDefines.push_back(std::move(d));
+  const Program& blurProgram = programs.compute("passes/baseline_blur.comp", blurDefines);
   setSize(blurProgram, "size", size);
   const GLint direction = glGetUniformLocation(blurProgram.id(), "direction");
   MinimalKernel blur{[&] {
-    glBindTextureUnit(0, channels.id());
-    bindChannelImage(scratch, layout, 0);
-    glProgramUniform2i(blurProgram.id(), direction, 1, 0);
-    blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
-    glBindTextureUnit(0, scratch.id());
-    bindChannelImage(channels, layout, 0);
-    glProgramUniform2i(blurProgram.id(), direction, 0, 1);
-    blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    for (int layer = 0; layer < layout.layers; ++layer) {
+      bindChannelLayer(1, channels, layout, layer, GL_READ_ONLY);
+      bindChannelLayer(0, scratch, layout, layer, GL_WRITE_ONLY);
+      glProgramUniform2i(blurProgram.id(), direction, 1, 0);
+      blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+      bindChannelLayer(1, scratch, layout, layer, GL_READ_ONLY);
+      bindChannelLayer(0, channels, layout, layer, GL_WRITE_ONLY);
+      glProgramUniform2i(blurProgram.id(), direction, 0, 1);
+      blurProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    }
   }};
+
+  Yardstick yardstick(programs, layout, size, settings.blur.radius);
 
   MinimalKernel generateMips{[&] { glGenerateTextureMipmap(channels.id()); }};
 
@@ -166,8 +225,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     columns.dispatch(groups(size, 64), unsigned(channelCount));
   }};
 
-  std::vector<MinimalKernel*> beside{&copy};
-  if (blurs) beside.push_back(&blur);
+  MinimalKernel yardstickCopy{[&] { yardstick.copy(); }};
+  MinimalKernel yardstickBlur{[&] { yardstick.blurBothAxes(); }};
+  std::vector<MinimalKernel*> beside{&copy, &yardstickCopy};
+  if (blurs) beside.insert(beside.end(), {&blur, &yardstickBlur});
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
   const FramePasses passes = renderPasses(renderer, scene, separate, repeats, gpuTime, beside);
@@ -177,30 +238,36 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   result.timing = passTimingDescription(renderer);
   result.format = imageFormatQualifier(layout) + " x " + std::to_string(layout.layers) +
                   (layout.layers == 1 ? " layer" : " layers");
-  result.passes.push_back(
-      {"encode", median(passes.encode), "copy depth to every layer", copy.median()});
+  result.passes.push_back({"encode", median(passes.encode), "copy depth to every layer",
+                           copy.median(), yardstick.describe("copy"), yardstickCopy.median()});
   const std::string taps = std::to_string(2 * settings.blur.radius + 1) + " taps";
   if (blurs) {
-    result.passes.push_back(
-        {"prefilter", median(passes.prefilter), "plain separable blur, " + taps, blur.median()});
+    result.passes.push_back({"prefilter", median(passes.prefilter),
+                             "plain separable blur, " + taps, blur.median(),
+                             yardstick.describe("blur, " + taps), yardstickBlur.median()});
   }
   if (summedArea) {
     result.passes.push_back({"summed-area table", median(passes.mipsOrSat),
-                             "plain 64-bit row and column prefix sums", prefix.median()});
+                             "plain 64-bit row and column prefix sums", prefix.median(), "", 0.0});
   } else if (levels > 1) {
     result.passes.push_back(
-        {"mips", median(passes.mipsOrSat), "glGenerateTextureMipmap", generateMips.median()});
+        {"mips", median(passes.mipsOrSat), "glGenerateTextureMipmap", generateMips.median(), "", 0.0});
   }
-  if (fusesPrefilter(settings, settings.blur.radius)) {
+  // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
+  RenderSettings fusedSettings = settings;
+  fusedSettings.fusePrefilter = true;
+  if (fusesPrefilter(fusedSettings, settings.blur.radius)) {
     // The fused dispatch does both passes' work: it stands beside both minimal kernels, timed
     // after each of its own frames.
-    copy.times.clear();
-    blur.times.clear();
-    const std::vector<MinimalKernel*> both{&copy, &blur};
-    const FramePasses fused = renderPasses(renderer, scene, settings, repeats, gpuTime, both);
-    result.passes.push_back(
-        {"encode + prefilter, fused", median(sums(fused.encode, fused.prefilter)),
-         "copy + plain separable blur, " + taps, median(sums(copy.times, blur.times))});
+    for (MinimalKernel* k : {&copy, &blur, &yardstickCopy, &yardstickBlur}) k->times.clear();
+    const std::vector<MinimalKernel*> both{&copy, &blur, &yardstickCopy, &yardstickBlur};
+    const FramePasses fused = renderPasses(renderer, scene, fusedSettings, repeats, gpuTime, both);
+    result.passes.push_back({"encode + prefilter, fused",
+                             median(sums(fused.encode, fused.prefilter)),
+                             "copy + plain separable blur, " + taps,
+                             median(sums(copy.times, blur.times)),
+                             yardstick.describe("copy + blur, " + taps),
+                             median(sums(yardstickCopy.times, yardstickBlur.times))});
   }
   checkErrors("bench --passes");
   return result;

@@ -4,7 +4,9 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
+#include <cstdio>
 #include <string>
 
 #include "channel_dispatch.h"
@@ -49,8 +51,36 @@ std::vector<ShaderDefine> reductionDefines(Technique technique, const TechniqueP
   return {{"LAYER_REDUCTIONS", table}};
 }
 
+std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec) {
+  // uintBitsToFloat of each weight's bits: a decimal literal would round through the compiler's
+  // parser, and the CPU reference filters (src/core/filters.cpp) use these very floats.
+  std::string weights = "float[](";
+  const std::vector<float> w = blurWeights(spec);
+  for (size_t i = 0; i < w.size(); ++i) {
+    char bits[32];
+    std::snprintf(bits, sizeof bits, "uintBitsToFloat(0x%08xu)", std::bit_cast<uint32_t>(w[i]));
+    weights += bits;
+    weights += i + 1 < w.size() ? ", " : ")";
+  }
+  return {blurRadiusDefine(spec), {"WEIGHTS", weights}};
+}
+
+ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
+  return {"RADIUS", std::to_string(spec.radius)};
+}
+
+void setBlurWeights(const Program& p, const BlurSpec& spec) {
+  const std::vector<float> w = blurWeights(spec);
+  glProgramUniform1fv(p.id(), glGetUniformLocation(p.id(), "weights"), GLsizei(w.size()), w.data());
+}
+
 void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int level) {
   glBindImageTexture(0, texture.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, internalFormat(layout));
+}
+
+void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout,
+                      int layer, unsigned access) {
+  glBindImageTexture(unit, texture.id(), 0, GL_FALSE, layer, access, internalFormat(layout));
 }
 
 void setSize(const Program& p, const char* name, int size) {
@@ -166,27 +196,29 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
 void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,
                                      const std::vector<ShaderDefine>& defines,
                                      std::span<const BlurSpec> cascadeBlurs) {
-  const Program& blur = programs.compute("passes/blur.comp", defines);
-  parameters.bind();
-  blur.set("layerCount", shape_.layout.layers);
-  setSize(blur, "size", shape_.size);
-  const GLint direction = glGetUniformLocation(blur.id(), "direction");
+  const int layers = shape_.layout.layers;
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
-    const std::vector<float> weights = blurWeights(spec);
-    glProgramUniform1fv(blur.id(), glGetUniformLocation(blur.id(), "weights"),
-                        GLsizei(weights.size()), weights.data());
-    blur.set("radius", spec.radius);
-    blur.set("layerBase", cascade * shape_.layout.layers);
-    // Horizontal into scratch, vertical back: both through the same program.
-    glBindTextureUnit(0, channels_.id());
-    bindChannelImage(scratch_, shape_.layout, 0);
-    glProgramUniform2i(blur.id(), direction, 1, 0);
-    blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
-    glBindTextureUnit(0, scratch_.id());
-    bindChannelImage(channels_, shape_.layout, 0);
-    glProgramUniform2i(blur.id(), direction, 0, 1);
-    blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+    std::vector<ShaderDefine> kernelDefines = defines;
+    kernelDefines.push_back(blurRadiusDefine(spec));
+    const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
+    setBlurWeights(blur, spec);
+    parameters.bind();
+    setSize(blur, "size", shape_.size);
+    const GLint direction = glGetUniformLocation(blur.id(), "direction");
+    for (int layer = 0; layer < layers; ++layer) {
+      // Horizontal into scratch, vertical back, one layer at a time as 2D images.
+      const int index = cascade * layers + layer;
+      blur.set("layer", layer);
+      bindChannelLayer(1, channels_, shape_.layout, index, GL_READ_ONLY);
+      bindChannelLayer(0, scratch_, shape_.layout, index, GL_WRITE_ONLY);
+      glProgramUniform2i(blur.id(), direction, 1, 0);
+      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+      bindChannelLayer(1, scratch_, shape_.layout, index, GL_READ_ONLY);
+      bindChannelLayer(0, channels_, shape_.layout, index, GL_WRITE_ONLY);
+      glProgramUniform2i(blur.id(), direction, 0, 1);
+      blur.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup));
+    }
   }
 }
 
@@ -199,13 +231,11 @@ void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const Parameter
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     std::vector<ShaderDefine> fusedDefines = defines;
-    fusedDefines.push_back({"APRON", std::to_string(spec.radius)});
+    fusedDefines.push_back(blurRadiusDefine(spec));
     fusedDefines.push_back({"TILE", std::to_string(kFusedTile)});
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
+    setBlurWeights(fused, spec);
     parameters.bind();
-    const std::vector<float> weights = blurWeights(spec);
-    glProgramUniform1fv(fused.id(), glGetUniformLocation(fused.id(), "weights"),
-                        GLsizei(weights.size()), weights.data());
     setSize(fused, "size", shape_.size);
     fused.set("cascade", cascade);
     fused.set("layerCount", shape_.layout.layers);

@@ -42,6 +42,7 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
         s.height = 18;
         s.filter = gl::FilterMode::Bilinear;
         s.blur = {BlurKernel::Gaussian, radius, 0.5f * float(radius)};
+        s.fusePrefilter = true;  // the path under test, off by default
         const std::string what = std::string(techniqueId(k.technique)) + " " +
                                  (k.param ? k.param : "") + " " + std::to_string(size) +
                                  "^2 radius " + std::to_string(radius);
@@ -87,6 +88,7 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannelsInEveryCascade) {
   s.filter = gl::FilterMode::Bilinear;
   s.blur = {BlurKernel::Box, 3, 1.0f};
   s.cascades.count = 3;
+  s.fusePrefilter = true;
   const gl::RenderResult fused = renderer.render(scene, s);
   ASSERT_EQ(fused.cascadeBlurs.size(), 3u);
   ASSERT_TRUE(fused.fusedPrefilter) << fused.cascadeBlurs[0].radius << " "

@@ -42,6 +42,16 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   EXPECT_EQ(evsm.format, "rgba32f x 1 layer");
   EXPECT_EQ(evsm.timing, gl::passTimingDescription(renderer));
   expectTimed(evsm, {"encode", "prefilter", "mips", "encode + prefilter, fused"});
+  // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
+  // the blur and the fused pass; the mips have none.
+  const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",
+                                            "rawblur blur, 5 taps, rgba32f", "",
+                                            "rawblur copy + blur, 5 taps, rgba32f"};
+  for (size_t i = 0; i < yardsticks.size(); ++i) {
+    EXPECT_EQ(evsm.passes[i].yardstick, yardsticks[i]);
+    EXPECT_EQ(evsm.passes[i].yardstickMs > 0.0, !yardsticks[i].empty()) << evsm.passes[i].pass;
+    EXPECT_TRUE(std::isfinite(evsm.passes[i].yardstickMs)) << evsm.passes[i].pass;
+  }
   // 16-bit storage rounds the blur's intermediate: no fused pass.
   expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Msm), 1),
               {"encode", "prefilter", "mips"});

@@ -139,32 +139,44 @@ void runBench(const BenchOptions& o) {
   const std::filesystem::path dir = output.begin(interrupt);
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   std::ostringstream csv;
-  csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio\n";
+  csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio,yardstick,yardstick_ms,"
+         "baseline_to_yardstick\n";
   const std::string timing = gl::passTimingDescription(renderer);
   std::cout << "Medians of " << o.repeat << " warm frames, " << timing << ", on "
             << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
             << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
             << filterModeName(settings.filter) << "):\n\n"
-            << "| technique | format | pass | ms | minimal kernel | ms | ratio |\n"
-            << "| --- | --- | --- | --- | --- | --- | --- |\n";
+            << "| technique | format | pass | ms | minimal kernel | ms | ratio | yardstick | ms | "
+               "minimal / yardstick |\n"
+            << "| --- | --- | --- | --- | --- | --- | --- | --- | --- | --- |\n";
   for (Technique t : techniques) {
     settings.technique = t;
     const gl::PassBenchResult r = gl::benchPasses(renderer, scene, settings, o.repeat);
     for (const gl::PassTiming& p : r.passes) {
       std::cout << std::fixed << std::setprecision(1) << "| " << techniqueId(t) << " | " << r.format
                 << " | " << p.pass << " | " << p.passMs << " | " << p.baseline << " | "
-                << p.baselineMs << " | " << std::setprecision(2) << p.ratio() << " |\n";
+                << p.baselineMs << " | " << std::setprecision(2) << p.ratio() << " | ";
+      if (p.yardstick.empty()) {
+        std::cout << "— | | |\n";
+      } else {
+        std::cout << p.yardstick << " | " << std::setprecision(1) << p.yardstickMs << " | "
+                  << std::setprecision(2) << p.baselineToYardstick() << " |\n";
+      }
       csv << techniqueId(t) << "," << csvField(r.format) << "," << csvField(p.pass) << ","
           << p.passMs << "," << csvField(p.baseline) << "," << p.baselineMs << "," << p.ratio()
-          << "\n";
+          << "," << csvField(p.yardstick) << "," << p.yardstickMs << ","
+          << p.baselineToYardstick() << "\n";
       rows.push_back({{"technique", techniqueId(t)},
                       {"format", r.format},
                       {"pass", p.pass},
                       {"pass_ms", p.passMs},
                       {"baseline", p.baseline},
                       {"baseline_ms", p.baselineMs},
-                      {"ratio", p.ratio()}});
+                      {"ratio", p.ratio()},
+                      {"yardstick", p.yardstick},
+                      {"yardstick_ms", p.yardstickMs},
+                      {"baseline_to_yardstick", p.baselineToYardstick()}});
     }
   }
   const nlohmann::ordered_json record = {

@@ -14,7 +14,13 @@ struct PassTiming {
   double passMs = 0.0;   // the renderer's pass, median wall time of the warm frames
   std::string baseline;  // what the minimal kernel does
   double baselineMs = 0.0;
+  // The independent yardstick (../shared/yardsticks/rawblur.c) for the same traffic, where it has
+  // one (encode, prefilter): empty and 0 for the mips and the summed-area table.
+  std::string yardstick;
+  double yardstickMs = 0.0;
   double ratio() const { return baselineMs > 0.0 ? passMs / baselineMs : 0.0; }
+  // The minimal kernel against the yardstick: at most about 1 when the minimal kernel is minimal.
+  double baselineToYardstick() const { return yardstickMs > 0.0 ? baselineMs / yardstickMs : 0.0; }
 };
 
 struct PassBenchResult {

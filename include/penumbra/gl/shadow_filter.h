@@ -56,8 +56,9 @@ struct FilterSettings {
   BlurSpec blur{BlurKernel::Box, 2, 1.0f};  // prefilter; radius 0: none
   FilterMode filter = FilterMode::Bilinear;
   int anisotropy = 16;  // [1, 16], for the anisotropic filters
-  // Encode and blur in one dispatch where it gives the same bits (docs/renderer.md).
-  bool fusePrefilter = true;
+  // Encode and blur in one dispatch where it gives the same bits (RenderSettings::fusePrefilter:
+  // off by default, docs/renderer.md).
+  bool fusePrefilter = false;
   // Per layer, the prefilter's kernel and its width over layer 0's in texels (cascades keep
   // a kernel constant in world units). Empty: `blur` and 1 in every layer.
   std::vector<BlurSpec> layerBlurs;

@@ -1,5 +1,5 @@
 // The whole prefilter of one cascade in one dispatch: encode and both axes of the separable blur
-// over a shared-memory tile. Each work group loads its TILE^2 texels and an APRON-wide border of
+// over a shared-memory tile. Each work group loads its TILE^2 texels and a radius-wide border of
 // depth once, encodes each into shared memory (encode fused into the first axis: the encoded
 // channels never go through a texture), blurs the rows of the tile and its border into shared
 // memory, then the columns, and writes only the result: one texture write per texel where the
@@ -13,14 +13,16 @@
 #ifndef TILE
 #define TILE 16
 #endif
-// APRON: the kernel's radius, at compile time, so the shared arrays have their size.
-const int kSpan = TILE + 2 * APRON;
+// The radius at compile time (RADIUS): the shared arrays have their size, the loops a constant
+// trip count. The weights are uniforms, as blur.comp's (same arithmetic, same bits).
+const int kRadius = RADIUS;
+uniform float weights[2 * kRadius + 1];
+const int kSpan = TILE + 2 * kRadius;
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(binding = 0) uniform sampler2DArray depthMap;  // one layer per cascade
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channels;
 
-uniform float weights[2 * kMaxBlurRadius + 1];
 uniform ivec2 size;
 uniform int cascade;
 uniform int layerCount;  // channel layers per cascade
@@ -32,7 +34,7 @@ shared vec4 rows[kSpan * TILE];      // the horizontal pass: the tile's columns,
 vec4 reduceTaps(int first, int stride, bool fromEncoded, int layer) {
 #if ALL_MEAN
   vec4 sum = vec4(0.0f);
-  for (int i = 0; i <= 2 * APRON; ++i) {
+  for (int i = 0; i <= 2 * kRadius; ++i) {
     vec4 texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
     sum = accumulateMeanTexel(sum, texel, weights[i]);
   }
@@ -42,7 +44,7 @@ vec4 reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   for (int c = 0; c < 4; ++c) {
     acc[c] = startReduction(layerChannelReduction(layer, c), penumbraParams.esm.exponent);
   }
-  for (int i = 0; i <= 2 * APRON; ++i) {
+  for (int i = 0; i <= 2 * kRadius; ++i) {
     vec4 texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weights[i]);
   }
@@ -53,7 +55,7 @@ vec4 reduceTaps(int first, int stride, bool fromEncoded, int layer) {
 
 void main() {
   int layer = int(gl_WorkGroupID.z);  // the channel layer within the cascade
-  ivec2 origin = ivec2(gl_WorkGroupID.xy) * TILE - APRON;
+  ivec2 origin = ivec2(gl_WorkGroupID.xy) * TILE - kRadius;
   int local = int(gl_LocalInvocationIndex);
   for (int i = local; i < kSpan * kSpan; i += TILE * TILE) {
     ivec2 q = clamp(origin + ivec2(i % kSpan, i / kSpan), ivec2(0), size - 1);
