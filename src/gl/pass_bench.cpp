@@ -63,7 +63,8 @@ struct Yardstick {
       *t = Texture(GL_TEXTURE_2D);
       glTextureStorage2D(t->id(), 1, format, size, size);
     }
-    // rawblur's contents: (i mod 997) / 997 in every component.
+    // rawblur's values, (i mod 997) / 997, uploaded as RGBA (an R32F or RG32F texture keeps
+    // every fourth or every other one: the timing does not depend on them).
     std::vector<float> data(size_t(size) * size_t(size) * 4);
     for (size_t i = 0; i < data.size(); ++i) data[i] = float(i % 997) / 997.0f;
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

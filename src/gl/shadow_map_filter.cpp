@@ -199,9 +199,11 @@ void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBloc
   const int layers = shape_.layout.layers;
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
+    // One map: its radius compiled in. Cascades' radii follow the view: a uniform (blur.comp).
     std::vector<ShaderDefine> kernelDefines = defines;
-    kernelDefines.push_back(blurRadiusDefine(spec));
+    if (shape_.cascades == 1) kernelDefines.push_back(blurRadiusDefine(spec));
     const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
+    if (shape_.cascades > 1) blur.set("radius", spec.radius);
     setBlurWeights(blur, spec);
     parameters.bind();
     setSize(blur, "size", shape_.size);

@@ -163,10 +163,19 @@ void runBench(const BenchOptions& o) {
         std::cout << p.yardstick << " | " << std::setprecision(1) << p.yardstickMs << " | "
                   << std::setprecision(2) << p.baselineToYardstick() << " |\n";
       }
+      // A row without a yardstick (mips, summed-area table) leaves its cells empty (CSV) or
+      // null (JSON): no time was measured, and 0 would read as one.
       csv << techniqueId(t) << "," << csvField(r.format) << "," << csvField(p.pass) << ","
           << p.passMs << "," << csvField(p.baseline) << "," << p.baselineMs << "," << p.ratio()
-          << "," << csvField(p.yardstick) << "," << p.yardstickMs << ","
-          << p.baselineToYardstick() << "\n";
+          << "," << csvField(p.yardstick) << ",";
+      if (p.yardstick.empty()) {
+        csv << ",\n";
+      } else {
+        csv << p.yardstickMs << "," << p.baselineToYardstick() << "\n";
+      }
+      const auto measured = [&](double v) {
+        return p.yardstick.empty() ? nlohmann::ordered_json() : nlohmann::ordered_json(v);
+      };
       rows.push_back({{"technique", techniqueId(t)},
                       {"format", r.format},
                       {"pass", p.pass},
@@ -175,8 +184,8 @@ void runBench(const BenchOptions& o) {
                       {"baseline_ms", p.baselineMs},
                       {"ratio", p.ratio()},
                       {"yardstick", p.yardstick},
-                      {"yardstick_ms", p.yardstickMs},
-                      {"baseline_to_yardstick", p.baselineToYardstick()}});
+                      {"yardstick_ms", measured(p.yardstickMs)},
+                      {"baseline_to_yardstick", measured(p.baselineToYardstick())}});
     }
   }
   const nlohmann::ordered_json record = {
@@ -211,7 +220,8 @@ void registerBenchCommand(CLI::App& app) {
   cmd->add_flag("--passes", o->passes,
                 "each prefilter pass (encode, blur, the fused encode + blur, mips or with --filter "
                 "sat the summed-area table) beside a minimal kernel with the same reads and "
-                "writes, as a ratio");
+                "writes, as a ratio, and beside the independent yardstick's copy and blur "
+                "(../shared/yardsticks/rawblur.c's kernels, 32-bit float texels)");
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);

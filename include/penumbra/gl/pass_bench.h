@@ -14,8 +14,10 @@ struct PassTiming {
   double passMs = 0.0;   // the renderer's pass, median wall time of the warm frames
   std::string baseline;  // what the minimal kernel does
   double baselineMs = 0.0;
-  // The independent yardstick (../shared/yardsticks/rawblur.c) for the same traffic, where it has
-  // one (encode, prefilter): empty and 0 for the mips and the summed-area table.
+  // The independent yardstick (../shared/yardsticks/rawblur.c's copy and blur, run here on a 2D
+  // texture of as many 32-bit float components per texel as the channel texture has, once per
+  // layer: for 8- and 16-bit channels it moves 2-4x their bytes), beside the encode, the blur
+  // and the fused pass: empty and 0 for the mips and the summed-area table.
   std::string yardstick;
   double yardstickMs = 0.0;
   double ratio() const { return baselineMs > 0.0 ? passMs / baselineMs : 0.0; }

@@ -46,9 +46,9 @@ struct RenderSettings {
   FilterMode filter = FilterMode::Trilinear;
   // Encode and both blur axes in one dispatch over a shared-memory tile where it gives the same
   // bits (32-bit float channels, no MSAA, kernels up to kMaxFusedBlurRadius: docs/renderer.md).
-  // Off by default: on llvmpipe the separate passes (image loads, compile-time kernel) take a
-  // tenth of its time (docs/results/passes-llvmpipe-2026-12-04.md); bench --passes times both,
-  // so a device where the tile wins can be shown and the path chosen there.
+  // Off by default: on the 2026-12-04 llvmpipe machine it took 6-21x its minimal kernels, where
+  // the separate passes took about 1-1.5x theirs (docs/results/passes-llvmpipe-2026-12-04.md);
+  // bench --passes times both, so a device where the tile wins can show it.
   bool fusePrefilter = false;
   int anisotropy = 16;  // [1, 16], used by the anisotropic filter
   int width = 960;      // frame size in pixels, [1, GL_MAX_TEXTURE_SIZE]

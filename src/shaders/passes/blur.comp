@@ -1,20 +1,30 @@
 // One axis of the separable prefilter over one channel layer (box or Gaussian weights from
-// shared/filter_weights.h, computed on the CPU and passed in; the radius compiled in, RADIUS):
-// clamp-to-edge taps, each channel reduced by its technique's reduction. Accumulation is fp32
-// whatever the storage, so fp16 storage cannot overflow.
+// shared/filter_weights.h, computed on the CPU and passed in): clamp-to-edge taps, each channel
+// reduced by its technique's reduction. Accumulation is fp32 whatever the storage, so fp16
+// storage cannot overflow.
 // The taps are image loads of one layer bound as a 2D image: on llvmpipe a texel fetch through a
 // sampler costs up to three of them, and a loop bounded by a uniform 1.4x one of constant trip
-// count (docs/results/passes-llvmpipe-2026-12-04.md). The weights stay uniforms, which costs
-// nothing measurable: as constants the compiler may regroup the sum (a box's equal weights
-// factored out), and MSM's ill-conditioned moments then part from the CPU twin's.
+// count (docs/results/passes-llvmpipe-2026-12-04.md). So one map compiles its radius in (RADIUS:
+// the user's kernel, one variant); cascades, whose kernels follow the view, take it as a uniform
+// rather than compiling a variant for every radius the camera passes through.
+// The weights stay uniforms, which costs nothing measurable: as constants the compiler may
+// regroup the sum (a box's equal weights factored out), and MSM's ill-conditioned moments then
+// part from the CPU twin's.
 #include "../lib/layer_reduction.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 1, CHANNEL_FORMAT) uniform readonly image2D source;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2D target;
 
+#ifdef RADIUS
 const int kRadius = RADIUS;
 uniform float weights[2 * kRadius + 1];
+#define BLUR_RADIUS kRadius
+#else
+uniform int radius;
+uniform float weights[2 * kMaxBlurRadius + 1];
+#define BLUR_RADIUS radius
+#endif
 uniform ivec2 direction;
 uniform ivec2 size;
 uniform int layer;  // the channel layer within its cascade: its channels' reductions
@@ -25,9 +35,9 @@ void main() {
   // Each tap's texel is loaded once for all four channels.
 #if ALL_MEAN
   vec4 sum = vec4(0.0f);
-  for (int i = -kRadius; i <= kRadius; ++i) {
+  for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
-    sum = accumulateMeanTexel(sum, imageLoad(source, q), weights[i + kRadius]);
+    sum = accumulateMeanTexel(sum, imageLoad(source, q), weights[i + BLUR_RADIUS]);
   }
   imageStore(target, p, sum);
 #else
@@ -35,10 +45,11 @@ void main() {
   for (int c = 0; c < 4; ++c) {
     acc[c] = startReduction(layerChannelReduction(layer, c), penumbraParams.esm.exponent);
   }
-  for (int i = -kRadius; i <= kRadius; ++i) {
+  for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
     vec4 texel = imageLoad(source, q);
-    for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weights[i + kRadius]);
+    float weight = weights[i + BLUR_RADIUS];
+    for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
   }
   imageStore(target, p,
              vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
