@@ -60,7 +60,7 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, AXIS and
-// the reduction switches (0 and 1), APRON (the fused prefilter's smallest and largest radius)
+// the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
 // and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
@@ -88,7 +88,31 @@ std::vector<Defines> variants(const std::string& source) {
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});
   expand("REFERENCE", {"0", "1"});
-  expand("APRON", {"1", "10"});  // the fused prefilter's kernel radius: 1..kMaxFusedBlurRadius
+  // The blur kernels' compile-time radius (blurRadiusDefine): a tap, the fused tile's largest
+  // (kMaxFusedBlurRadius) and the largest of all (kMaxBlurRadius); blur.comp also compiles
+  // without it (cascades: a uniform radius).
+  const bool radiusOptional = source.find("#ifdef RADIUS") != std::string::npos;
+  expand("RADIUS", {"0", "10", "64"});
+  if (radiusOptional) {
+    const std::vector<Defines> withRadius = result;
+    for (const Defines& d : withRadius) {
+      if (d.back().name != "RADIUS" || d.back().value != "0") continue;
+      Defines without = d;
+      without.pop_back();
+      result.push_back(without);
+    }
+  }
+  // WEIGHTS (blurKernelDefines) as many as the radius asks for.
+  if (source.find("WEIGHTS") != std::string::npos) {
+    for (Defines& d : result) {
+      for (const penumbra::ShaderDefine& radius : Defines(d)) {
+        if (radius.name != "RADIUS") continue;
+        std::string weights = "float[](1.0";
+        for (int i = 0; i < 2 * std::stoi(radius.value); ++i) weights += ", 0.0";
+        d.push_back({"WEIGHTS", weights + ")"});
+      }
+    }
+  }
   expand("AXIS", {"0", "1"});
   expand("LAYER_COUNT", {"1", "12"});  // the encode's texel layers: 1..kMaxTexelLayers
   expand("ALL_MEAN", {"0", "1"});
