@@ -21,7 +21,6 @@ GLint location(const Program& p, const char* name) {
 
 void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
   const CascadeFrame& c = frame.cascades;
-  program.set("cascaded", frame.cascaded ? 1 : 0);
   program.set("cascadeCount", c.count);
   glProgramUniform4fv(program.id(), location(program, "cascadeBoxes"), c.count, &c.boxes[0][0]);
   std::vector<float> texel;
@@ -80,6 +79,10 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   // The lookup's variant and bindings are the filter's, as a host's shader gets them.
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), reference);
   defines.push_back({"REFERENCE", reference ? "1" : "0"});
+  defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
+  defines.push_back({"POINT_LIGHT", frame.pointLight ? "1" : "0"});
+  defines.push_back({"CASCADED", frame.cascaded ? "1" : "0"});
+  defines.push_back({"SOFT_LIGHT", frame.light.size > 0.0f ? "1" : "0"});
   const Program& program = programs.graphics("passes/camera.vert", "passes/camera.frag", defines);
   setCascadeUniforms(program, frame);
   shadows.bind();
@@ -89,14 +92,12 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
   program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
   program.set("lightClipFromView", frame.lightView.clipFromLight);
-  program.set("lightPerspective", frame.lightView.perspective ? 1 : 0);
   program.set("lightNear", frame.lightView.nearDistance);
   program.set("lightFar", frame.lightView.farDistance);
   program.set("lightDirection", glm::normalize(frame.light.direction));
   program.set("lightPosition", frame.light.position);
   const glm::vec3 axis = frame.light.target - frame.light.position;
   program.set("spotAxis", glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
-  program.set("pointLight", frame.pointLight ? 1 : 0);
   program.set("pointLightTangent", frame.pointFaceTangent);
   program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
   program.set("normalOffsetTexels", settings.normalOffsetTexels);

@@ -272,7 +272,8 @@ std::vector<ShaderDefine> lookupVariantDefines(const ShadowFilter::State& s, boo
   const bool zmax = !reference && s.filtered && s.zmax.built();
   return {{"SUMMED_AREA", summedArea ? "1" : "0"},
           {"ZMAX", zmax ? "1" : "0"},
-          {"MSAA", s.depth.multisampled() ? "1" : "0"}};
+          {"MSAA", s.depth.multisampled() ? "1" : "0"},
+          {"PENUMBRA_FILTER_MODE", std::to_string(int(s.settings.filter))}};
 }
 
 ShadowFilter::ShadowFilter() {

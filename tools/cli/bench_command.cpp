@@ -98,6 +98,15 @@ void runPaperExperiments(const BenchOptions& o, float aspect) {
             << ", bench.json and bench.csv\n";
 }
 
+// Three significant digits down to a microsecond: a GPU's passes take hundredths of a
+// millisecond, llvmpipe's hundreds of milliseconds, and one decimal would print the GPU's as 0.0.
+std::string tableMilliseconds(double ms) {
+  const int decimals = ms >= 100.0 ? 0 : ms >= 10.0 ? 1 : ms >= 1.0 ? 2 : 3;
+  std::ostringstream text;
+  text << std::fixed << std::setprecision(decimals) << ms;
+  return text.str();
+}
+
 void runBench(const BenchOptions& o) {
   // The sizes given (the rest are defaults), checked before any work: the frame's aspect shapes
   // a scene file, and --camera list judges its cameras at it.
@@ -154,13 +163,14 @@ void runBench(const BenchOptions& o) {
     settings.technique = t;
     const gl::PassBenchResult r = gl::benchPasses(renderer, scene, settings, o.repeat);
     for (const gl::PassTiming& p : r.passes) {
-      std::cout << std::fixed << std::setprecision(1) << "| " << techniqueId(t) << " | " << r.format
-                << " | " << p.pass << " | " << p.passMs << " | " << p.baseline << " | "
-                << p.baselineMs << " | " << std::setprecision(2) << p.ratio() << " | ";
+      std::cout << std::fixed << "| " << techniqueId(t) << " | " << r.format << " | " << p.pass
+                << " | " << tableMilliseconds(p.passMs) << " | " << p.baseline << " | "
+                << tableMilliseconds(p.baselineMs) << " | " << std::setprecision(2) << p.ratio()
+                << " | ";
       if (p.yardstick.empty()) {
         std::cout << "— | | |\n";
       } else {
-        std::cout << p.yardstick << " | " << std::setprecision(1) << p.yardstickMs << " | "
+        std::cout << p.yardstick << " | " << tableMilliseconds(p.yardstickMs) << " | "
                   << std::setprecision(2) << p.baselineToYardstick() << " |\n";
       }
       // A row without a yardstick (mips, summed-area table) leaves its cells empty (CSV) or

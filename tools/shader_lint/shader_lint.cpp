@@ -59,7 +59,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 }
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
-// CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, AXIS and
+// CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
+// camera pass's light kind and softness, PENUMBRA_FILTER_MODE, AXIS and
 // the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
 // and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
@@ -88,6 +89,20 @@ std::vector<Defines> variants(const std::string& source) {
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});
   expand("REFERENCE", {"0", "1"});
+  // The camera pass's light kinds and softness, each beside the first variant: independent
+  // switches, so one variant each compiles every path (their full product would be 16x).
+  if (source.find("LIGHT_PERSPECTIVE") != std::string::npos) {
+    const Defines base = result.front();
+    for (const Defines& kind : std::vector<Defines>{{{"LIGHT_PERSPECTIVE", "1"}},
+                                                    {{"LIGHT_PERSPECTIVE", "1"}, {"POINT_LIGHT", "1"}},
+                                                    {{"CASCADED", "1"}},
+                                                    {{"SOFT_LIGHT", "1"}}}) {
+      Defines with = base;
+      with.insert(with.end(), kind.begin(), kind.end());
+      result.push_back(with);
+    }
+  }
+  expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
   // The blur kernels' compile-time radius (blurRadiusDefine): a tap, the fused tile's largest
   // (kMaxFusedBlurRadius) and the largest of all (kMaxBlurRadius); blur.comp also compiles
   // without it (cascades: a uniform radius).

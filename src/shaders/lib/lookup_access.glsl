@@ -63,7 +63,13 @@ layout(std140, binding = PENUMBRA_LOOKUP_BLOCK) uniform PenumbraLookupBlock {
 };
 
 LookupSettings lookupSettings(int cascade) {
-  return lookupSettingsFromBlock(penumbraLookup, cascade);
+  LookupSettings s = lookupSettingsFromBlock(penumbraLookup, cascade);
+#ifdef PENUMBRA_FILTER_MODE
+  // The block's own mode, compiled in (lookupVariantDefines): the other modes' paths fold away
+  // instead of sizing every pixel's registers.
+  s.filterMode = PENUMBRA_FILTER_MODE;
+#endif
+  return s;
 }
 
 int channelLayer(LookupSources s, int layer) {

@@ -16,6 +16,21 @@
 #ifndef MSAA
 #define MSAA 0
 #endif
+// The light's kind and softness are compiled in (CameraPass::render: one program each), so that
+// a pixel does not carry the other kinds' paths: a GPU sizes its registers for the largest path
+// a shader holds, taken or not.
+#ifndef LIGHT_PERSPECTIVE
+#define LIGHT_PERSPECTIVE 0
+#endif
+#ifndef POINT_LIGHT
+#define POINT_LIGHT 0
+#endif
+#ifndef CASCADED
+#define CASCADED 0
+#endif
+#ifndef SOFT_LIGHT
+#define SOFT_LIGHT 0
+#endif
 #include "../lib/lookup_access.glsl"
 #include "../lib/material.glsl"
 #include "../shared/point_light_faces.h"
@@ -29,19 +44,19 @@ in vec2 baseColorTexcoord;
 uniform mat4 cameraViewFromWorld;  // view depth selects the cascade
 uniform mat4 lightViewFromWorld;
 uniform mat4 lightClipFromView;    // one map: its projection; cascades: unused (boxes instead)
-uniform int lightPerspective;
+const int lightPerspective = LIGHT_PERSPECTIVE;
 uniform float lightNear;
 uniform float lightFar;
 uniform vec3 lightDirection;  // directional: the way light travels
 uniform vec3 lightPosition;   // spot
 uniform vec3 spotAxis;        // spot: unit direction from the light to its target
 uniform float spotCosine;     // spot: cos(half cone angle)
-uniform int pointLight;           // 1: six faces, chosen per pixel by the major axis
+const int pointLight = POINT_LIGHT;  // 1: six faces, chosen per pixel by the major axis
 uniform float pointLightTangent;  // tan of a face's half field of view (guard band included)
 uniform float normalOffsetTexels;
 uniform float lightSize;  // Light::size: 0 hard, else soft (shared/soft_shadow.h)
 // 0: one map, uv through lightClipFromView. 1: cascades, boxes on the light's view plane.
-uniform int cascaded;
+const int cascaded = CASCADED;
 uniform int cascadeCount;
 uniform vec4 cascadeBoxes[kMaxCascades];   // one map: (0, 0, 1, 1) over its uv
 uniform float cascadeTexelWorldSize[kMaxCascades];  // per unit distance for spot lights
@@ -116,7 +131,7 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
                                         depthPerTexel), 0.0f, 1.0f), 0.0f);
 #else
   SoftLight light;
-  light.size = lightSize;
+  light.size = SOFT_LIGHT != 0 ? lightSize : 0.0f;
   light.perspective = lightPerspective;
   light.nearDistance = lightNear;
   light.farDistance = lightFar;
