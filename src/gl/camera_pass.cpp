@@ -40,6 +40,7 @@ void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
 
 CameraPass::~CameraPass() {
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  if (minimalFramebuffer_ != 0) glDeleteFramebuffers(1, &minimalFramebuffer_);
 }
 
 void CameraPass::prepare(int width, int height) {
@@ -133,6 +134,70 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   timer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("camera pass");
+}
+
+void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& scene,
+                                     const RenderSettings& settings, const FrameGeometry& frame,
+                                     const ShadowFilter& shadows, int layers) {
+  if (frame.cascaded || frame.pointLight) {
+    throw Error("the minimal lookup runs on one map: no cascades, no point light");
+  }
+  if (minimalFramebuffer_ == 0 || minimalWidth_ != width_ || minimalHeight_ != height_) {
+    if (minimalFramebuffer_ != 0) glDeleteFramebuffers(1, &minimalFramebuffer_);
+    minimalWidth_ = width_;
+    minimalHeight_ = height_;
+    minimalColor_ = Texture(GL_TEXTURE_2D);
+    glTextureStorage2D(minimalColor_.id(), 1, GL_RGBA8, width_, height_);
+    minimalDepth_ = Texture(GL_TEXTURE_2D);
+    glTextureStorage2D(minimalDepth_.id(), 1, GL_DEPTH_COMPONENT32F, width_, height_);
+    glCreateFramebuffers(1, &minimalFramebuffer_);
+    glNamedFramebufferTexture(minimalFramebuffer_, GL_COLOR_ATTACHMENT0, minimalColor_.id(), 0);
+    glNamedFramebufferTexture(minimalFramebuffer_, GL_DEPTH_ATTACHMENT, minimalDepth_.id(), 0);
+    if (glCheckNamedFramebufferStatus(minimalFramebuffer_, GL_FRAMEBUFFER) !=
+        GL_FRAMEBUFFER_COMPLETE) {
+      throw Error("the minimal lookup's framebuffer is incomplete");
+    }
+  }
+  std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), false);
+  defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
+  defines.push_back({"LAYER_COUNT", std::to_string(layers)});
+  const Program& program =
+      programs.graphics("passes/camera.vert", "passes/minimal_lookup.frag", defines);
+  shadows.bind();
+  const float aspect = float(width_) / float(height_);
+  program.set("clipFromWorld",
+              clipFromView(frame.camera, aspect, frame.viewBounds) * viewFromWorld(frame.camera));
+  program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
+  program.set("lightClipFromView", frame.lightView.clipFromLight);
+  program.set("lightNear", frame.lightView.nearDistance);
+  program.set("lightFar", frame.lightView.farDistance);
+  program.set("lightDirection", glm::normalize(frame.light.direction));
+  program.set("lightPosition", frame.light.position);
+  program.set("ambient", settings.ambient);
+  program.use();
+  glBindFramebuffer(GL_FRAMEBUFFER, minimalFramebuffer_);
+  glViewport(0, 0, width_, height_);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDisable(GL_CULL_FACE);
+  const float sky[4] = {shaders::kSkyColour.r, shaders::kSkyColour.g, shaders::kSkyColour.b, 1.0f};
+  glClearNamedFramebufferfv(minimalFramebuffer_, GL_COLOR, 0, sky);
+  glClearNamedFramebufferfi(minimalFramebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
+  minimalTimer.setEnabled(true);
+  minimalTimer.begin();
+  scene.draw([&](const GpuScene::Material& material) {
+    setMaterialUniforms(program, material);
+    setCameraFaceCulling(material);
+  });
+  glDisable(GL_CULL_FACE);
+  minimalTimer.end();
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  checkErrors("minimal lookup");
+}
+
+Image CameraPass::readMinimalLookupColor() const {
+  if (minimalFramebuffer_ == 0) throw Error("the minimal lookup has not been drawn");
+  return readTexture(minimalColor_.id(), 0, minimalWidth_, minimalHeight_, 1, 4, GL_RGBA, true);
 }
 
 Image CameraPass::readColor() const {

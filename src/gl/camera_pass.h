@@ -55,12 +55,26 @@ class CameraPass {
   Image readDepth() const;  // window depth in [0,1], 1 where nothing is drawn
   uint64_t bytes() const;
 
+  // bench --passes' yardstick for this pass: the same geometry drawn with the least lookup of the
+  // technique (passes/minimal_lookup.frag) into a target of its own, one map only; `layers` is
+  // the channel texture's layer count. Timed by minimalTimer like `timer`: the draw alone.
+  void renderMinimalLookup(ProgramCache& programs, const GpuScene& scene,
+                           const RenderSettings& settings, const FrameGeometry& frame,
+                           const ShadowFilter& shadows, int layers);
+
+  Image readMinimalLookupColor() const;  // RGBA in [0,1], linear, row 0 at the top
+
   GpuTimer timer;
+  GpuTimer minimalTimer;
 
  private:
   int width_ = 0, height_ = 0;
   Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_, depth_;
   unsigned framebuffer_ = 0;
+  // The yardstick's RGBA8 colour and depth, made on its first use.
+  Texture minimalColor_, minimalDepth_;
+  unsigned minimalFramebuffer_ = 0;
+  int minimalWidth_ = 0, minimalHeight_ = 0;
 };
 
 }  // namespace penumbra::gl

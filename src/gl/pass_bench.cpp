@@ -1,7 +1,8 @@
 // The minimal kernels: a copy of the depth into every channel layer (beside encode), a plain
 // separable blur of whole texels with the same taps (beside the prefilter; both beside the fused
-// prefilter), the driver's own mipmap generation (beside the mip pass) and plain 64-bit prefix
-// sums (beside the summed-area table), on textures like the channel texture.
+// prefilter), the driver's own mipmap generation (beside the mip pass), plain 64-bit prefix
+// sums (beside the summed-area table), on textures like the channel texture, and the least
+// lookup of the technique (beside the camera pass, Renderer::timeMinimalLookup).
 #include "penumbra/gl/pass_bench.h"
 
 #include <epoxy/gl.h>
@@ -36,9 +37,18 @@ Texture arrayTexture(unsigned format, int size, int layers, int levels) {
 // on the machine falls on the passes and their minimal kernels alike.
 struct MinimalKernel {
   explicit MinimalKernel(std::function<void()> w) : work(std::move(w)) {}
+  // A kernel that times itself (the minimal lookup times its draw, not its target's clear):
+  // `measure` runs it and returns its milliseconds.
+  explicit MinimalKernel(std::function<double()> m)
+      : work([m] { (void)m(); }), measure(std::move(m)) {}
   std::function<void()> work;
+  std::function<double()> measure;
   std::vector<double> times;
   void time(bool gpuTime) {
+    if (measure) {
+      times.push_back(measure());
+      return;
+    }
     GpuTimer timer;
     timer.begin();
     work();
@@ -111,7 +121,7 @@ struct Yardstick {
 // (warmed up too). Times are GPU timer queries where they measure execution, else wall time
 // between glFinish calls.
 struct FramePasses {
-  std::vector<double> encode, prefilter, mipsOrSat;
+  std::vector<double> encode, prefilter, mipsOrSat, camera;
 };
 
 FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
@@ -125,6 +135,7 @@ FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSet
     p.encode.push_back(t.encode);
     p.prefilter.push_back(t.prefilter);
     p.mipsOrSat.push_back(t.mipsOrSat);
+    p.camera.push_back(t.camera);
     for (MinimalKernel* k : kernels) k->time(gpuTime);
   }
   return p;
@@ -226,12 +237,16 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     columns.dispatch(groups(size, 64), unsigned(channelCount));
   }};
 
+  // After each frame, the same view drawn with the least lookup of the technique.
+  MinimalKernel minimalLookup{std::function<double()>([&] { return renderer.timeMinimalLookup(); })};
+
   MinimalKernel yardstickCopy{[&] { yardstick.copy(); }};
   MinimalKernel yardstickBlur{[&] { yardstick.blurBothAxes(); }};
   std::vector<MinimalKernel*> beside{&copy, &yardstickCopy};
   if (blurs) beside.insert(beside.end(), {&blur, &yardstickBlur});
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
+  beside.push_back(&minimalLookup);
   const FramePasses passes = renderPasses(renderer, scene, separate, repeats, gpuTime, beside);
 
   PassBenchResult result;
@@ -254,6 +269,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     result.passes.push_back(
         {"mips", median(passes.mipsOrSat), "glGenerateTextureMipmap", generateMips.median(), "", 0.0});
   }
+  result.passes.push_back({"camera", median(passes.camera),
+                           "minimal lookup: one filtered fetch per layer, reconstruct, Lambert, "
+                           "RGBA8",
+                           minimalLookup.median(), "", 0.0});
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;
   fusedSettings.fusePrefilter = true;

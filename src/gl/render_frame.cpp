@@ -9,6 +9,7 @@
 
 #include "box_downsample.h"
 #include "memory_plan.h"
+#include "penumbra/channel_layout.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/cascaded_reference.h"
 #include "penumbra/gl/context.h"
@@ -405,6 +406,22 @@ Image Renderer::readDepthSamples(int cascade) const {
 
 int Renderer::channelMipLevels() const {
   return state_->shadows.channelMipLevels();
+}
+
+double Renderer::timeMinimalLookup() {
+  State& s = *state_;
+  if (!s.scene || s.camera.bytes() == 0) {
+    throw Error("no frame to draw the minimal lookup of: call Renderer::render first");
+  }
+  const ChannelLayout layout = channelLayout(s.settings.technique, s.shadows.params());
+  s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows,
+                               layout.layers);
+  return timerQueriesMeasureExecution() ? s.camera.minimalTimer.gpuMilliseconds()
+                                        : s.camera.minimalTimer.wallMilliseconds();
+}
+
+Image Renderer::readMinimalLookupColor() const {
+  return state_->camera.readMinimalLookupColor();
 }
 
 uint64_t Renderer::measuredChannelTextureBytes() const {

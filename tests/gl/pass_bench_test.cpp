@@ -41,11 +41,11 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Evsm4), 2);
   EXPECT_EQ(evsm.format, "rgba32f x 1 layer");
   EXPECT_EQ(evsm.timing, gl::passTimingDescription(renderer));
-  expectTimed(evsm, {"encode", "prefilter", "mips", "encode + prefilter, fused"});
+  expectTimed(evsm, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
   // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
-  // the blur and the fused pass; the mips have none.
+  // the blur and the fused pass; the mips and the camera pass have none.
   const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",
-                                            "rawblur blur, 5 taps, rgba32f", "",
+                                            "rawblur blur, 5 taps, rgba32f", "", "",
                                             "rawblur copy + blur, 5 taps, rgba32f"};
   for (size_t i = 0; i < yardsticks.size(); ++i) {
     EXPECT_EQ(evsm.passes[i].yardstick, yardsticks[i]);
@@ -54,12 +54,52 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   }
   // 16-bit storage rounds the blur's intermediate: no fused pass.
   expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Msm), 1),
-              {"encode", "prefilter", "mips"});
+              {"encode", "prefilter", "mips", "camera"});
   // The summed-area filter: encode and the table, no blur.
   gl::RenderSettings sat = small(Technique::Vsm);
   sat.filter = gl::FilterMode::SummedArea;
   expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), sat, 1),
-              {"encode", "summed-area table"});
+              {"encode", "summed-area table", "camera"});
+}
+
+// The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset
+// or receiver plane, the channels at level 0. With bilinear lookups on a flat-lit scene that
+// changes the shadows' edges only.
+TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("backyard");
+  for (Technique t : {Technique::Vsm, Technique::Csm}) {
+    SCOPED_TRACE(techniqueId(t));
+    gl::RenderSettings s = small(t);
+    s.shadowMapSize = 512;
+    s.width = 160;
+    s.height = 90;
+    s.filter = gl::FilterMode::Bilinear;
+    const gl::RenderResult frame = renderer.render(scene, s);
+    EXPECT_GT(renderer.timeMinimalLookup(), 0.0);
+    const Image minimal = renderer.readMinimalLookupColor();
+    ASSERT_EQ(minimal.width(), s.width);
+    ASSERT_EQ(minimal.height(), s.height);
+    int near = 0, shadowed = 0;
+    for (int y = 0; y < s.height; ++y) {
+      for (int x = 0; x < s.width; ++x) {
+        float difference = 0.0f;
+        for (int c = 0; c < 3; ++c) {
+          difference = std::max(difference, std::abs(minimal.at(x, y, c) - frame.color.at(x, y, c)));
+        }
+        // 8 bits of the yardstick's target (1/255) and a shadow edge's shift of a texel.
+        if (difference < 0.02f) ++near;
+        if (frame.visibility.at(x, y) < 0.5f) ++shadowed;
+      }
+    }
+    const int pixels = s.width * s.height;
+    EXPECT_GT(shadowed, pixels / 50) << "the view must show shadows for this to test them";
+    // Measured: every pixel agrees (bilinear lookups at level 0 on both sides, no normal offset
+    // asked for); 1% left for shadow edges that the receiver plane would move.
+    EXPECT_GT(near, pixels * 99 / 100);
+    std::printf("%s: %d of %d pixels agree, %d shadowed\n", techniqueId(t).data(), near, pixels,
+                shadowed);
+  }
 }
 
 TEST_F(PassBench, TechniquesWithoutAPrefilterAreRefused) {

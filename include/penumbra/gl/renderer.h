@@ -219,6 +219,12 @@ class Renderer {
   // prefiltered), one image channel per technique channel, row 0 at the bottom.
   Image readChannels(int level, int cascade = 0) const;
   int channelMipLevels() const;
+  // bench --passes' yardstick for the camera pass: the last frame's view drawn again with the
+  // least lookup of its technique (passes/minimal_lookup.frag: one map, one filtered fetch per
+  // channel layer, the reconstruction, Lambert, one RGBA8 target), after render() of one map.
+  // The draw's milliseconds: a GPU timer query where they measure execution, else wall clock.
+  double timeMinimalLookup();
+  Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
   uint64_t measuredChannelTextureBytes() const;

@@ -1,0 +1,57 @@
+// The camera pass's yardstick (bench --passes): the least a lookup of the technique can do on
+// one map. The receiver in the light's map, the channels by one hardware-filtered fetch per
+// channel layer at level 0 (bilinear), the technique's own reconstruction
+// (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
+// normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
+// production pass (camera.frag) adds to this is its cost over the yardstick.
+#if SUMMED_AREA
+#extension GL_ARB_gpu_shader_int64 : require
+#endif
+#include "../lib/lookup_access.glsl"
+#include "../lib/material.glsl"
+#include "../shared/light_depth.h"
+#include "../shared/shading.h"
+
+#ifndef LIGHT_PERSPECTIVE
+#define LIGHT_PERSPECTIVE 0
+#endif
+#ifndef LAYER_COUNT
+#define LAYER_COUNT 1
+#endif
+
+in vec3 worldPosition;
+in vec3 worldNormal;
+in vec2 baseColorTexcoord;
+
+uniform mat4 lightViewFromWorld;
+uniform mat4 lightClipFromView;
+uniform float lightNear;
+uniform float lightFar;
+uniform vec3 lightDirection;  // directional: the way light travels
+uniform vec3 lightPosition;   // spot
+uniform float ambient;
+
+layout(location = 0) out vec4 color;
+
+void main() {
+  vec3 n = normalize(worldNormal);
+  if (!gl_FrontFacing) n = -n;
+  vec3 toLight =
+      LIGHT_PERSPECTIVE != 0 ? normalize(lightPosition - worldPosition) : -lightDirection;
+  float cosine = max(dot(n, toLight), 0.0f);
+  vec4 view = lightViewFromWorld * vec4(worldPosition, 1.0f);
+  vec4 clip = lightClipFromView * view;
+  vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
+  float receiver = lightLinearDepth(view.xyz, LIGHT_PERSPECTIVE != 0, lightNear, lightFar);
+  float channels[kMaxChannels];
+  for (int i = 0; i < kMaxChannels; ++i) channels[i] = 0.0f;
+  for (int layer = 0; layer < LAYER_COUNT; ++layer) {
+    vec4 v = textureLod(penumbraChannelMap, vec3(uv, float(layer)), 0.0f);
+    for (int k = 0; k < 4; ++k) channels[4 * layer + k] = v[k];
+  }
+  float visibility =
+      clamp(reconstructVisibility(penumbraTechnique, channels, receiver, penumbraParams), 0.0f,
+            1.0f);
+  color = vec4(shadeLambert(materialBaseColor(baseColorTexcoord).rgb, ambient, cosine, visibility),
+               1.0f);
+}
