@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "material_programs.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
@@ -34,6 +35,20 @@ void setCascadeUniforms(const Program& program, const FrameGeometry& frame) {
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds0"), 1, &c.ends[0]);
   glProgramUniform4fv(program.id(), location(program, "cascadeEnds1"), 1, &c.ends[4]);
   program.set("cascadeBlendBand", c.blendBand);
+}
+
+// The camera and light uniforms the camera pass and its minimal lookup share.
+void setViewUniforms(const Program& program, const RenderSettings& settings,
+                     const FrameGeometry& frame, float aspect) {
+  program.set("clipFromWorld",
+              clipFromView(frame.camera, aspect, frame.viewBounds) * viewFromWorld(frame.camera));
+  program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
+  program.set("lightClipFromView", frame.lightView.clipFromLight);
+  program.set("lightNear", frame.lightView.nearDistance);
+  program.set("lightFar", frame.lightView.farDistance);
+  program.set("lightDirection", glm::normalize(frame.light.direction));
+  program.set("lightPosition", frame.light.position);
+  program.set("ambient", settings.ambient);
 }
 
 }  // namespace
@@ -84,28 +99,23 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   defines.push_back({"POINT_LIGHT", frame.pointLight ? "1" : "0"});
   defines.push_back({"CASCADED", frame.cascaded ? "1" : "0"});
   defines.push_back({"SOFT_LIGHT", frame.light.size > 0.0f ? "1" : "0"});
-  const Program& program = programs.graphics("passes/camera.vert", "passes/camera.frag", defines);
-  setCascadeUniforms(program, frame);
-  shadows.bind();
+  const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
+                                  "passes/camera.frag", defines);
   const float aspect = float(width_) / float(height_);
-  const glm::mat4 view = viewFromWorld(frame.camera);
-  program.set("clipFromWorld", clipFromView(frame.camera, aspect, frame.viewBounds) * view);
-  program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
-  program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
-  program.set("lightClipFromView", frame.lightView.clipFromLight);
-  program.set("lightNear", frame.lightView.nearDistance);
-  program.set("lightFar", frame.lightView.farDistance);
-  program.set("lightDirection", glm::normalize(frame.light.direction));
-  program.set("lightPosition", frame.light.position);
-  const glm::vec3 axis = frame.light.target - frame.light.position;
-  program.set("spotAxis", glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
-  program.set("pointLightTangent", frame.pointFaceTangent);
-  program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
-  program.set("normalOffsetTexels", settings.normalOffsetTexels);
-  program.set("lightSize", frame.light.size);
-  program.set("ambient", settings.ambient);
-  program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
-  program.use();
+  variants.each([&](const Program& program) {
+    setViewUniforms(program, settings, frame, aspect);
+    setCascadeUniforms(program, frame);
+    program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
+    const glm::vec3 axis = frame.light.target - frame.light.position;
+    program.set("spotAxis",
+                glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
+    program.set("pointLightTangent", frame.pointFaceTangent);
+    program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
+    program.set("normalOffsetTexels", settings.normalOffsetTexels);
+    program.set("lightSize", frame.light.size);
+    program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
+  });
+  shadows.bind();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width_, height_);
   glEnable(GL_DEPTH_TEST);
@@ -127,6 +137,8 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   timer.begin();
   scene.draw([&](const GpuScene::Material& material) {
+    const Program& program = variants.forMaterial(material);
+    program.use();
     setMaterialUniforms(program, material);
     setCameraFaceCulling(material);
   });
@@ -164,16 +176,7 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   const Program& program =
       programs.graphics("passes/camera.vert", "passes/minimal_lookup.frag", defines);
   shadows.bind();
-  const float aspect = float(width_) / float(height_);
-  program.set("clipFromWorld",
-              clipFromView(frame.camera, aspect, frame.viewBounds) * viewFromWorld(frame.camera));
-  program.set("lightViewFromWorld", frame.lightView.lightFromWorld);
-  program.set("lightClipFromView", frame.lightView.clipFromLight);
-  program.set("lightNear", frame.lightView.nearDistance);
-  program.set("lightFar", frame.lightView.farDistance);
-  program.set("lightDirection", glm::normalize(frame.light.direction));
-  program.set("lightPosition", frame.light.position);
-  program.set("ambient", settings.ambient);
+  setViewUniforms(program, settings, frame, float(width_) / float(height_));
   program.use();
   glBindFramebuffer(GL_FRAMEBUFFER, minimalFramebuffer_);
   glViewport(0, 0, width_, height_);

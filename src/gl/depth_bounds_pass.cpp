@@ -5,6 +5,7 @@
 
 #include <cstring>
 
+#include "material_programs.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
@@ -44,15 +45,17 @@ DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scen
     }
     bounds_.emplace(2 * sizeof(uint32_t));
   }
-  const Program& draw = programs.graphics("passes/camera.vert", "passes/depth_only.frag", {});
-  draw.set("clipFromWorld", clipFromWorld);
-  draw.use();
+  const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
+                                  "passes/depth_only.frag", {});
+  variants.each([&](const Program& draw) { draw.set("clipFromWorld", clipFromWorld); });
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glViewport(0, 0, width, height);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
   glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   scene.draw([&](const GpuScene::Material& material) {  // what the camera pass will see
+    const Program& draw = variants.forMaterial(material);
+    draw.use();
     setMaterialUniforms(draw, material);
     setCameraFaceCulling(material);
   });

@@ -148,6 +148,12 @@ void GpuScene::draw(const std::function<void(const Material&)>& beforeMesh, Mesh
   glBindVertexArray(0);
 }
 
+bool GpuScene::hasAlphaTested(Meshes meshes) const {
+  return std::any_of(materials_.begin(), materials_.end(), [&](const Material& m) {
+    return m.alphaTested() && (meshes == Meshes::All || m.castsShadow);
+  });
+}
+
 namespace {
 
 uint64_t hashBytes(uint64_t hash, const void* data, size_t bytes) {

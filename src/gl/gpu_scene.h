@@ -23,6 +23,9 @@ class GpuScene {
     bool doubleSided = true;    // false: the camera pass culls back faces
     bool castsShadow = true;    // false: the light pass skips it (Mesh::castsShadow)
     bool translucent = false;   // BLEND: the light pass may dither its coverage (LightPass)
+
+    // Masked or translucent: its passes may discard (MaterialPrograms' ALPHA_TEST variant).
+    bool alphaTested() const { return alphaCutoff >= 0.0f; }
   };
 
   explicit GpuScene(const Scene& scene);
@@ -36,6 +39,9 @@ class GpuScene {
   enum class Meshes { All, Casters };
   void draw(const std::function<void(const Material&)>& beforeMesh,
             Meshes meshes = Meshes::All) const;
+
+  // Whether any of these meshes has an alpha-tested material.
+  bool hasAlphaTested(Meshes meshes) const;
 
   // Replaces the vertices with `scene`'s, which must have this scene's layout (its meshes'
   // vertex and index counts: sceneLayoutFingerprint equal): an animated scene's next pose.

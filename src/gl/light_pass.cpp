@@ -3,6 +3,7 @@
 
 #include <epoxy/gl.h>
 
+#include "material_programs.h"
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
@@ -55,9 +56,8 @@ void LightPass::prepare(const LightPassShape& shape) {
 
 void LightPass::render(ProgramCache& programs, const GpuScene& scene,
                        std::span<const LightLayerView> views, bool ditherTranslucent) {
-  const Program& program =
-      programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", {});
-  program.use();
+  const MaterialPrograms variants(programs, scene, GpuScene::Meshes::Casters,
+                                  "passes/light_depth.vert", "passes/light_depth.frag", {});
   glViewport(0, 0, shape_.size, shape_.size);
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_LESS);
@@ -71,14 +71,18 @@ void LightPass::render(ProgramCache& programs, const GpuScene& scene,
   timer.begin();
   for (int layer = 0; layer < shape_.cascades; ++layer) {
     const LightLayerView& view = views[size_t(layer)];
-    program.set("lightViewFromWorld", view.lightFromWorld);
-    program.set("lightClipFromView", view.clipFromLight);
-    program.set("lightPerspective", view.perspective ? 1 : 0);
-    program.set("lightNear", view.nearDistance);
-    program.set("lightFar", view.farDistance);
+    variants.each([&](const Program& program) {
+      program.set("lightViewFromWorld", view.lightFromWorld);
+      program.set("lightClipFromView", view.clipFromLight);
+      program.set("lightPerspective", view.perspective ? 1 : 0);
+      program.set("lightNear", view.nearDistance);
+      program.set("lightFar", view.farDistance);
+    });
     glBindFramebuffer(GL_FRAMEBUFFER, framebuffers_[size_t(layer)]);
     scene.draw(
         [&](const GpuScene::Material& material) {
+          const Program& program = variants.forMaterial(material);
+          program.use();
           setMaterialUniforms(program, material);
           program.set("alphaBlend", material.translucent && ditherTranslucent ? 1 : 0);
           // MSAA: a masked caster is tested per sample, so each sample's coverage follows the

@@ -4,6 +4,12 @@
 // light pass lets 1 - alpha through it (materialCastsAt).
 #include "../shared/alpha_mask.h"
 
+// 1: the pass cuts out what the mask does not cover (a shader that may discard); 0: a variant for
+// opaque meshes only, which keeps early depth testing (gl/material_programs.h).
+#ifndef ALPHA_TEST
+#define ALPHA_TEST 1
+#endif
+
 uniform vec3 albedo;            // base-colour factor, linear
 uniform float baseColorAlpha;   // its alpha
 uniform float alphaCutoff;      // < 0: opaque, no test

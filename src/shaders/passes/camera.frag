@@ -3,7 +3,8 @@
 // (with normal offset), the technique's visibility (blended with the next cascade in the blend
 // band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour,
 // the float visibility and the lookup's inputs for the CPU twin. Alpha-masked surfaces are cut
-// out by the same test as in the light pass.
+// out by the same test as in the light pass, in a variant of their own (ALPHA_TEST,
+// lib/material.glsl).
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -253,5 +254,7 @@ void main() {
   depthPerTexelOut = depthPerTexel;
   uvDerivativesOut = vec4(uvDx, uvDy);
   cascadeOut = vec2(inside ? float(cascade) : -1.0f, inside ? choice.blend : 0.0f);
+#if ALPHA_TEST
   if (!alphaCovers(baseColor.a, alphaCutoff)) discard;
+#endif
 }

@@ -7,5 +7,7 @@ in vec3 worldNormal;
 in vec2 baseColorTexcoord;
 
 void main() {
+#if ALPHA_TEST
   if (!materialCovers(baseColorTexcoord)) discard;
+#endif
 }

@@ -16,7 +16,9 @@ uniform float lightFar;
 layout(location = 0) out float linearDepth;
 
 void main() {
+#if ALPHA_TEST
   if (!materialCastsAt(baseColorTexcoord, ivec2(gl_FragCoord.xy))) discard;
+#endif
   linearDepth = clamp(
       lightLinearDepth(lightViewPosition, lightPerspective != 0, lightNear, lightFar), 0.0f, 1.0f);
 }
