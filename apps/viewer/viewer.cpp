@@ -204,6 +204,7 @@ class Viewer {
   gl::RenderSettings currentSettings() const {
     gl::RenderSettings s = state_.settings.render;
     s.technique = state_.settings.techniques.front();
+    s.lookupInputs = true;  // the cursor probe and the error views read them
     return s;
   }
 

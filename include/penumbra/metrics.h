@@ -46,7 +46,8 @@ double temporalFlicker(std::span<const Image> estimates, std::span<const Image> 
 double frameToFrameChange(std::span<const Image> estimates, std::span<const Image> masks);
 
 // The pixels whose shading the shadow test decides — inside the shadow map, on surfaces facing
-// the light beyond grazing — from a renderer lookup image (channel 3 == 1).
+// the light beyond grazing — from a renderer lookup image (channel 3 == 1). Throws on an image
+// that is not one (a frame rendered without RenderSettings::lookupInputs has none).
 Image litSurfaceMask(const Image& lookup);
 
 // The median of a non-empty set of timings or values (the mean of the middle two for an even

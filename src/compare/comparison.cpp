@@ -28,6 +28,7 @@ gl::RenderSettings settingsFor(const ComparisonRequest& request, Technique techn
                                bool areaLight = false) {
   gl::RenderSettings s = request.settings;
   s.technique = technique;
+  s.lookupInputs = true;  // the lit-surface masks and the worst pixel's region read them
   if (technique == Technique::Pcf && matchesPcfKernel(request, areaLight)) {
     s.params.pcf = pcfMatchingPrefilter(s);
   }

@@ -31,6 +31,7 @@ LeakAnatomy leakAnatomy(gl::Renderer& renderer, const FiguresOptions& o, const S
   gl::RenderSettings s = figureSettings(o);
   s.technique = Technique::PowerCdf;
   s.params = cdf.params;
+  s.lookupInputs = true;  // each leaking pixel's lookup
   const gl::RenderResult frame = renderer.render(scene, s);
   const Image depth = renderer.readDepthMap();
   const float metres = frame.cascadeFrame.light.farDistance - frame.cascadeFrame.light.nearDistance;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "penumbra/error.h"
+
 namespace penumbra::compare {
 namespace {
 
@@ -22,6 +24,9 @@ std::string text(glm::vec3 v) {
 }  // namespace
 
 double shadowedShare(const Image& visibility, const Image& coverage) {
+  if (coverage.width() != visibility.width() || coverage.height() != visibility.height()) {
+    throw Error("the shadowed share's coverage is not the visibility's size");
+  }
   size_t drawn = 0, shadowed = 0;
   for (int y = 0; y < visibility.height(); ++y) {
     for (int x = 0; x < visibility.width(); ++x) {

@@ -128,6 +128,11 @@ Image signedVisibilityError(const Image& visibility, const Image& reference,
 }
 
 Image litSurfaceMask(const Image& lookup) {
+  if (lookup.channels() != 4) {
+    throw Error("the lit-surface mask needs the frame's lookup image (4 channels, got " +
+                std::to_string(lookup.channels()) +
+                "): render the frame with RenderSettings::lookupInputs");
+  }
   Image mask(lookup.width(), lookup.height(), 1);
   for (int y = 0; y < lookup.height(); ++y) {
     for (int x = 0; x < lookup.width(); ++x)

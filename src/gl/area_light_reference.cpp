@@ -31,6 +31,7 @@ RenderSettings hardTestSettings(const RenderSettings& settings, int supersample)
   hard.filter = FilterMode::Point;
   hard.blur = BlurSpec{BlurKernel::Box, 0, 1.0f};
   hard.msaaSamples = 1;
+  hard.lookupInputs = true;  // each pixel's lookup finds its receiver on the light's faces
   hard.width = settings.width * supersample;
   hard.height = settings.height * supersample;
   return hard;

@@ -58,31 +58,40 @@ CameraPass::~CameraPass() {
   if (minimalFramebuffer_ != 0) glDeleteFramebuffers(1, &minimalFramebuffer_);
 }
 
-void CameraPass::prepare(int width, int height) {
-  if (framebuffer_ != 0 && width == width_ && height == height_) return;
+void CameraPass::prepare(int width, int height, bool lookupInputs) {
+  if (framebuffer_ != 0 && width == width_ && height == height_ && lookupInputs == lookupInputs_) {
+    return;
+  }
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
   width_ = width;
   height_ = height;
+  lookupInputs_ = lookupInputs;
   struct Target {
     Texture* texture;
     GLenum format;
   };
+  // Colour, visibility and diagnostic, then the lookup's inputs (locations 3-6 in camera.frag).
   const Target targets[] = {{&color_, GL_RGBA16F},       {&visibility_, GL_R32F},
                             {&diagnostic_, GL_R32F},     {&lookup_, GL_RGBA32F},
                             {&receiverPlane_, GL_RG32F}, {&derivatives_, GL_RGBA32F},
-                            {&cascade_, GL_RG32F},       {&depth_, GL_DEPTH_COMPONENT32F}};
-  for (const Target& t : targets) {
-    *t.texture = Texture(GL_TEXTURE_2D);
-    glTextureStorage2D(t.texture->id(), 1, t.format, width, height);
+                            {&cascade_, GL_RG32F}};
+  const int count = colorTargetCount();
+  for (int i = 0; i < 7; ++i) {
+    *targets[i].texture = Texture();  // releases an earlier frame's
+    if (i >= count) continue;
+    *targets[i].texture = Texture(GL_TEXTURE_2D);
+    glTextureStorage2D(targets[i].texture->id(), 1, targets[i].format, width, height);
   }
+  depth_ = Texture(GL_TEXTURE_2D);
+  glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
   glCreateFramebuffers(1, &framebuffer_);
   GLenum buffers[7];
-  for (int i = 0; i < 7; ++i) {
+  for (int i = 0; i < count; ++i) {
     buffers[i] = GLenum(GL_COLOR_ATTACHMENT0 + i);
     glNamedFramebufferTexture(framebuffer_, buffers[i], targets[i].texture->id(), 0);
   }
   glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-  glNamedFramebufferDrawBuffers(framebuffer_, 7, buffers);
+  glNamedFramebufferDrawBuffers(framebuffer_, count, buffers);
   if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
     throw Error("the camera-pass framebuffer is incomplete");
   }
@@ -99,6 +108,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   defines.push_back({"POINT_LIGHT", frame.pointLight ? "1" : "0"});
   defines.push_back({"CASCADED", frame.cascaded ? "1" : "0"});
   defines.push_back({"SOFT_LIGHT", frame.light.size > 0.0f ? "1" : "0"});
+  defines.push_back({"LOOKUP_INPUTS", lookupInputs_ ? "1" : "0"});
   const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
                                   "passes/camera.frag", defines);
   const float aspect = float(width_) / float(height_);
@@ -130,10 +140,12 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, sky);
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, lit);
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 2, nothing);
-  for (int target = 3; target <= 5; ++target) {
-    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, target, zero);
+  if (lookupInputs_) {
+    for (int target = 3; target <= 5; ++target) {
+      glClearNamedFramebufferfv(framebuffer_, GL_COLOR, target, zero);
+    }
+    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 6, nothing);
   }
-  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 6, nothing);
   glClearNamedFramebufferfi(framebuffer_, GL_DEPTH_STENCIL, 0, 1.0f, 0);
   timer.begin();
   scene.draw([&](const GpuScene::Material& material) {
@@ -212,24 +224,35 @@ Image CameraPass::readVisibility() const {
 Image CameraPass::readDiagnostic() const {
   return readTexture(diagnostic_.id(), 0, width_, height_, 1, 1, GL_RED, true);
 }
+void CameraPass::requireLookupInputs() const {
+  if (!lookupInputs_) {
+    throw Error("the camera pass did not write the lookup's inputs: set "
+                "RenderSettings::lookupInputs");
+  }
+}
+
 Image CameraPass::readLookup() const {
+  requireLookupInputs();
   return readTexture(lookup_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
 }
 Image CameraPass::readReceiverPlane() const {
+  requireLookupInputs();
   return readTexture(receiverPlane_.id(), 0, width_, height_, 1, 2, GL_RG, true);
 }
 Image CameraPass::readUvDerivatives() const {
+  requireLookupInputs();
   return readTexture(derivatives_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
 }
 Image CameraPass::readDepth() const {
   return readTexture(depth_.id(), 0, width_, height_, 1, 1, GL_DEPTH_COMPONENT, true);
 }
 Image CameraPass::readCascades() const {
+  requireLookupInputs();
   return readTexture(cascade_.id(), 0, width_, height_, 1, 2, GL_RG, true);
 }
 
 uint64_t CameraPass::bytes() const {
-  return frameBytes(width_, height_);
+  return frameBytes(width_, height_, lookupInputs_);
 }
 
 }  // namespace penumbra::gl

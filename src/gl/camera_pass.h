@@ -39,7 +39,9 @@ class CameraPass {
   CameraPass(const CameraPass&) = delete;
   CameraPass& operator=(const CameraPass&) = delete;
 
-  void prepare(int width, int height);
+  // lookupInputs: also the four targets of the lookup's inputs (RenderSettings::lookupInputs),
+  // which render() then writes.
+  void prepare(int width, int height, bool lookupInputs);
   // The shadow maps are the filter's last filter() (or prepareRawDepth() for the reference).
   void render(ProgramCache& programs, const GpuScene& scene, const RenderSettings& settings,
               const FrameGeometry& frame, const ShadowFilter& shadows, bool reference);
@@ -48,6 +50,7 @@ class CameraPass {
   Image readColor() const;
   Image readVisibility() const;
   Image readDiagnostic() const;
+  // The lookup's inputs: only after prepare(..., lookupInputs = true).
   Image readLookup() const;
   Image readReceiverPlane() const;
   Image readUvDerivatives() const;
@@ -68,7 +71,11 @@ class CameraPass {
   GpuTimer minimalTimer;
 
  private:
+  int colorTargetCount() const { return lookupInputs_ ? 7 : 3; }
+  void requireLookupInputs() const;
+
   int width_ = 0, height_ = 0;
+  bool lookupInputs_ = false;
   Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_, depth_;
   unsigned framebuffer_ = 0;
   // The yardstick's RGBA8 colour and depth, made on its first use.

@@ -20,16 +20,17 @@ struct FrameTarget {
   std::string_view what;
   GLenum format;
   int bytesPerPixel;
+  bool lookupInput;  // allocated only when the frame writes the lookup's inputs
 };
 constexpr FrameTarget kFrameTargets[] = {
-    {"frame lookup target", GL_RGBA32F, 16},
-    {"frame receiver-plane target", GL_RG32F, 8},
-    {"frame colour target", GL_RGBA16F, 8},
-    {"frame visibility target", GL_R32F, 4},
-    {"frame diagnostic target", GL_R32F, 4},
-    {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4},
-    {"frame uv-derivatives target", GL_RGBA32F, 16},
-    {"frame cascade target", GL_RG32F, 8},
+    {"frame lookup target", GL_RGBA32F, 16, true},
+    {"frame receiver-plane target", GL_RG32F, 8, true},
+    {"frame colour target", GL_RGBA16F, 8, false},
+    {"frame visibility target", GL_R32F, 4, false},
+    {"frame diagnostic target", GL_R32F, 4, false},
+    {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4, false},
+    {"frame uv-derivatives target", GL_RGBA32F, 16, true},
+    {"frame cascade target", GL_RG32F, 8, true},
 };
 
 }  // namespace
@@ -90,9 +91,11 @@ uint64_t depthBoundsBytes(int width, int height) {
   return uint64_t(width) * uint64_t(height) * 4 + 8;  // D32F target and two uint bounds
 }
 
-uint64_t frameBytes(int width, int height) {
+uint64_t frameBytes(int width, int height, bool lookupInputs) {
   uint64_t perPixel = 0;
-  for (const FrameTarget& target : kFrameTargets) perPixel += target.bytesPerPixel;
+  for (const FrameTarget& target : kFrameTargets) {
+    if (lookupInputs || !target.lookupInput) perPixel += target.bytesPerPixel;
+  }
   return uint64_t(width) * uint64_t(height) * perPixel;
 }
 
@@ -135,7 +138,7 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   if (placesLayersByLloyd(s)) {
     m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, layers);
   }
-  m.frame = frameBytes(s.width, s.height);
+  m.frame = frameBytes(s.width, s.height, s.lookupInputs);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);
   return m;
 }
@@ -170,6 +173,7 @@ std::vector<PlannedTexture> plannedTextures(const RenderSettings& s, LightKind k
   }
   const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
   for (const FrameTarget& target : kFrameTargets) {
+    if (target.lookupInput && !s.lookupInputs) continue;
     t.push_back({target.what, GL_PROXY_TEXTURE_2D, target.format, 1, s.width, s.height, 1, 1,
                  pixels * uint64_t(target.bytesPerPixel)});
   }

@@ -28,7 +28,9 @@ int shadowMapLayers(const RenderSettings& settings, LightKind light);
 
 // Bytes of the allocations that are not channel textures (channel_layout.h has those).
 uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sample
-uint64_t frameBytes(int width, int height);               // the camera pass's seven targets
+// The camera pass's targets: colour, visibility, diagnostic and depth, and the lookup's four
+// inputs when it writes them (RenderSettings::lookupInputs).
+uint64_t frameBytes(int width, int height, bool lookupInputs);
 uint64_t depthBoundsBytes(int width, int height);         // the depth-bounds pass
 struct SummedAreaSizes {
   size_t extremes, stats, sums;  // two keys, {centre, step} and the 64-bit sums per channel

@@ -96,6 +96,9 @@ LookupPixel lookupPixelInNextCascade(const LookupPixel& pixel, const CascadeFram
 }
 
 LookupPixel lookupPixelAt(const RenderResult& r, int x, int y) {
+  if (r.lookup.channels() != 4) {
+    throw Error("the frame has no lookup inputs: render it with RenderSettings::lookupInputs");
+  }
   LookupPixel p;
   p.uv = {r.lookup.at(x, y, 0), r.lookup.at(x, y, 1)};
   p.receiverDepth = r.lookup.at(x, y, 2);
@@ -176,6 +179,7 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   checkRange("reference supersampling", supersample, 1, 8);
   RenderSettings big = settings;
   big.msaaSamples = 1;
+  big.lookupInputs = true;  // the CPU completes the pixels the GPU leaves from them
   big.width = settings.width * supersample;
   big.height = settings.height * supersample;
   requireCascadableLight(settings.cascades, view.light);
@@ -301,17 +305,20 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   const bool fused = s.shadows.state().fused;
 
-  s.camera.prepare(settings.width, settings.height);
+  const bool lookupInputs = reference || settings.lookupInputs;
+  s.camera.prepare(settings.width, settings.height, lookupInputs);
   s.camera.render(s.programs, *s.scene, settings, frame, s.shadows, reference);
 
   RenderResult result;
   result.color = s.camera.readColor();
   result.visibility = s.camera.readVisibility();
   result.diagnostic = s.camera.readDiagnostic();
-  result.lookup = s.camera.readLookup();
-  result.receiverPlane = s.camera.readReceiverPlane();
-  result.uvDerivatives = s.camera.readUvDerivatives();
-  result.cascades = s.camera.readCascades();
+  if (lookupInputs) {
+    result.lookup = s.camera.readLookup();
+    result.receiverPlane = s.camera.readReceiverPlane();
+    result.uvDerivatives = s.camera.readUvDerivatives();
+    result.cascades = s.camera.readCascades();
+  }
   result.cascadeFrame = frame.cascades;
   result.cascadeBlurs = s.cascadeBlurs;
   result.depthBounds = range;

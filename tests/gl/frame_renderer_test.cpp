@@ -75,6 +75,7 @@ class FrameRenderer : public testing::GlTest {};
 
 gl::RenderSettings smallSettings(Technique technique) {
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the tests read the lookup's inputs
   s.technique = technique;
   s.shadowMapSize = 256;
   s.width = 96;

@@ -140,6 +140,7 @@ TEST_P(LookupParity, GpuVisibilityEqualsTheCpuTwinOnEveryScene) {
     const Scene scene = makeBuiltinScene(sceneName);
     for (const ParityCase& c : casesFor(technique)) {
       gl::RenderSettings s;
+      s.lookupInputs = true;  // the test reads the lookup's inputs
       s.technique = technique;
       s.params = c.params;
       s.filter = c.filter;
@@ -221,6 +222,7 @@ TEST_F(ReferenceParity, GpuFilteredReferenceEqualsTheCpuTwinsOnEveryScene) {
     for (FilterMode f : {FilterMode::Point, FilterMode::Bilinear, FilterMode::Trilinear,
                          FilterMode::Anisotropic, FilterMode::SummedArea}) {
       gl::RenderSettings s;
+      s.lookupInputs = true;  // the test reads the lookup's inputs
       s.technique = Technique::Pcf;
       s.filter = f;
       s.shadowMapSize = 128;
@@ -278,6 +280,7 @@ TEST_F(ReferenceParity, WideMinifiedKernelsAreNeverTruncatedByTheDriver) {
   // leaves such pixels to the CPU twin: every pixel must equal the CPU reference.
   gl::Renderer renderer(*context);
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the test reads the lookup's inputs
   s.technique = Technique::Pcf;
   s.filter = FilterMode::Trilinear;
   s.shadowMapSize = 1024;

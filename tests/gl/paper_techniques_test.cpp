@@ -27,6 +27,7 @@ class PaperTechniques : public testing::GlTest {
 
   gl::RenderSettings settings(Technique t, std::initializer_list<const char*> params = {}) const {
     gl::RenderSettings s;
+    s.lookupInputs = true;  // the tests read the lookup's inputs
     s.technique = t;
     s.shadowMapSize = 512;
     s.width = 480;

@@ -110,6 +110,7 @@ SeamMeasure measureSeams(const gl::RenderResult& r, float sphereDepthFloor) {
 
 gl::RenderSettings seamSettings(Technique t) {
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the test reads the lookup's inputs
   s.technique = t;
   s.filter = FilterMode::Bilinear;
   s.shadowMapSize = 256;
@@ -160,6 +161,7 @@ void expectEveryTechniqueFiniteInUnitRangeAndLitWhereNothingOccludes(
   for (Technique t : allTechniques()) {
     for (FilterMode f : filters) {
       gl::RenderSettings s;
+      s.lookupInputs = true;  // the test reads the lookup's inputs
       s.technique = t;
       s.filter = f;
       s.shadowMapSize = 128;
@@ -217,6 +219,7 @@ constexpr float kSoftSize = 0.25f;
 // filterable techniques widen a trilinear lookup (they cannot widen a bilinear one).
 gl::RenderSettings softSeamSettings(Technique t) {
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the test reads the lookup's inputs
   s.technique = t;
   s.filter = t == Technique::Pcf ? FilterMode::Bilinear : FilterMode::Trilinear;
   s.shadowMapSize = 256;
@@ -268,6 +271,7 @@ TEST_F(PointLight, CascadesAndUnwidenableSoftFiltersAreRefusedNamingWhy) {
   gl::Renderer renderer(*context);
   Scene scene = makeBuiltinScene("lantern");
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the test reads the lookup's inputs
   s.shadowMapSize = 128;
   s.width = 32;
   s.height = 32;

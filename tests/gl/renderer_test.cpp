@@ -13,6 +13,7 @@
 #include "penumbra/filters.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/gl/scene_buffers.h"
+#include "penumbra/metrics.h"
 #include "penumbra/params.h"
 #include "penumbra/storage_format.h"
 #include "penumbra/summed_area_table.h"
@@ -31,6 +32,7 @@ class RendererTest : public testing::GlTest {
 
   gl::RenderSettings small(Technique t) const {
     gl::RenderSettings s;
+    s.lookupInputs = true;  // the tests read the lookup's inputs
     s.technique = t;
     s.shadowMapSize = 256;
     s.width = 160;
@@ -571,6 +573,31 @@ TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
     ++rendered;
   }
   EXPECT_GT(rendered, 50);
+}
+
+// The lookup's inputs are compiled out of the camera pass unless asked for
+// (RenderSettings::lookupInputs): the picture, visibility and diagnostic must not change with
+// them, the frame must hold four targets (48 bytes per pixel) fewer, as estimated, and what reads
+// the inputs must refuse such a frame instead of reading nothing. The foliage scene draws
+// alpha-tested and opaque meshes (both variants of the pass); ESM and LVSM write diagnostics.
+TEST_F(RendererTest, AFrameWithoutTheLookupInputsDrawsTheSamePictureInFewerTargets) {
+  const Scene scene = makeBuiltinScene("foliage");
+  for (Technique t : {Technique::Vsm, Technique::Esm, Technique::Lvsm}) {
+    const std::string where(techniqueId(t));
+    gl::RenderSettings lean = small(t);
+    lean.lookupInputs = false;
+    const gl::RenderResult full = renderer->render(scene, small(t));
+    const gl::RenderResult r = renderer->render(scene, lean);
+    // The same arithmetic on the same inputs: only stores were removed, so the bits agree.
+    EXPECT_TRUE(std::ranges::equal(r.color.data(), full.color.data())) << where;
+    EXPECT_TRUE(std::ranges::equal(r.visibility.data(), full.visibility.data())) << where;
+    EXPECT_TRUE(std::ranges::equal(r.diagnostic.data(), full.diagnostic.data())) << where;
+    EXPECT_EQ(full.memory.frame - r.memory.frame, uint64_t(160 * 90 * 48)) << where;
+    EXPECT_EQ(r.memory.frame, gl::estimateMemory(lean).frame) << where;
+    EXPECT_EQ(r.lookup.channels(), 0) << where;
+    EXPECT_THROW(litSurfaceMask(r.lookup), Error) << where;
+    EXPECT_THROW(gl::lookupPixelAt(r, 0, 0), Error) << where;
+  }
 }
 
 TEST_F(RendererTest, SettingsBeyondTheMemoryBudgetAreRefusedWithTheLargestSizeThatFits) {

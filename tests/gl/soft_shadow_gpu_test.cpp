@@ -38,6 +38,7 @@ template <typename Analytic>
 EdgeErrors edgeErrors(gl::Renderer& renderer, const Scene& scene, int samples, int mapSize,
                       float halfBand, Analytic analytic) {
   gl::RenderSettings s;
+  s.lookupInputs = true;  // the test reads the lookup's inputs
   s.shadowMapSize = mapSize;
   s.width = 96;
   s.height = 64;
@@ -139,6 +140,7 @@ TEST_F(SoftShadowGpu, SoftPointLightLookupsEqualTheCpuTwinFaceByFace) {
        {Case{Technique::Pcf, FilterMode::Point}, Case{Technique::Vsm, FilterMode::Trilinear},
         Case{Technique::Msm, FilterMode::SummedArea}}) {
     gl::RenderSettings s;
+    s.lookupInputs = true;  // the test reads the lookup's inputs
     s.technique = c.technique;
     s.filter = c.filter;
     s.shadowMapSize = 256;
@@ -200,6 +202,7 @@ TEST_F(SoftShadowGpu, SoftLookupsEqualTheCpuTwinOnThePenumbraeScene) {
         Case{Technique::Evsm4, FilterMode::Trilinear},
         Case{Technique::Msm, FilterMode::SummedArea}}) {
     gl::RenderSettings s;
+    s.lookupInputs = true;  // the test reads the lookup's inputs
     s.technique = c.technique;
     s.filter = c.filter;
     s.shadowMapSize = 256;

@@ -138,6 +138,7 @@ void runRender(const RenderCommandOptions& options) {
   }
   if (options.frames > 1) requireFfmpeg();
   gl::RenderSettings settings = resolved.render;
+  settings.lookupInputs = true;  // the mostly-shadowed warning reads the lit surfaces
   requireCascadableLight(settings.cascades, scene.light);
 
   CommandOutput output(options.output);  // before any GL work

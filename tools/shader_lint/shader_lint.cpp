@@ -60,7 +60,7 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
-// camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, AXIS and
+// camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, AXIS and
 // the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
 // and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
@@ -103,11 +103,13 @@ std::vector<Defines> variants(const std::string& source) {
     }
   }
   expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
-  // A mesh pass's opaque variant (gl/material_programs.h) beside the first, alpha-tested one.
-  if (source.find("ALPHA_TEST") != std::string::npos) {
-    Defines opaque = result.front();
-    opaque.push_back({"ALPHA_TEST", "0"});
-    result.push_back(opaque);
+  // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h) and the
+  // camera pass without the lookup's inputs (RenderSettings::lookupInputs).
+  for (const char* switchedOff : {"ALPHA_TEST", "LOOKUP_INPUTS"}) {
+    if (source.find(switchedOff) == std::string::npos) continue;
+    Defines off = result.front();
+    off.push_back({switchedOff, "0"});
+    result.push_back(off);
   }
   // The blur kernels' compile-time radius (blurRadiusDefine): a tap, the fused tile's largest
   // (kMaxFusedBlurRadius) and the largest of all (kMaxBlurRadius); blur.comp also compiles

@@ -59,6 +59,12 @@ struct RenderSettings {
   // kernel is the blur above in cascade 0 and the same world size in every other cascade.
   CascadeSettings cascades;
   Overlay overlay = Overlay::None;
+  // Whether a technique's frame writes and reads back the lookup's inputs (RenderResult::lookup,
+  // receiverPlane, uvDerivatives, cascades): what the CPU twin, the lit-surface mask and the
+  // diagnostics read (compare, the viewer's views). Off, the camera pass compiles them out and
+  // allocates four targets fewer; on llvmpipe that took the pass from 2.0x its minimal lookup
+  // to 1.6x (docs/results/passes-llvmpipe-2026-12-05.md). Reference frames always write them.
+  bool lookupInputs = false;
 };
 
 // Where one frame is seen from and lit from.
@@ -122,7 +128,8 @@ struct RenderResult {
   // Per pixel, row 0 at the top: the shadow-map lookup (u, v, receiver depth, w) with w = 1 inside
   // the shadow map on a surface facing the light (N.L > 0.05: where the shadow test decides the
   // shading), 0.5 inside but facing away or grazing, 0 outside; and the receiver plane's depth
-  // gradient per shadow-map texel.
+  // gradient per shadow-map texel. These four are empty unless RenderSettings::lookupInputs (or
+  // a reference frame).
   Image lookup;
   Image receiverPlane;
   Image uvDerivatives;  // per pixel, row 0 at the top: dFdx(uv) and dFdy(uv), the footprint

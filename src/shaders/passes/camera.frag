@@ -2,7 +2,8 @@
 // (shared/point_light_faces.h: the cascades' layers are then the six faces), receiver depth in light space
 // (with normal offset), the technique's visibility (blended with the next cascade in the blend
 // band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour,
-// the float visibility and the lookup's inputs for the CPU twin. Alpha-masked surfaces are cut
+// the float visibility, the diagnostic and, when asked (LOOKUP_INPUTS), the lookup's inputs for
+// the CPU twin. Alpha-masked surfaces are cut
 // out by the same test as in the light pass, in a variant of their own (ALPHA_TEST,
 // lib/material.glsl).
 #if SUMMED_AREA
@@ -16,6 +17,11 @@
 #endif
 #ifndef MSAA
 #define MSAA 0
+#endif
+// 1: write the lookup's inputs (targets 3-6, RenderSettings::lookupInputs); 0: compiled out, so
+// the pass neither computes what only they need nor stores 48 bytes more per pixel.
+#ifndef LOOKUP_INPUTS
+#define LOOKUP_INPUTS 1
 #endif
 // The light's kind and softness are compiled in (CameraPass::render: one program each), so that
 // a pixel does not carry the other kinds' paths: a GPU sizes its registers for the largest path
@@ -71,10 +77,12 @@ uniform float ambient;
 layout(location = 0) out vec4 color;
 layout(location = 1) out float visibilityOut;
 layout(location = 2) out float diagnosticOut;  // ShadowSample's; -1 where nothing is drawn
+#if LOOKUP_INPUTS
 layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, where (see main)
 layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
 layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the lookup's footprint
 layout(location = 6) out vec2 cascadeOut;        // the deciding cascade (-1: none) and blend
+#endif
 
 // Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
 const float kMaxReferenceTestsPerPixel = 48000.0f;
@@ -248,12 +256,14 @@ void main() {
 #endif
   visibilityOut = visibility;
   diagnosticOut = diagnostic;
+#if LOOKUP_INPUTS
   // w: 1 inside the shadow map on a surface facing the light beyond grazing (where the shadow
   // test decides the shading), 0.5 inside but facing away or grazing, 0 outside.
   lookupOut = vec4(uv, receiver, inside ? (cosine > kGrazingCosine ? 1.0f : 0.5f) : 0.0f);
   depthPerTexelOut = depthPerTexel;
   uvDerivativesOut = vec4(uvDx, uvDy);
   cascadeOut = vec2(inside ? float(cascade) : -1.0f, inside ? choice.blend : 0.0f);
+#endif
 #if ALPHA_TEST
   if (!alphaCovers(baseColor.a, alphaCutoff)) discard;
 #endif
