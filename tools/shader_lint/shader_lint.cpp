@@ -111,6 +111,15 @@ std::vector<Defines> variants(const std::string& source) {
     off.push_back({switchedOff, "0"});
     result.push_back(off);
   }
+  // ESM's compiled-in paths (lookupVariantDefines): the Z-max classifier, the paper's fallback
+  // and log-space filtering, beside the first variant (the run-time switches).
+  if (source.find("PENUMBRA_ESM_CLASSIFIER") != std::string::npos) {
+    Defines esm = result.front();
+    esm.push_back({"PENUMBRA_ESM_CLASSIFIER", "2"});
+    esm.push_back({"PENUMBRA_ESM_FALLBACK", "1"});
+    esm.push_back({"PENUMBRA_ESM_FILTER_SPACE", "1"});
+    result.push_back(esm);
+  }
   // The blur kernels' compile-time radius (blurRadiusDefine): a tap, the fused tile's largest
   // (kMaxFusedBlurRadius) and the largest of all (kMaxBlurRadius); blur.comp also compiles
   // without it (cascades: a uniform radius).

@@ -72,6 +72,24 @@ LookupSettings lookupSettings(int cascade) {
   return s;
 }
 
+// The technique's parameters as the lookup reads them: the block's, with those that choose
+// among whole paths of the lookup compiled in (lookupVariantDefines: ESM's classifier, fallback
+// and filter space), so the paths not taken fold away. Run-time switches are not free here:
+// llvmpipe ran every path, and ESM's camera pass took 6x its minimal lookup (3.5x compiled in).
+TechniqueParams lookupParams() {
+  TechniqueParams p = penumbraParams;
+#ifdef PENUMBRA_ESM_CLASSIFIER
+  p.esm.classifier = PENUMBRA_ESM_CLASSIFIER;
+#endif
+#ifdef PENUMBRA_ESM_FALLBACK
+  p.esm.fallback = PENUMBRA_ESM_FALLBACK;
+#endif
+#ifdef PENUMBRA_ESM_FILTER_SPACE
+  p.esm.filterSpace = PENUMBRA_ESM_FILTER_SPACE;
+#endif
+  return p;
+}
+
 int channelLayer(LookupSources s, int layer) {
   return s.cascade * penumbraLookup.layersPerCascade + layer;
 }

@@ -37,7 +37,7 @@ float penumbraShadow(int layer, vec3 shadowCoord, vec2 dx, vec2 dy, vec2 depthPe
   hard.texelWorldSize = 1.0f;
   hard.maxWidthTexels = kMaxSoftWidthTexels;
   ShadowSample s =
-      shadowLookup(sources, lookupSettings(layer), penumbraTechnique, penumbraParams, uv,
+      shadowLookup(sources, lookupSettings(layer), penumbraTechnique, lookupParams(), uv,
                    penumbraReceiverDepth(shadowCoord.z), dx, dy, depthPerTexel, hard);
   return s.visibility;
 }

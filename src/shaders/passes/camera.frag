@@ -148,7 +148,7 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
   light.maxWidthTexels =
       pointLight != 0 ? pointLightSoftWidthTexels(penumbraLookup.shadowMapSize)
                       : kMaxSoftWidthTexels;
-  ShadowSample shadow = shadowLookup(sources, settings, penumbraTechnique, penumbraParams, uv,
+  ShadowSample shadow = shadowLookup(sources, settings, penumbraTechnique, lookupParams(), uv,
                                      receiver, uvDx, uvDy, depthPerTexel, light);
   return vec2(shadow.visibility, shadow.diagnostic);
 #endif
