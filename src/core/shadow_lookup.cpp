@@ -42,16 +42,12 @@ vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod) {
   const CpuLookupTextures& t = *s.textures;
   const TrilinearLevels levels = trilinearLevels(lod, int(t.channels.size()));
   const int size = t.settings.shadowMapSize;
-  vec4 v(0.0f);
-  for (int k = 0; k < 4; ++k) {
-    ChannelAccumulator a = startReduction(kReduceMean, 0.0f);
-    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.level, mipLevelSize(size, levels.level),
-                           1.0f - levels.fraction);
-    a = accumulateBilinear(s, a, 4 * layer + k, uv, levels.next, mipLevelSize(size, levels.next),
-                           levels.fraction);
-    v[k] = reductionResult(a);
-  }
-  return v;
+  LayerAccumulator a = startLayerReduction(ivec4(kReduceMean), 0.0f);
+  a = accumulateBilinear(s, a, layer, uv, levels.level, mipLevelSize(size, levels.level),
+                         1.0f - levels.fraction);
+  a = accumulateBilinear(s, a, layer, uv, levels.next, mipLevelSize(size, levels.next),
+                         levels.fraction);
+  return layerReductionResult(a);
 }
 
 // The driver's anisotropic filter, which the CPU cannot know: the usual model of it, the probes

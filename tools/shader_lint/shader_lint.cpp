@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "penumbra/error.h"
@@ -60,8 +61,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
-// camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, AXIS and
-// the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
+// camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, the
+// lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
 // and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
@@ -103,22 +104,24 @@ std::vector<Defines> variants(const std::string& source) {
     }
   }
   expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
-  // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h) and the
-  // camera pass without the lookup's inputs (RenderSettings::lookupInputs).
-  for (const char* switchedOff : {"ALPHA_TEST", "LOOKUP_INPUTS"}) {
-    if (source.find(switchedOff) == std::string::npos) continue;
-    Defines off = result.front();
-    off.push_back({switchedOff, "0"});
-    result.push_back(off);
-  }
-  // ESM's compiled-in paths (lookupVariantDefines): the Z-max classifier, the paper's fallback
-  // and log-space filtering, beside the first variant (the run-time switches).
-  if (source.find("PENUMBRA_ESM_CLASSIFIER") != std::string::npos) {
-    Defines esm = result.front();
-    esm.push_back({"PENUMBRA_ESM_CLASSIFIER", "2"});
-    esm.push_back({"PENUMBRA_ESM_FALLBACK", "1"});
-    esm.push_back({"PENUMBRA_ESM_FILTER_SPACE", "1"});
-    result.push_back(esm);
+  // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h), the camera
+  // pass without the lookup's inputs (RenderSettings::lookupInputs), and lookupVariantDefines'
+  // compiled-in paths: the channel texture's layer count, ESM's Z-max classifier, the paper's
+  // fallback and log-space filtering (the first variant has their run-time switches).
+  const std::vector<std::pair<const char*, Defines>> beside{
+      {"ALPHA_TEST", {{"ALPHA_TEST", "0"}}},
+      {"LOOKUP_INPUTS", {{"LOOKUP_INPUTS", "0"}}},
+      {"PENUMBRA_CHANNEL_LAYERS", {{"PENUMBRA_CHANNEL_LAYERS", "3"}}},
+      {"PENUMBRA_ESM_CLASSIFIER",
+       {{"PENUMBRA_ESM_CLASSIFIER", "2"},
+        {"PENUMBRA_ESM_FALLBACK", "1"},
+        {"PENUMBRA_ESM_FILTER_SPACE", "1"}}}};
+  const Defines first = result.front();
+  for (const auto& [trigger, extra] : beside) {
+    if (source.find(trigger) == std::string::npos) continue;
+    Defines with = first;
+    with.insert(with.end(), extra.begin(), extra.end());
+    result.push_back(with);
   }
   // The blur kernels' compile-time radius (blurRadiusDefine): a tap, the fused tile's largest
   // (kMaxFusedBlurRadius) and the largest of all (kMaxBlurRadius); blur.comp also compiles
