@@ -274,9 +274,6 @@ std::vector<ShaderDefine> lookupVariantDefines(const ShadowFilter::State& s, boo
                                      {"ZMAX", zmax ? "1" : "0"},
                                      {"MSAA", s.depth.multisampled() ? "1" : "0"},
                                      {"PENUMBRA_FILTER_MODE", std::to_string(int(s.settings.filter))}};
-  // The channel texture's layers per map (shared/shadow_lookup.h filterChannels).
-  defines.push_back({"PENUMBRA_CHANNEL_LAYERS",
-                     std::to_string(channelLayout(s.settings.technique, s.params).layers)});
   // The parameters that choose among whole paths of the lookup (lib/lookup_access.glsl
   // lookupParams): ESM's took its camera pass from 6x its minimal lookup to 3.5x on llvmpipe.
   if (s.settings.technique == Technique::Esm) {

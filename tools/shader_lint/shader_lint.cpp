@@ -106,12 +106,11 @@ std::vector<Defines> variants(const std::string& source) {
   expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
   // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h), the camera
   // pass without the lookup's inputs (RenderSettings::lookupInputs), and lookupVariantDefines'
-  // compiled-in paths: the channel texture's layer count, ESM's Z-max classifier, the paper's
+  // compiled-in paths: ESM's Z-max classifier, the paper's
   // fallback and log-space filtering (the first variant has their run-time switches).
   const std::vector<std::pair<const char*, Defines>> beside{
       {"ALPHA_TEST", {{"ALPHA_TEST", "0"}}},
       {"LOOKUP_INPUTS", {{"LOOKUP_INPUTS", "0"}}},
-      {"PENUMBRA_CHANNEL_LAYERS", {{"PENUMBRA_CHANNEL_LAYERS", "3"}}},
       {"PENUMBRA_ESM_CLASSIFIER",
        {{"PENUMBRA_ESM_CLASSIFIER", "2"},
         {"PENUMBRA_ESM_FALLBACK", "1"},

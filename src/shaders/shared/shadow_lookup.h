@@ -148,16 +148,7 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
     return f;
   }
 #endif
-#ifdef PENUMBRA_CHANNEL_LAYERS
-  // A GPU variant knows the texture's layer count (lookupVariantDefines): a loop of that fixed
-  // length that skips the layers the receiver does not read. Bounded by the receiver's layers,
-  // the loop indexes f.values at run time, which llvmpipe keeps in memory: LVSM's camera pass
-  // took 3x its minimal lookup.
-  for (int layer = 0; layer < PENUMBRA_CHANNEL_LAYERS; ++layer) {
-    if (layer < range.x / 4 || layer > range.y / 4) continue;
-#else
   for (int layer = range.x / 4; layer <= range.y / 4; ++layer) {
-#endif
     bool linear = true;  // every channel of this layer that is read averages linearly
     for (int k = 0; k < 4; ++k) {
       int c = 4 * layer + k;
