@@ -103,6 +103,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
                         const ShadowFilter& shadows, bool reference) {
   // The lookup's variant and bindings are the filter's, as a host's shader gets them.
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), reference);
+  for (const ShaderDefine& d : lookupParameterDefines(shadows.state())) defines.push_back(d);
   defines.push_back({"REFERENCE", reference ? "1" : "0"});
   defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
   defines.push_back({"POINT_LIGHT", frame.pointLight ? "1" : "0"});

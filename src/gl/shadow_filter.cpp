@@ -270,19 +270,18 @@ std::vector<ShaderDefine> lookupVariantDefines(const ShadowFilter::State& s, boo
   const bool summedArea = !reference && s.filtered && s.settings.filter == FilterMode::SummedArea &&
                           s.maps.hasSummedAreaTable();
   const bool zmax = !reference && s.filtered && s.zmax.built();
-  std::vector<ShaderDefine> defines{{"SUMMED_AREA", summedArea ? "1" : "0"},
-                                     {"ZMAX", zmax ? "1" : "0"},
-                                     {"MSAA", s.depth.multisampled() ? "1" : "0"},
-                                     {"PENUMBRA_FILTER_MODE", std::to_string(int(s.settings.filter))}};
-  // The parameters that choose among whole paths of the lookup (lib/lookup_access.glsl
-  // lookupParams): ESM's took its camera pass from 6x its minimal lookup to 3.5x on llvmpipe.
-  if (s.settings.technique == Technique::Esm) {
-    const shaders::EsmParams& esm = s.params.esm;
-    defines.push_back({"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)});
-    defines.push_back({"PENUMBRA_ESM_FALLBACK", std::to_string(esm.fallback)});
-    defines.push_back({"PENUMBRA_ESM_FILTER_SPACE", std::to_string(esm.filterSpace)});
-  }
-  return defines;
+  return {{"SUMMED_AREA", summedArea ? "1" : "0"},
+          {"ZMAX", zmax ? "1" : "0"},
+          {"MSAA", s.depth.multisampled() ? "1" : "0"},
+          {"PENUMBRA_FILTER_MODE", std::to_string(int(s.settings.filter))}};
+}
+
+std::vector<ShaderDefine> lookupParameterDefines(const ShadowFilter::State& s) {
+  if (s.settings.technique != Technique::Esm) return {};
+  const shaders::EsmParams& esm = s.params.esm;
+  return {{"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)},
+          {"PENUMBRA_ESM_FALLBACK", std::to_string(esm.fallback)},
+          {"PENUMBRA_ESM_FILTER_SPACE", std::to_string(esm.filterSpace)}};
 }
 
 ShadowFilter::ShadowFilter() {

@@ -616,6 +616,7 @@ TEST(Viewer, TheErrorViewOnceCompleteEqualsTheRenderersReference) {
   gl::applySettingsFile(settingsPath, settings);
   gl::RenderSettings render = settings.render;
   render.technique = settings.techniques.front();
+  render.lookupInputs = true;  // as the viewer renders: its views read the lit surfaces
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   const Scene scene = loadScene(settings.scene);
@@ -687,6 +688,7 @@ TEST(Viewer, TheTrueShadowErrorViewMarksSilhouettesAndIsZeroOnLitGround) {
   gl::applySettingsFile(settingsPath, settings);
   gl::RenderSettings render = settings.render;
   render.technique = settings.techniques.front();
+  render.lookupInputs = true;  // as the viewer renders: its views read the lit surfaces
   gl::HeadlessContext context;
   gl::Renderer renderer(context);
   const Scene scene = loadScene(settings.scene);

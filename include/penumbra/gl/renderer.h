@@ -129,7 +129,7 @@ struct RenderResult {
   // the shadow map on a surface facing the light (N.L > 0.05: where the shadow test decides the
   // shading), 0.5 inside but facing away or grazing, 0 outside; and the receiver plane's depth
   // gradient per shadow-map texel. These four are empty unless RenderSettings::lookupInputs (or
-  // a reference frame).
+  // a reference frame at supersample 1).
   Image lookup;
   Image receiverPlane;
   Image uvDerivatives;  // per pixel, row 0 at the top: dFdx(uv) and dFdy(uv), the footprint
@@ -154,7 +154,8 @@ struct RenderResult {
 bool fusesPrefilter(const RenderSettings& settings, int radius);
 
 // Pixel (x, y)'s lookup inputs (its cascade's uv, receiver depth, footprint and receiver
-// plane) as the CPU twin (penumbra/shadow_lookup.h) takes them.
+// plane) as the CPU twin (penumbra/shadow_lookup.h) takes them. Throws Error for a frame without
+// them (rendered without RenderSettings::lookupInputs).
 LookupPixel lookupPixelAt(const RenderResult& result, int x, int y);
 // The same lookup in the next cascade (cascade + 1), for the blend band: the point on the light's
 // plane, its footprint and its receiver plane in that cascade's map (shared/cascade_selection.h).
