@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "penumbra/depth_distribution.h"
+#include "penumbra/gnuplot.h"
 #include "penumbra/technique.h"
 
 namespace penumbra {
@@ -44,5 +45,9 @@ struct CurvesPlotRange {
 void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
                 const std::string& title, const std::filesystem::path& pngPath,
                 CurvesPlotRange range = {});
+// The same plot queued into `gnuplot`, drawn when it runs (gnuplot.h).
+void plotCurves(GnuplotRun& gnuplot, const std::filesystem::path& csvPath,
+                const CurvesTable& table, const std::string& title,
+                const std::filesystem::path& pngPath, CurvesPlotRange range = {});
 
 }  // namespace penumbra

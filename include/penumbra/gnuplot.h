@@ -26,8 +26,9 @@ std::string gnuplotPath(const std::filesystem::path& path);
 // journal (output_journal.h) since gnuplot, not penumbra, creates it.
 std::string gnuplotOutput(const std::filesystem::path& path);
 
-// One gnuplot run: a private scratch folder inside `folder` (which must exist), removed with
-// its contents by the destructor.
+// One gnuplot process: a private scratch folder inside `folder` (which must exist), removed
+// with its contents by the destructor. A report's figures are added one by one and drawn by one
+// process: each gnuplot start costs about 0.1 s (fonts, cairo), most of a heat map's time.
 class GnuplotRun {
  public:
   explicit GnuplotRun(const std::filesystem::path& folder);
@@ -38,12 +39,22 @@ class GnuplotRun {
   // A path in the private folder for a data file the script reads (`name` a plain file name).
   std::filesystem::path scratchFile(std::string_view name) const;
 
-  // Writes the script into the private folder and runs gnuplot on it; throws Error with
-  // gnuplot's own message when it fails or is not installed.
+  // Queues one figure's script (its own terminal and output). Each figure starts from
+  // gnuplot's defaults (`reset`), so no setting leaks from one figure into the next.
+  void add(const std::string& figure);
+  // How many figures have been queued since this run began (names their scratch files apart).
+  int figureCount() const { return figures_; }
+
+  // Writes the queued figures into the private folder as one script and runs gnuplot on it
+  // once; throws Error with gnuplot's own message when it fails or is not installed.
+  void run();
+  // add(script), then run().
   void run(const std::string& script);
 
  private:
   std::filesystem::path scratch_;
+  std::string script_;
+  int figures_ = 0;
 };
 
 }  // namespace penumbra

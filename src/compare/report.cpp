@@ -684,6 +684,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     if (ec) throw Error("cannot create " + (dir / sub).string() + ": " + ec.message());
   }
   const double range = 0.5;
+  GnuplotRun gnuplot(dir);  // every figure of the report, drawn by one gnuplot process
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
   // Visibility is a quantity, not light: its value is the grey level (no sRGB encoding).
@@ -706,11 +707,11 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     writeColorPng(color, dir / "images" / (id + "_shaded.png"));
     writeGrey16Png(markNonFinite(t.visibility, kValueMarker),
                    dir / "images" / (id + "_visibility.png"));
-    plotErrorHeatMap(markNonFinite(t.error, kValueMarker), range,
+    plotErrorHeatMap(gnuplot, markNonFinite(t.error, kValueMarker), range,
                      id + ": visibility error against the " + referenceName(r),
                      dir / "images" / (id + "_error.png"));
     if (t.truth) {
-      plotErrorHeatMap(markNonFinite(t.truthError, kValueMarker), range,
+      plotErrorHeatMap(gnuplot, markNonFinite(t.truthError, kValueMarker), range,
                        id + ": visibility error against the ray-traced truth",
                        dir / "images" / (id + "_truth_error.png"));
     }
@@ -729,11 +730,11 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
   const int tileHeight =
       std::clamp(tileWidth * r.referenceColor.height() / std::max(1, r.referenceColor.width()), 1,
                  2 * tileWidth);
-  plotImageGrid(tiles, 3, tileWidth, tileHeight, dir / "grid.png");
-  plotParetoScatter(byMemory, "technique memory (MiB, log scale)", rankingName(r),
+  plotImageGrid(gnuplot, tiles, 3, tileWidth, tileHeight, dir / "grid.png");
+  plotParetoScatter(gnuplot, byMemory, "technique memory (MiB, log scale)", rankingName(r),
                     r.scene.name + ": error against memory", true,
                     dir / "plots" / "error_vs_memory.png");
-  plotParetoScatter(byTime, "frame time (wall ms, log scale)", rankingName(r),
+  plotParetoScatter(gnuplot, byTime, "frame time (wall ms, log scale)", rankingName(r),
                     r.scene.name + ": error against time", true,
                     dir / "plots" / "error_vs_time.png");
   const bool hasCurves = !r.worstRegion.empty();
@@ -753,9 +754,10 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     std::ostringstream title;
     title << "worst pixel (" << r.worstX << ", " << r.worstY << ") of " << r.worstTechnique
           << ", receiver at " << std::setprecision(4) << r.worstReceiverDepth;
-    plotCurves(dir / "plots" / "worst_pixel_curves.csv", table, title.str(),
+    plotCurves(gnuplot, dir / "plots" / "worst_pixel_curves.csv", table, title.str(),
                dir / "plots" / "worst_pixel_curves.png");
   }
+  gnuplot.run();
   writeMetrics(r, dir);
   writeHtml(r, dir, hasCurves);
 }

@@ -29,10 +29,10 @@ std::string gnuplotPalette() {
 
 }  // namespace
 
-void plotErrorHeatMap(const Image& error, double range, const std::string& title,
-                      const std::filesystem::path& png) {
-  GnuplotRun gnuplot(png.parent_path());
-  const std::filesystem::path data = gnuplot.scratchFile("error.bin");
+void plotErrorHeatMap(GnuplotRun& gnuplot, const Image& error, double range,
+                      const std::string& title, const std::filesystem::path& png) {
+  const std::filesystem::path data =
+      gnuplot.scratchFile("error-" + std::to_string(gnuplot.figureCount()) + ".bin");
   {
     std::ofstream out(data, std::ios::binary);
     out.write(reinterpret_cast<const char*>(error.data().data()),
@@ -53,11 +53,18 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
      << "]\n"
      << "plot " << gnuplotPath(data) << " binary array=(" << error.width() << ","
      << error.height() << ") format='%float' flipy with image notitle\n";
-  gnuplot.run(gp.str());
+  gnuplot.add(gp.str());
 }
 
-void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidth, int tileHeight,
-                   const std::filesystem::path& png) {
+void plotErrorHeatMap(const Image& error, double range, const std::string& title,
+                      const std::filesystem::path& png) {
+  GnuplotRun gnuplot(png.parent_path());
+  plotErrorHeatMap(gnuplot, error, range, title, png);
+  gnuplot.run();
+}
+
+void plotImageGrid(GnuplotRun& gnuplot, const std::vector<GridTile>& tiles, int columns,
+                   int tileWidth, int tileHeight, const std::filesystem::path& png) {
   const int rows = (int(tiles.size()) + columns - 1) / columns;
   std::ostringstream gp;
   gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 30)
@@ -71,15 +78,15 @@ void plotImageGrid(const std::vector<GridTile>& tiles, int columns, int tileWidt
        << "plot " << gnuplotPath(t.png) << " binary filetype=png with rgbimage\n";
   }
   gp << "unset multiplot\n";
-  GnuplotRun(png.parent_path()).run(gp.str());
+  gnuplot.add(gp.str());
 }
 
-void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::string& xLabel,
-                       const std::string& yLabel, const std::string& title, bool logX,
-                       const std::filesystem::path& png) {
-  GnuplotRun gnuplot(png.parent_path());
-  const std::filesystem::path data = gnuplot.scratchFile("points.dat");
-  const std::filesystem::path front = gnuplot.scratchFile("front.dat");
+void plotParetoScatter(GnuplotRun& gnuplot, const std::vector<ScatterPoint>& points,
+                       const std::string& xLabel, const std::string& yLabel,
+                       const std::string& title, bool logX, const std::filesystem::path& png) {
+  const std::string figure = std::to_string(gnuplot.figureCount());
+  const std::filesystem::path data = gnuplot.scratchFile("points-" + figure + ".dat");
+  const std::filesystem::path front = gnuplot.scratchFile("front-" + figure + ".dat");
   std::vector<ScatterPoint> sorted = points;
   std::sort(sorted.begin(), sorted.end(),
             [](const auto& a, const auto& b) { return a.x < b.x || (a.x == b.x && a.y < b.y); });
@@ -107,7 +114,7 @@ void plotParetoScatter(const std::vector<ScatterPoint>& points, const std::strin
      << gnuplotPath(data)
      << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
      << "'' using 1:2:3 with labels offset 0,1 font ',9' notitle noenhanced\n";
-  gnuplot.run(gp.str());
+  gnuplot.add(gp.str());
 }
 
 }  // namespace penumbra::compare

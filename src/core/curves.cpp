@@ -65,6 +65,14 @@ void writeCurvesCsv(const CurvesTable& table, const std::filesystem::path& path)
 void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
                 const std::string& title, const std::filesystem::path& pngPath,
                 CurvesPlotRange range) {
+  GnuplotRun gnuplot(pngPath.parent_path());
+  plotCurves(gnuplot, csvPath, table, title, pngPath, range);
+  gnuplot.run();
+}
+
+void plotCurves(GnuplotRun& gnuplot, const std::filesystem::path& csvPath,
+                const CurvesTable& table, const std::string& title,
+                const std::filesystem::path& pngPath, CurvesPlotRange range) {
   if (!(range.from >= 0.0f && range.from < range.to && range.to <= 1.0f)) {
     throw Error("curve plot range [" + std::to_string(range.from) + ", " +
                 std::to_string(range.to) + "] is not a window of [0, 1]");
@@ -92,7 +100,7 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
        << ")";
   }
   gp << "\n";
-  GnuplotRun(pngPath.parent_path()).run(gp.str());
+  gnuplot.add(gp.str());
 }
 
 }  // namespace penumbra

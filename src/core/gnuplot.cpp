@@ -108,10 +108,24 @@ fs::path GnuplotRun::scratchFile(std::string_view name) const {
   return scratch_ / file;
 }
 
+void GnuplotRun::add(const std::string& figure) {
+  // `reset` leaves the terminal and output alone; each figure sets its own. `unset output`
+  // closes each figure's file once it is drawn rather than when the next figure opens its own.
+  script_ += "reset\n" + figure + (figure.empty() || figure.back() == '\n' ? "" : "\n") +
+             "unset output\n";
+  ++figures_;
+}
+
 void GnuplotRun::run(const std::string& script) {
+  add(script);
+  run();
+}
+
+void GnuplotRun::run() {
   const fs::path scriptPath = scratch_ / "plot.gp";
   const fs::path logPath = scratch_ / "gnuplot.log";
-  writeNewFile(scriptPath, script);
+  writeNewFile(scriptPath, script_);
+  script_.clear();
   recordOutput(logPath);
   const ProgramResult result = runProgram({"gnuplot", scriptPath.string()}, logPath);
   std::error_code ec;

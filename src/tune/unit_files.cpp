@@ -120,18 +120,20 @@ void writeUnitFiles(const TuneRequest& request, const UnitResult& r, const fs::p
     gl::writeSettingsFile(dir / kBestFile, best);
   }
   writeColorPng(r.defaultColor, dir / "default_shaded.png");
-  compare::plotErrorHeatMap(r.defaultError, kHeatMapRange,
+  GnuplotRun gnuplot(dir);  // both heat maps, one gnuplot process
+  compare::plotErrorHeatMap(gnuplot, r.defaultError, kHeatMapRange,
                             std::string(techniqueId(r.unit.technique)) +
                                 ", the user's setting: visibility - target",
                             dir / "default_error.png");
   writeGrey16Png(displayableVisibility(r.targetVisibility), dir / "target_visibility.png");
   if (r.best >= 0) {
     writeColorPng(r.bestColor, dir / "tuned_shaded.png");
-    compare::plotErrorHeatMap(r.bestError, kHeatMapRange,
+    compare::plotErrorHeatMap(gnuplot, r.bestError, kHeatMapRange,
                               std::string(techniqueId(r.unit.technique)) +
                                   ", tuned: visibility - target",
                               dir / "tuned_error.png");
   }
+  gnuplot.run();
 }
 
 void createUnitsFolder(const fs::path& folder) { createOutputDirectory(folder / kUnitsFolder); }

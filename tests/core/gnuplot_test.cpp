@@ -112,6 +112,41 @@ TEST(Gnuplot, FailureCarriesGnuplotsMessageAndLeavesNothing) {
   EXPECT_TRUE(namesIn(scratch.path()).empty());
 }
 
+std::string readText(const fs::path& path) {
+  std::ifstream in(path);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// A report queues its figures into one run: each figure is drawn to its own file, starts from
+// gnuplot's defaults (the first's title must not reach the second), and a failing figure leaves
+// the ones before it complete.
+TEST(Gnuplot, FiguresQueuedInOneRunAreDrawnApart) {
+  ScratchFolder scratch;
+  const fs::path first = scratch.path() / "first.txt", second = scratch.path() / "second.txt";
+  {
+    GnuplotRun run(scratch.path());
+    run.add("set terminal dumb size 300,12\nset output " + gnuplotPath(first) +
+            "\nset title 'FIRSTTITLE'\nplot x notitle\n");
+    run.add("set terminal dumb size 300,12\nset output " + gnuplotPath(second) +
+            "\nplot x*x notitle\n");
+    EXPECT_EQ(run.figureCount(), 2);
+    run.run();
+  }
+  EXPECT_NE(readText(first).find("FIRSTTITLE"), std::string::npos);
+  EXPECT_FALSE(readText(second).empty());
+  EXPECT_EQ(readText(second).find("FIRSTTITLE"), std::string::npos)
+      << "a setting of one figure leaked into the next";
+
+  const fs::path third = scratch.path() / "third.txt";
+  GnuplotRun failing(scratch.path());
+  failing.add("set terminal dumb size 300,12\nset output " + gnuplotPath(third) +
+              "\nset title 'THIRDTITLE'\nplot x notitle\n");
+  failing.add("plot no_such_function(x)\n");
+  EXPECT_THROW(failing.run(), Error);
+  EXPECT_NE(readText(third).find("THIRDTITLE"), std::string::npos)
+      << "the figure before a failing one was not finished";
+}
+
 TEST(Gnuplot, ScratchFilesStayInThePrivateFolder) {
   ScratchFolder scratch;
   {
