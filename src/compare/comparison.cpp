@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
+#include <optional>
 
 #include "penumbra/compare/error_regions.h"
 #include "penumbra/compare/reference_region.h"
@@ -188,131 +189,133 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   std::unique_ptr<truth::RayScene> rays;
   if (traces) rays = std::make_unique<truth::RayScene>(result.scene);
   const bool plays = result.scene.animation.moves();
+  // The scene's own animation plays in real time along the path (kClipFramesPerSecond); it is
+  // loaded posed at its first frame.
+  size_t shownFrame = 0;
+  auto showFrame = [&](size_t frame) {
+    if (!plays || frame == shownFrame) return;
+    poseScene(result.scene, clipTime(result.scene, int(frame)));
+    renderer.setScene(result.scene);
+    shownFrame = frame;
+  };
+  // The references of every frame first, then each technique along the whole path: a
+  // technique's channels are allocated once for the path, not again at every frame (allocating
+  // zero-fills them, a third of a frame on llvmpipe), and its last frame is a warm one.
+  std::optional<gl::RenderResult> firstReference;
+  std::vector<Image> depths;  // every cascade's depth for the worst pixel's curves
   for (size_t frame = 0; frame < path.size(); ++frame) {
     const gl::FrameView view{path[frame], result.scene.light};
-    if (plays && frame > 0) {
-      // The scene's own animation plays in real time along the path (kClipFramesPerSecond).
-      poseScene(result.scene, clipTime(result.scene, int(frame)));
-      renderer.setScene(result.scene);
-    }
+    showFrame(frame);
     step("reference, frame " + std::to_string(frame + 1));
-    const gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1);
+    gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1);
     references.push_back(reference.visibility);
-    if (frame == 0) {
-      result.referenceColor = reference.color;
-      result.referenceVisibility = reference.visibility;
-      result.coverage = litSurfaceMask(reference.lookup);
-      if (std::none_of(result.coverage.data().begin(), result.coverage.data().end(),
-                       [](float m) { return m > 0.5f; })) {
-        // Every metric would be 0 over no pixels: a silent perfect score.
-        throw Error("scene '" + result.scene.name + "' shows no lit surface inside the shadow map" +
-                    (request.settings.cascades.count > 1
-                         ? "s (is the view beyond --shadow-distance?)"
-                         : " (does the light face the view?)") +
-                    ": nothing to measure");
-      }
-      // Every cascade's depth (the worst pixel may lie in any), read before the techniques'
-      // light passes (which may be multisampled) replace them.
-      std::vector<Image> depths;
-      for (int c = 0; c < reference.cascadeFrame.count; ++c)
-        depths.push_back(renderer.readDepthMap(c));
-      // Kept for the worst pixel's curves, found once every technique is measured.
-      result.worstRegion.clear();
-      step("supersampled ground truth");
-      result.groundTruthVisibility =
-          renderReferenceFor(request, renderer, view, areaLight, request.supersample).visibility;
-      if (traces) {
-        step("ray-traced truth");
-        const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels
-        const int traceStep = done - 1;
-        result.truth = measureTruth(
-            *rays, request, result.scene, path[frame],
-            {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
-            [&](int rows, int of) {
-              if (progress) {
-                progress(
-                    traceStep, total,
-                    "ray-traced truth, row " + std::to_string(rows) + " of " + std::to_string(of));
-              }
-            });
-      }
-      const Image leakCoverage = whereLeaksCount(result.coverage, result.truth);
-      result.techniques.resize(request.techniques.size());
-      double worst = -1.0;
-      for (size_t k = 0; k < request.techniques.size(); ++k) {
-        const Technique t = request.techniques[k];
-        step(std::string(techniqueId(t)) + ", frame 1");
-        const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight), view);
-        TechniqueResult& out = result.techniques[k];
-        out.technique = t;
-        out.params = r.params;
-        out.filtered = errorsAgainstReference(r.visibility, reference.visibility, result.coverage,
-                                              leakCoverage, request.tau);
-        out.groundTruth = errorsAgainstReference(r.visibility, result.groundTruthVisibility,
-                                                 result.coverage, leakCoverage, request.tau);
-        if (result.truth) {
-          out.truth = measureVisibilityErrors(r.visibility, result.truth->visibility,
-                                              result.truth->coverage, request.tau);
-          out.truthError =
-              signedVisibilityError(r.visibility, result.truth->visibility, result.truth->coverage);
-          out.filteringRmseOnTruthPixels =
-              measureVisibilityErrors(r.visibility, reference.visibility, result.truth->coverage,
-                                      request.tau)
-                  .rmse;
-        }
-        out.failureRatePercent = r.failureRatePercent;
-        out.gpuTimes = r.gpuTimes;
-        out.wallTimes = r.wallTimes;
-        out.memory = r.memory;
-        out.color = r.color;
-        out.visibility = r.visibility;
-        out.error = signedVisibilityError(r.visibility, reference.visibility, result.coverage);
-        visibilities[k].push_back(r.visibility);
-        masks[k].push_back(litSurfaceMask(r.lookup));
-        // A NaN error (a visibility that is not a number) is the worst there is.
-        if (!isTheReference(request, t, areaLight) && !(out.filtered.maxAbsolute <= worst) &&
-            out.filtered.worstX >= 0) {
-          worst = out.filtered.maxAbsolute;
-          result.worstTechnique = std::string(techniqueId(t));
-          result.worstX = out.filtered.worstX;
-          result.worstY = out.filtered.worstY;
-        }
-      }
-      // The curves plot the filtered reference's kernel, which an area light does not have.
-      if (result.worstX >= 0 && !areaLight) {
-        result.worstReceiverDepth = reference.lookup.at(result.worstX, result.worstY, 2);
-        // The pixel's own cascade and its kernel (in a blend band the reference also mixes in
-        // the next cascade; the curves show the deciding one).
-        const int cascade =
-            std::max(0, int(reference.cascades.at(result.worstX, result.worstY, 0)));
-        result.worstRegion =
-            referenceRegion(depths[size_t(cascade)], reference.lookup, reference.receiverPlane,
-                            result.worstX, result.worstY, reference.cascadeBlurs[size_t(cascade)]);
-      }
-      continue;
+    if (frame > 0) continue;
+    result.referenceColor = reference.color;
+    result.referenceVisibility = reference.visibility;
+    result.coverage = litSurfaceMask(reference.lookup);
+    if (std::none_of(result.coverage.data().begin(), result.coverage.data().end(),
+                     [](float m) { return m > 0.5f; })) {
+      // Every metric would be 0 over no pixels: a silent perfect score.
+      throw Error("scene '" + result.scene.name + "' shows no lit surface inside the shadow map" +
+                  (request.settings.cascades.count > 1
+                       ? "s (is the view beyond --shadow-distance?)"
+                       : " (does the light face the view?)") +
+                  ": nothing to measure");
     }
-    for (size_t k = 0; k < request.techniques.size(); ++k) {
-      const Technique t = request.techniques[k];
+    // Every cascade's depth (the worst pixel may lie in any), read before the next passes
+    // (which may be multisampled) replace them.
+    for (int c = 0; c < reference.cascadeFrame.count; ++c) depths.push_back(renderer.readDepthMap(c));
+    step("supersampled ground truth");
+    result.groundTruthVisibility =
+        renderReferenceFor(request, renderer, view, areaLight, request.supersample).visibility;
+    if (traces) {
+      step("ray-traced truth");
+      const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels
+      const int traceStep = done - 1;
+      result.truth = measureTruth(
+          *rays, request, result.scene, path[frame],
+          {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
+          [&](int rows, int of) {
+            if (progress) {
+              progress(traceStep, total,
+                       "ray-traced truth, row " + std::to_string(rows) + " of " +
+                           std::to_string(of));
+            }
+          });
+    }
+    firstReference = std::move(reference);
+  }
+  const gl::RenderResult& reference = *firstReference;
+  const Image leakCoverage = whereLeaksCount(result.coverage, result.truth);
+  result.techniques.resize(request.techniques.size());
+  result.worstRegion.clear();  // kept for the worst pixel's curves, found below
+  double worst = -1.0;
+  for (size_t k = 0; k < request.techniques.size(); ++k) {
+    const Technique t = request.techniques[k];
+    TechniqueResult& out = result.techniques[k];
+    for (size_t frame = 0; frame < path.size(); ++frame) {
+      showFrame(frame);
       step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
-      const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight), view);
+      const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight),
+                                                 gl::FrameView{path[frame], result.scene.light});
       visibilities[k].push_back(r.visibility);
       masks[k].push_back(litSurfaceMask(r.lookup));
       // Times of the last frame: warm, without the driver's first-use shader compilation.
-      result.techniques[k].gpuTimes = r.gpuTimes;
-      result.techniques[k].wallTimes = r.wallTimes;
+      out.gpuTimes = r.gpuTimes;
+      out.wallTimes = r.wallTimes;
+      if (frame > 0) continue;
+      out.technique = t;
+      out.params = r.params;
+      out.filtered = errorsAgainstReference(r.visibility, reference.visibility, result.coverage,
+                                            leakCoverage, request.tau);
+      out.groundTruth = errorsAgainstReference(r.visibility, result.groundTruthVisibility,
+                                               result.coverage, leakCoverage, request.tau);
+      if (result.truth) {
+        out.truth = measureVisibilityErrors(r.visibility, result.truth->visibility,
+                                            result.truth->coverage, request.tau);
+        out.truthError =
+            signedVisibilityError(r.visibility, result.truth->visibility, result.truth->coverage);
+        out.filteringRmseOnTruthPixels =
+            measureVisibilityErrors(r.visibility, reference.visibility, result.truth->coverage,
+                                    request.tau)
+                .rmse;
+      }
+      out.failureRatePercent = r.failureRatePercent;
+      out.memory = r.memory;
+      out.color = r.color;
+      out.visibility = r.visibility;
+      out.error = signedVisibilityError(r.visibility, reference.visibility, result.coverage);
+      // A NaN error (a visibility that is not a number) is the worst there is.
+      if (!isTheReference(request, t, areaLight) && !(out.filtered.maxAbsolute <= worst) &&
+          out.filtered.worstX >= 0) {
+        worst = out.filtered.maxAbsolute;
+        result.worstTechnique = std::string(techniqueId(t));
+        result.worstX = out.filtered.worstX;
+        result.worstY = out.filtered.worstY;
+      }
     }
+  }
+  // The curves plot the filtered reference's kernel, which an area light does not have.
+  if (result.worstX >= 0 && !areaLight) {
+    result.worstReceiverDepth = reference.lookup.at(result.worstX, result.worstY, 2);
+    // The pixel's own cascade and its kernel (in a blend band the reference also mixes in the
+    // next cascade; the curves show the deciding one).
+    const int cascade = std::max(0, int(reference.cascades.at(result.worstX, result.worstY, 0)));
+    result.worstRegion =
+        referenceRegion(depths[size_t(cascade)], reference.lookup, reference.receiverPlane,
+                        result.worstX, result.worstY, reference.cascadeBlurs[size_t(cascade)]);
   }
   for (size_t k = 0; k < request.techniques.size(); ++k) {
     result.techniques[k].flicker = temporalFlicker(visibilities[k], references, masks[k]);
   }
   // The result's scene as its first frame showed it (the report describes that frame).
-  if (plays) poseScene(result.scene, 0.0f);
+  showFrame(0);
   if (measuresShimmer) {
     // Both fits side by side: the view holds at the path's first camera while the cascades
     // follow the path (FrameView::shadowCamera), so the picture changes only where the maps do.
     // The shadow camera also turns (a quarter degree a frame): tight boxes change size as it
     // turns, which is what the stabilised fit's bounding sphere is for.
-    renderer.setScene(result.scene);  // held at its first pose: only the maps move
+    // The scene is held at its first pose (showFrame(0) above): only the maps move.
     std::vector<Camera> shadowPath = path;
     for (size_t frame = 0; frame < shadowPath.size(); ++frame) {
       Camera& c = shadowPath[frame];
