@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace penumbra {
 
@@ -26,12 +27,16 @@ std::string gnuplotPath(const std::filesystem::path& path);
 // journal (output_journal.h) since gnuplot, not penumbra, creates it.
 std::string gnuplotOutput(const std::filesystem::path& path);
 
-// One gnuplot process: a private scratch folder inside `folder` (which must exist), removed
-// with its contents by the destructor. A report's figures are added one by one and drawn by one
-// process: each gnuplot start costs about 0.1 s (fonts, cairo), most of a heat map's time.
+// A batch of gnuplot figures: a private scratch folder inside `folder` (which must exist),
+// removed with its contents by the destructor. A report adds its figures one by one and run()
+// draws them all with a few gnuplot processes side by side: each start costs about 0.1 s
+// (fonts, cairo), as much as drawing a heat map, and one process uses one core.
 class GnuplotRun {
  public:
-  explicit GnuplotRun(const std::filesystem::path& folder);
+  // `processes`: at most this many gnuplot processes at once; 0: one per core, at most
+  // kMaxProcesses.
+  static constexpr int kMaxProcesses = 4;
+  explicit GnuplotRun(const std::filesystem::path& folder, int processes = 0);
   ~GnuplotRun();
   GnuplotRun(const GnuplotRun&) = delete;
   GnuplotRun& operator=(const GnuplotRun&) = delete;
@@ -41,20 +46,27 @@ class GnuplotRun {
 
   // Queues one figure's script (its own terminal and output). Each figure starts from
   // gnuplot's defaults (`reset`), so no setting leaks from one figure into the next.
-  void add(const std::string& figure);
+  // `pixels`, the figure's canvas size, balances the processes: drawing time follows it.
+  void add(const std::string& figure, double pixels = 1.0);
   // How many figures have been queued since this run began (names their scratch files apart).
-  int figureCount() const { return figures_; }
+  int figureCount() const { return figureCount_; }
 
-  // Writes the queued figures into the private folder as one script and runs gnuplot on it
-  // once; throws Error with gnuplot's own message when it fails or is not installed.
+  // Draws the queued figures (then none are pending) and waits for every process; throws Error
+  // with gnuplot's own message when a process fails (the other processes' figures are drawn)
+  // or gnuplot is not installed.
   void run();
   // add(script), then run().
   void run(const std::string& script);
 
  private:
+  struct Figure {
+    std::string script;
+    double pixels;
+  };
   std::filesystem::path scratch_;
-  std::string script_;
-  int figures_ = 0;
+  int processes_;
+  std::vector<Figure> figures_;
+  int figureCount_ = 0;
 };
 
 }  // namespace penumbra

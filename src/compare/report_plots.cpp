@@ -41,8 +41,8 @@ void plotErrorHeatMap(GnuplotRun& gnuplot, const Image& error, double range,
   }
   std::ostringstream gp;
   // Room for the colour bar and its label whatever the image size.
-  gp << "set terminal pngcairo size " << error.width() + 240 << "," << std::max(error.height() + 80, 340)
-     << " font 'DejaVu Sans,10'\n"
+  const int width = error.width() + 240, height = std::max(error.height() + 80, 340);
+  gp << "set terminal pngcairo size " << width << "," << height << " font 'DejaVu Sans,10'\n"
      << "set output " << gnuplotOutput(png) << "\n"
      << "set title " << gnuplotText(title) << " noenhanced\n"
      << "set palette defined (" << gnuplotPalette() << ")\n"
@@ -51,9 +51,9 @@ void plotErrorHeatMap(GnuplotRun& gnuplot, const Image& error, double range,
      << "unset xtics\nunset ytics\nset size ratio -1\n"
      << "set xrange [-0.5:" << error.width() - 0.5 << "]\nset yrange [-0.5:" << error.height() - 0.5
      << "]\n"
-     << "plot " << gnuplotPath(data) << " binary array=(" << error.width() << ","
-     << error.height() << ") format='%float' flipy with image notitle\n";
-  gnuplot.add(gp.str());
+     << "plot " << gnuplotPath(data) << " binary array=(" << error.width() << "," << error.height()
+     << ") format='%float' flipy with image notitle\n";
+  gnuplot.add(gp.str(), double(width) * height);
 }
 
 void plotErrorHeatMap(const Image& error, double range, const std::string& title,
@@ -66,9 +66,9 @@ void plotErrorHeatMap(const Image& error, double range, const std::string& title
 void plotImageGrid(GnuplotRun& gnuplot, const std::vector<GridTile>& tiles, int columns,
                    int tileWidth, int tileHeight, const std::filesystem::path& png) {
   const int rows = (int(tiles.size()) + columns - 1) / columns;
+  const int width = columns * tileWidth, height = rows * (tileHeight + 30);
   std::ostringstream gp;
-  gp << "set terminal pngcairo size " << columns * tileWidth << "," << rows * (tileHeight + 30)
-     << " font 'DejaVu Sans,11'\n"
+  gp << "set terminal pngcairo size " << width << "," << height << " font 'DejaVu Sans,11'\n"
      << "set output " << gnuplotOutput(png) << "\n"
      << "set multiplot layout " << rows << "," << columns << "\n"
      << "unset key\nunset tics\nunset border\nset size ratio -1\n"
@@ -78,7 +78,7 @@ void plotImageGrid(GnuplotRun& gnuplot, const std::vector<GridTile>& tiles, int 
        << "plot " << gnuplotPath(t.png) << " binary filetype=png with rgbimage\n";
   }
   gp << "unset multiplot\n";
-  gnuplot.add(gp.str());
+  gnuplot.add(gp.str(), double(width) * height);
 }
 
 void plotParetoScatter(GnuplotRun& gnuplot, const std::vector<ScatterPoint>& points,
@@ -111,10 +111,9 @@ void plotParetoScatter(GnuplotRun& gnuplot, const std::vector<ScatterPoint>& poi
         "graph 0.05\n"
      << (logX ? "set logscale x\n" : "") << "plot " << gnuplotPath(front)
      << " using 1:2 with linespoints lw 2 lc rgb '#b2182b' title 'Pareto front', "
-     << gnuplotPath(data)
-     << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
+     << gnuplotPath(data) << " using 1:2 with points pt 7 ps 1.3 lc rgb '#2166ac' notitle, "
      << "'' using 1:2:3 with labels offset 0,1 font ',9' notitle noenhanced\n";
-  gnuplot.add(gp.str());
+  gnuplot.add(gp.str(), 720.0 * 480.0);
 }
 
 }  // namespace penumbra::compare

@@ -7,8 +7,8 @@
 #include <sstream>
 
 #include "penumbra/error.h"
-#include "penumbra/output_journal.h"
 #include "penumbra/gnuplot.h"
+#include "penumbra/output_journal.h"
 #include "penumbra/params.h"
 
 namespace penumbra {
@@ -70,9 +70,9 @@ void plotCurves(const std::filesystem::path& csvPath, const CurvesTable& table,
   gnuplot.run();
 }
 
-void plotCurves(GnuplotRun& gnuplot, const std::filesystem::path& csvPath,
-                const CurvesTable& table, const std::string& title,
-                const std::filesystem::path& pngPath, CurvesPlotRange range) {
+void plotCurves(GnuplotRun& gnuplot, const std::filesystem::path& csvPath, const CurvesTable& table,
+                const std::string& title, const std::filesystem::path& pngPath,
+                CurvesPlotRange range) {
   if (!(range.from >= 0.0f && range.from < range.to && range.to <= 1.0f)) {
     throw Error("curve plot range [" + std::to_string(range.from) + ", " +
                 std::to_string(range.to) + "] is not a window of [0, 1]");
@@ -100,7 +100,7 @@ void plotCurves(GnuplotRun& gnuplot, const std::filesystem::path& csvPath,
        << ")";
   }
   gp << "\n";
-  gnuplot.add(gp.str());
+  gnuplot.add(gp.str(), 1200.0 * 750.0);
 }
 
 }  // namespace penumbra

@@ -4,11 +4,13 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <thread>
 
 #include "penumbra/error.h"
 #include "penumbra/output_journal.h"
@@ -83,7 +85,10 @@ std::string gnuplotOutput(const fs::path& path) {
   return quoted;
 }
 
-GnuplotRun::GnuplotRun(const fs::path& folder) {
+GnuplotRun::GnuplotRun(const fs::path& folder, int processes)
+    : processes_(processes > 0
+                     ? processes
+                     : std::clamp(int(std::thread::hardware_concurrency()), 1, kMaxProcesses)) {
   std::string pattern = (folder / ".gnuplot-XXXXXX").string();
   if (::mkdtemp(pattern.data()) == nullptr) {
     throw Error("cannot create a private folder for gnuplot in " + folder.string() + ": " +
@@ -108,12 +113,13 @@ fs::path GnuplotRun::scratchFile(std::string_view name) const {
   return scratch_ / file;
 }
 
-void GnuplotRun::add(const std::string& figure) {
+void GnuplotRun::add(const std::string& figure, double pixels) {
   // `reset` leaves the terminal and output alone; each figure sets its own. `unset output`
   // closes each figure's file once it is drawn rather than when the next figure opens its own.
-  script_ += "reset\n" + figure + (figure.empty() || figure.back() == '\n' ? "" : "\n") +
-             "unset output\n";
-  ++figures_;
+  figures_.push_back({"reset\n" + figure + (figure.empty() || figure.back() == '\n' ? "" : "\n") +
+                          "unset output\n",
+                      std::max(pixels, 1.0)});
+  ++figureCount_;
 }
 
 void GnuplotRun::run(const std::string& script) {
@@ -122,30 +128,79 @@ void GnuplotRun::run(const std::string& script) {
 }
 
 void GnuplotRun::run() {
-  const fs::path scriptPath = scratch_ / "plot.gp";
-  const fs::path logPath = scratch_ / "gnuplot.log";
-  writeNewFile(scriptPath, script_);
-  script_.clear();
-  recordOutput(logPath);
-  const ProgramResult result = runProgram({"gnuplot", scriptPath.string()}, logPath);
-  std::error_code ec;
-  fs::remove(scriptPath, ec);
-  if (!result.started) {
-    throw Error("gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
+  // The largest figure first to the least loaded process (LPT scheduling), each process's
+  // figures kept in the order they were added.
+  const size_t count = std::min(figures_.size(), size_t(processes_));
+  std::vector<size_t> order(figures_.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return figures_[a].pixels > figures_[b].pixels; });
+  std::vector<double> load(count, 0.0);
+  std::vector<std::vector<size_t>> assigned(count);
+  for (size_t i : order) {
+    const size_t p = size_t(std::min_element(load.begin(), load.end()) - load.begin());
+    load[p] += figures_[i].pixels;
+    assigned[p].push_back(i);
   }
-  std::ifstream logFile(logPath);
-  std::stringstream log;
-  log << logFile.rdbuf();
-  fs::remove(logPath, ec);
-  if (!result.succeeded()) {
-    std::string message = log.str();
-    while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-    if (message.empty()) {
-      message = result.exitCode < 0 ? "killed by a signal"
-                                    : "exit status " + std::to_string(result.exitCode);
+  struct Process {
+    fs::path script;
+    fs::path log;
+    ProgramResult result;
+  };
+  std::vector<Process> processes(count);
+  for (size_t p = 0; p < count; ++p) {
+    std::sort(assigned[p].begin(), assigned[p].end());
+    std::string script;
+    for (size_t i : assigned[p]) script += figures_[i].script;
+    processes[p].script = scratch_ / ("plot-" + std::to_string(p) + ".gp");
+    processes[p].log = scratch_ / ("gnuplot-" + std::to_string(p) + ".log");
+    writeNewFile(processes[p].script, script);
+    recordOutput(processes[p].log);
+  }
+  figures_.clear();
+  {
+    // runProgram creates the log (or throws when it cannot) and waits for its own child only.
+    std::vector<std::thread> others;
+    std::vector<std::string> spawnErrors(count);
+    auto draw = [&](size_t p) {
+      try {
+        processes[p].result =
+            runProgram({"gnuplot", processes[p].script.string()}, processes[p].log);
+      } catch (const Error& e) {
+        spawnErrors[p] = e.what();
+      }
+    };
+    for (size_t p = 1; p < count; ++p) others.emplace_back(draw, p);
+    if (count > 0) draw(0);
+    for (std::thread& t : others) t.join();
+    for (const std::string& e : spawnErrors) {
+      if (!e.empty()) throw Error(e);
     }
-    throw Error("gnuplot failed: " + message);
   }
+  std::string failure;
+  for (const Process& process : processes) {
+    std::error_code ec;
+    fs::remove(process.script, ec);
+    std::ifstream logFile(process.log);
+    std::stringstream log;
+    log << logFile.rdbuf();
+    logFile.close();
+    fs::remove(process.log, ec);
+    if (!process.result.started) {
+      throw Error(
+          "gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
+    }
+    if (process.result.succeeded() || !failure.empty()) continue;
+    failure = log.str();
+    while (!failure.empty() && (failure.back() == '\n' || failure.back() == ' '))
+      failure.pop_back();
+    if (failure.empty()) {
+      failure = process.result.exitCode < 0
+                    ? "killed by a signal"
+                    : "exit status " + std::to_string(process.result.exitCode);
+    }
+  }
+  if (!failure.empty()) throw Error("gnuplot failed: " + failure);
 }
 
 }  // namespace penumbra

@@ -79,9 +79,9 @@ TEST(Gnuplot, HostileTitlesAndFileNamesAreNeverRun) {
   const fs::path victim = scratch.path() / "PWNED";
   const std::string touch = "touch " + victim.string();
   const fs::path out = scratch.path() / "plot`touch PWNED`$(touch PWNED).txt";
-  const std::vector<std::string> titles{
-      "t`" + touch + "`", "t\" . system('" + touch + "') . \"", "t' . system('" + touch + "') . '",
-      "t\nsystem('" + touch + "')"};
+  const std::vector<std::string> titles{"t`" + touch + "`", "t\" . system('" + touch + "') . \"",
+                                        "t' . system('" + touch + "') . '",
+                                        "t\nsystem('" + touch + "')"};
   for (const std::string& title : titles) {
     std::ostringstream script;
     script << "x = 'system(\"" << touch << "\")'\n"
@@ -118,13 +118,13 @@ std::string readText(const fs::path& path) {
 }
 
 // A report queues its figures into one run: each figure is drawn to its own file, starts from
-// gnuplot's defaults (the first's title must not reach the second), and a failing figure leaves
-// the ones before it complete.
+// gnuplot's defaults (the first's title must not reach the second, drawn by the same process),
+// and a failing figure leaves the ones before it complete.
 TEST(Gnuplot, FiguresQueuedInOneRunAreDrawnApart) {
   ScratchFolder scratch;
   const fs::path first = scratch.path() / "first.txt", second = scratch.path() / "second.txt";
   {
-    GnuplotRun run(scratch.path());
+    GnuplotRun run(scratch.path(), 1);
     run.add("set terminal dumb size 300,12\nset output " + gnuplotPath(first) +
             "\nset title 'FIRSTTITLE'\nplot x notitle\n");
     run.add("set terminal dumb size 300,12\nset output " + gnuplotPath(second) +
@@ -138,13 +138,43 @@ TEST(Gnuplot, FiguresQueuedInOneRunAreDrawnApart) {
       << "a setting of one figure leaked into the next";
 
   const fs::path third = scratch.path() / "third.txt";
-  GnuplotRun failing(scratch.path());
+  GnuplotRun failing(scratch.path(), 1);
   failing.add("set terminal dumb size 300,12\nset output " + gnuplotPath(third) +
               "\nset title 'THIRDTITLE'\nplot x notitle\n");
   failing.add("plot no_such_function(x)\n");
   EXPECT_THROW(failing.run(), Error);
   EXPECT_NE(readText(third).find("THIRDTITLE"), std::string::npos)
       << "the figure before a failing one was not finished";
+}
+
+// Figures spread over several processes: every figure is drawn, and one process's failure is
+// reported after the others have drawn theirs.
+TEST(Gnuplot, FiguresSpreadOverProcessesAreAllDrawn) {
+  ScratchFolder scratch;
+  auto figure = [&](const std::string& name, const std::string& title) {
+    return "set terminal dumb size 300,12\nset output " + gnuplotPath(scratch.path() / name) +
+           "\nset title '" + title + "'\nplot x notitle\n";
+  };
+  {
+    GnuplotRun run(scratch.path(), 3);
+    run.add(figure("big.txt", "BIG"), 100.0);
+    for (int i = 0; i < 4; ++i) run.add(figure("small" + std::to_string(i) + ".txt", "SMALL"));
+    run.add("plot no_such_function(x)\n");
+    try {
+      run.run();
+      FAIL() << "a failing figure went unreported";
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("no_such_function"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NE(readText(scratch.path() / "big.txt").find("BIG"), std::string::npos);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NE(readText(scratch.path() / ("small" + std::to_string(i) + ".txt")).find("SMALL"),
+              std::string::npos)
+        << "small figure " << i;
+  }
+  // Only the figures are left: scripts, logs and the private folder are gone.
+  EXPECT_EQ(namesIn(scratch.path()).size(), 5u);
 }
 
 TEST(Gnuplot, ScratchFilesStayInThePrivateFolder) {
