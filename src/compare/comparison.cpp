@@ -217,14 +217,14 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
                      [](float m) { return m > 0.5f; })) {
       // Every metric would be 0 over no pixels: a silent perfect score.
       throw Error("scene '" + result.scene.name + "' shows no lit surface inside the shadow map" +
-                  (request.settings.cascades.count > 1
-                       ? "s (is the view beyond --shadow-distance?)"
-                       : " (does the light face the view?)") +
+                  (request.settings.cascades.count > 1 ? "s (is the view beyond --shadow-distance?)"
+                                                       : " (does the light face the view?)") +
                   ": nothing to measure");
     }
     // Every cascade's depth (the worst pixel may lie in any), read before the next passes
     // (which may be multisampled) replace them.
-    for (int c = 0; c < reference.cascadeFrame.count; ++c) depths.push_back(renderer.readDepthMap(c));
+    for (int c = 0; c < reference.cascadeFrame.count; ++c)
+      depths.push_back(renderer.readDepthMap(c));
     step("supersampled ground truth");
     result.groundTruthVisibility =
         renderReferenceFor(request, renderer, view, areaLight, request.supersample).visibility;
@@ -232,16 +232,16 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       step("ray-traced truth");
       const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels
       const int traceStep = done - 1;
-      result.truth = measureTruth(
-          *rays, request, result.scene, path[frame],
-          {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
-          [&](int rows, int of) {
-            if (progress) {
-              progress(traceStep, total,
-                       "ray-traced truth, row " + std::to_string(rows) + " of " +
-                           std::to_string(of));
-            }
-          });
+      result.truth =
+          measureTruth(*rays, request, result.scene, path[frame],
+                       {result.coverage, depth, reference.visibility, result.groundTruthVisibility},
+                       [&](int rows, int of) {
+                         if (progress) {
+                           progress(traceStep, total,
+                                    "ray-traced truth, row " + std::to_string(rows) + " of " +
+                                        std::to_string(of));
+                         }
+                       });
     }
     firstReference = std::move(reference);
   }
@@ -253,11 +253,17 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
   for (size_t k = 0; k < request.techniques.size(); ++k) {
     const Technique t = request.techniques[k];
     TechniqueResult& out = result.techniques[k];
+    gl::RenderSettings settings = settingsFor(request, t, areaLight);
     for (size_t frame = 0; frame < path.size(); ++frame) {
       showFrame(frame);
       step(std::string(techniqueId(t)) + ", frame " + std::to_string(frame + 1));
-      const gl::RenderResult r = renderer.render(settingsFor(request, t, areaLight),
-                                                 gl::FrameView{path[frame], result.scene.light});
+      // The first frame is measured and shown; every frame's visibility and lit surfaces feed
+      // the flicker; only the last frame is timed (warm), the others run without waits.
+      namespace fi = gl::frame_image;
+      settings.readBack = fi::kVisibility | fi::kLookup | (frame == 0 ? fi::kColor : fi::kNone);
+      settings.timing = frame + 1 == path.size();
+      const gl::RenderResult r =
+          renderer.render(settings, gl::FrameView{path[frame], result.scene.light});
       visibilities[k].push_back(r.visibility);
       masks[k].push_back(litSurfaceMask(r.lookup));
       // Times of the last frame: warm, without the driver's first-use shader compilation.
@@ -330,6 +336,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       for (CascadeFit fit : {CascadeFit::Stabilized, CascadeFit::Tight}) {
         gl::RenderSettings settings = settingsFor(request, t, areaLight);
         settings.cascades.fit = fit;
+        settings.readBack = gl::frame_image::kVisibility | gl::frame_image::kLookup;
+        settings.timing = false;
         std::vector<Image> frames, covered;
         for (size_t frame = 0; frame < path.size(); ++frame) {
           step(std::string(techniqueId(t)) + ", shimmer with " + std::string(cascadeFitName(fit)) +

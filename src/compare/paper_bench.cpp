@@ -150,7 +150,8 @@ ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
   for (const BenchCase& c : experiment.cases) {
     gl::RenderSettings settings = c.settings;
     if (settings.technique == Technique::Pcf) settings.params.pcf = pcfMatchingPrefilter(settings);
-    renderer.render(settings, view);  // warm-up: shader variants, resources
+    settings.readBack = gl::frame_image::kNone;  // the times and memory are all a case gives
+    renderer.render(settings, view);             // warm-up: shader variants, resources
     CaseMeasurement m;
     m.benchCase = c;
     std::vector<gl::PassTimes> frames;

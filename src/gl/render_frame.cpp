@@ -51,6 +51,15 @@ FilterSettings filterSettingsFor(const RenderSettings& s) {
   return f;
 }
 
+// ESM with a classifier reports its failure rate, counted on the diagnostic image.
+bool reportsFailureRate(const RenderSettings& s) {
+  return s.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone;
+}
+
+unsigned diagnosticReadFor(const RenderSettings& s) {
+  return reportsFailureRate(s) ? frame_image::kDiagnostic : frame_image::kNone;
+}
+
 double failureRatePercent(const Image& diagnostic) {
   size_t drawn = 0, failed = 0;
   for (float v : diagnostic.data()) {
@@ -161,8 +170,7 @@ RenderResult Renderer::render(const RenderSettings& settings, const FrameView& v
   validate(settings, view.light.kind);
   checkSoftShadows(settings, view.light);
   RenderResult result = renderFrame(settings, view, false);
-  if (settings.technique == Technique::Esm &&
-      result.params.esm.classifier != shaders::kEsmClassifyNone) {
+  if (reportsFailureRate(settings)) {
     result.failureRatePercent = failureRatePercent(result.diagnostic);
   }
   return result;
@@ -208,6 +216,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
   s.settings = settings;
   s.programs.setTechnique(settings.technique);
+  for (GpuTimer* timer : {&s.light.timer, &s.camera.timer, &s.depthBoundsTimer}) {
+    timer->setEnabled(settings.timing);
+  }
+  s.shadows.setTiming(settings.timing);
 
   // Where the frame is seen from, and the cascades that cover it.
   FrameGeometry& frame = s.frame;
@@ -310,14 +322,16 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   s.camera.render(s.programs, *s.scene, settings, frame, s.shadows, reference);
 
   RenderResult result;
-  result.color = s.camera.readColor();
-  result.visibility = s.camera.readVisibility();
-  result.diagnostic = s.camera.readDiagnostic();
+  namespace fi = frame_image;
+  const unsigned reads = reference ? fi::kAll : settings.readBack | diagnosticReadFor(settings);
+  if (reads & fi::kColor) result.color = s.camera.readColor();
+  if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
+  if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();
   if (lookupInputs) {
-    result.lookup = s.camera.readLookup();
-    result.receiverPlane = s.camera.readReceiverPlane();
-    result.uvDerivatives = s.camera.readUvDerivatives();
-    result.cascades = s.camera.readCascades();
+    if (reads & fi::kLookup) result.lookup = s.camera.readLookup();
+    if (reads & fi::kReceiverPlane) result.receiverPlane = s.camera.readReceiverPlane();
+    if (reads & fi::kUvDerivatives) result.uvDerivatives = s.camera.readUvDerivatives();
+    if (reads & fi::kCascades) result.cascades = s.camera.readCascades();
   }
   result.cascadeFrame = frame.cascades;
   result.cascadeBlurs = s.cascadeBlurs;
@@ -421,8 +435,7 @@ double Renderer::timeMinimalLookup() {
     throw Error("no frame to draw the minimal lookup of: call Renderer::render first");
   }
   const ChannelLayout layout = channelLayout(s.settings.technique, s.shadows.params());
-  s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows,
-                               layout.layers);
+  s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows, layout.layers);
   return timerQueriesMeasureExecution() ? s.camera.minimalTimer.gpuMilliseconds()
                                         : s.camera.minimalTimer.wallMilliseconds();
 }

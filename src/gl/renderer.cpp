@@ -163,8 +163,6 @@ Renderer::Renderer(const Context& context) : state_(std::make_unique<State>()) {
   glGetIntegerv(GL_MAX_TEXTURE_SIZE, &limits.maxTextureSize);
   glGetIntegerv(GL_MAX_ARRAY_TEXTURE_LAYERS, &limits.maxArrayLayers);
   limits.halfRounding = probeHalfRounding(*state_);
-  // The renderer reports each pass's time (RenderResult::wallTimes): its own frames wait.
-  state_->shadows.setTiming(true);
   checkErrors("creating the renderer");
 }
 

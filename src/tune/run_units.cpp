@@ -230,8 +230,12 @@ class SceneTuner {
     }
     std::vector<Image> visibility;
     double lastFrameMs = 0.0;
+    namespace fi = gl::frame_image;
+    gl::RenderSettings frameSettings = settings;
     for (size_t f = 0; f < path_.size(); ++f) {
-      gl::RenderResult r = renderer_.render(settings, gl::FrameView{path_[f], scene_.light});
+      // The visibility is measured; the first frame's colour is shown for the given setting.
+      frameSettings.readBack = fi::kVisibility | (f == 0 && first ? fi::kColor : fi::kNone);
+      gl::RenderResult r = renderer_.render(frameSettings, gl::FrameView{path_[f], scene_.light});
       const double frameMs = frameTime(r);
       if (f == 0 && !first && slowFrameMs_ && frameMs > *slowFrameMs_) {
         m.tooSlow = true;
@@ -252,8 +256,10 @@ class SceneTuner {
     }
     std::vector<double> times;
     if (timedFrames == 0) times.push_back(lastFrameMs);
+    frameSettings.readBack = fi::kNone;  // timed only: nothing to wait for but the passes
     for (int k = 0; k < timedFrames; ++k) {
-      const gl::RenderResult r = renderer_.render(settings, gl::FrameView{path_[0], scene_.light});
+      const gl::RenderResult r =
+          renderer_.render(frameSettings, gl::FrameView{path_[0], scene_.light});
       times.push_back(frameTime(r));
     }
     m.measured = true;

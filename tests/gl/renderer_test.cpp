@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 #include "gl_test_context.h"
 #include "penumbra/error.h"
@@ -15,10 +16,10 @@
 #include "penumbra/gl/scene_buffers.h"
 #include "penumbra/metrics.h"
 #include "penumbra/params.h"
-#include "penumbra/storage_format.h"
-#include "penumbra/summed_area_table.h"
 #include "penumbra/shared/channel_reduction.h"
 #include "penumbra/shared/shadow_lookup.h"
+#include "penumbra/storage_format.h"
+#include "penumbra/summed_area_table.h"
 
 namespace penumbra {
 namespace {
@@ -598,6 +599,44 @@ TEST_F(RendererTest, AFrameWithoutTheLookupInputsDrawsTheSamePictureInFewerTarge
     EXPECT_THROW(litSurfaceMask(r.lookup), Error) << where;
     EXPECT_THROW(gl::lookupPixelAt(r, 0, 0), Error) << where;
   }
+}
+
+// A frame reads back only the images asked for (RenderSettings::readBack) and times its passes
+// only when asked (RenderSettings::timing); neither changes what is drawn. ESM's failure rate is
+// counted on the diagnostic whatever the frame reads back.
+TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) {
+  namespace fi = gl::frame_image;
+  const Scene scene = makeBuiltinScene("backyard");
+  gl::RenderSettings s = small(Technique::Esm);
+  s.params.esm.classifier = shaders::kEsmClassifyZmax;
+  const gl::RenderResult full = renderer->render(scene, s);
+  ASSERT_GT(full.failureRatePercent, 0.0) << "the view must show ESM's classifier failing";
+  EXPECT_GT(full.wallTimes.total(), 0.0);
+  const std::pair<unsigned, const Image gl::RenderResult::*> images[] = {
+      {fi::kColor, &gl::RenderResult::color},
+      {fi::kVisibility, &gl::RenderResult::visibility},
+      {fi::kDiagnostic, &gl::RenderResult::diagnostic},
+      {fi::kLookup, &gl::RenderResult::lookup},
+      {fi::kReceiverPlane, &gl::RenderResult::receiverPlane},
+      {fi::kUvDerivatives, &gl::RenderResult::uvDerivatives},
+      {fi::kCascades, &gl::RenderResult::cascades}};
+  for (const auto& [bit, image] : images) {
+    gl::RenderSettings one = s;
+    one.readBack = bit;
+    one.timing = false;
+    const gl::RenderResult r = renderer->render(scene, one);
+    for (const auto& [otherBit, other] : images) {
+      // The diagnostic is read for the failure rate whatever was asked.
+      const bool read = otherBit == bit || otherBit == fi::kDiagnostic;
+      EXPECT_EQ((r.*other).empty(), !read) << "asked for " << bit << ", image " << otherBit;
+    }
+    EXPECT_TRUE(std::ranges::equal((r.*image).data(), (full.*image).data())) << bit;
+    EXPECT_EQ(r.failureRatePercent, full.failureRatePercent) << bit;
+    EXPECT_EQ(r.wallTimes.total(), 0.0) << "an untimed frame reported times";
+    EXPECT_EQ(r.gpuTimes.total(), 0.0);
+  }
+  // Timing on again: the passes are timed.
+  EXPECT_GT(renderer->render(scene, s).wallTimes.total(), 0.0);
 }
 
 TEST_F(RendererTest, SettingsBeyondTheMemoryBudgetAreRefusedWithTheLargestSizeThatFits) {

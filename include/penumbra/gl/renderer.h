@@ -36,6 +36,21 @@ enum class Overlay {
 // GL 4.5 guarantees (GL_MAX_COMPUTE_SHARED_MEMORY_SIZE).
 inline constexpr int kMaxFusedBlurRadius = 10;
 
+// The images a frame reads back into its RenderResult (RenderSettings::readBack), as bits. Each
+// read waits for the frame and copies a whole frame to the CPU; an image not read stays empty.
+// The lookup's inputs are read only where the frame writes them (RenderSettings::lookupInputs).
+namespace frame_image {
+inline constexpr unsigned kColor = 1u << 0;
+inline constexpr unsigned kVisibility = 1u << 1;
+inline constexpr unsigned kDiagnostic = 1u << 2;  // ESM's failure rate reads it regardless
+inline constexpr unsigned kLookup = 1u << 3;
+inline constexpr unsigned kReceiverPlane = 1u << 4;
+inline constexpr unsigned kUvDerivatives = 1u << 5;
+inline constexpr unsigned kCascades = 1u << 6;
+inline constexpr unsigned kNone = 0u;
+inline constexpr unsigned kAll = (1u << 7) - 1u;
+}  // namespace frame_image
+
 struct RenderSettings {
   Technique technique = Technique::Vsm;
   TechniqueParams params = defaultTechniqueParams();
@@ -65,6 +80,14 @@ struct RenderSettings {
   // allocates four targets fewer; on llvmpipe that took the pass from 2.0x its minimal lookup
   // to 1.6x (docs/results/passes-llvmpipe-2026-12-05.md). Reference frames always write them.
   bool lookupInputs = false;
+  // Which images the frame reads back (frame_image bits). A frame that reads none and is not
+  // timed runs without waiting for the GPU. Reference frames read every image: the CPU
+  // completes their pixels from them.
+  unsigned readBack = frame_image::kAll;
+  // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
+  // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,
+  // and the times read 0.
+  bool timing = true;
 };
 
 // Where one frame is seen from and lit from.
