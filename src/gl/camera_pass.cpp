@@ -9,8 +9,8 @@
 #include "memory_plan.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/context.h"
-#include "shadow_filter_state.h"
 #include "penumbra/shared/shading.h"
+#include "shadow_filter_state.h"
 #include "texture_readback.h"
 
 namespace penumbra::gl {
@@ -118,8 +118,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
     setCascadeUniforms(program, frame);
     program.set("cameraViewFromWorld", viewFromWorld(frame.shadowCamera));
     const glm::vec3 axis = frame.light.target - frame.light.position;
-    program.set("spotAxis",
-                glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
+    program.set("spotAxis", glm::length(axis) > 0.0f ? glm::normalize(axis) : glm::vec3(0, 0, -1));
     program.set("pointLightTangent", frame.pointFaceTangent);
     program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
     program.set("normalOffsetTexels", settings.normalOffsetTexels);
@@ -186,6 +185,7 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), false);
   defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
   defines.push_back({"LAYER_COUNT", std::to_string(layers)});
+  defines.push_back({"PENUMBRA_CHANNEL_CAPACITY", std::to_string(4 * layers)});
   const Program& program =
       programs.graphics("passes/camera.vert", "passes/minimal_lookup.frag", defines);
   shadows.bind();
@@ -227,8 +227,9 @@ Image CameraPass::readDiagnostic() const {
 }
 void CameraPass::requireLookupInputs() const {
   if (!lookupInputs_) {
-    throw Error("the camera pass did not write the lookup's inputs: set "
-                "RenderSettings::lookupInputs");
+    throw Error(
+        "the camera pass did not write the lookup's inputs: set "
+        "RenderSettings::lookupInputs");
   }
 }
 

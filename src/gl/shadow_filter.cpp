@@ -204,8 +204,9 @@ void ShadowFilter::State::checkFilter(const RenderSettings& r, int layers) const
                 ") supports at most " + std::to_string(maxSamples));
   }
   if (r.filter == FilterMode::AnisotropicDriver && !anisotropicFiltering) {
-    throw Error("the anisotropic-driver filter needs anisotropic texture filtering, which this GL (" +
-                device + ") lacks: use --filter anisotropic (penumbra's own probes)");
+    throw Error(
+        "the anisotropic-driver filter needs anisotropic texture filtering, which this GL (" +
+        device + ") lacks: use --filter anisotropic (penumbra's own probes)");
   }
   checkRange("anisotropy", r.anisotropy, 1,
              std::min(kMaxAnisotropy, std::max(1, int(maxAnisotropy))));
@@ -214,17 +215,18 @@ void ShadowFilter::State::checkFilter(const RenderSettings& r, int layers) const
     const TechniqueParams& p = r.params;
     checkSummedAreaFilterable(r.technique, p);
     if (prefiltersChannels(r.technique) && !summedAreaTables) {
-      throw Error("the summed-area filter needs GL_ARB_gpu_shader_int64 and "
-                  "GL_ARB_gpu_shader_fp64, which this GL (" + device +
-                  ") lacks: use --filter trilinear or anisotropic");
+      throw Error(
+          "the summed-area filter needs GL_ARB_gpu_shader_int64 and "
+          "GL_ARB_gpu_shader_fp64, which this GL (" +
+          device + ") lacks: use --filter trilinear or anisotropic");
     }
     // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
     const uint64_t entries = uint64_t(channelCount(r.technique, p)) * uint64_t(layers) *
                              uint64_t(r.shadowMapSize) * uint64_t(r.shadowMapSize);
     if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxStorageBlock)) {
-      throw Error("the summed-area table of " + std::string(techniqueId(r.technique)) +
-                  " at " + std::to_string(r.shadowMapSize) + "^2 (" +
-                  std::to_string(layers) + " layer(s)) needs " + std::to_string(entries * 8) +
+      throw Error("the summed-area table of " + std::string(techniqueId(r.technique)) + " at " +
+                  std::to_string(r.shadowMapSize) + "^2 (" + std::to_string(layers) +
+                  " layer(s)) needs " + std::to_string(entries * 8) +
                   " bytes in one storage buffer; this GL holds " + std::to_string(maxStorageBlock) +
                   "; use a smaller shadow map");
     }
@@ -276,12 +278,20 @@ std::vector<ShaderDefine> lookupVariantDefines(const ShadowFilter::State& s, boo
           {"PENUMBRA_FILTER_MODE", std::to_string(int(s.settings.filter))}};
 }
 
+ShaderDefine channelCapacityDefine(Technique technique, const TechniqueParams& params) {
+  const int channels = shaders::techniqueChannelCount(int(technique), params);
+  return {"PENUMBRA_CHANNEL_CAPACITY", std::to_string(4 * ((channels + 3) / 4))};
+}
+
 std::vector<ShaderDefine> lookupParameterDefines(const ShadowFilter::State& s) {
-  if (s.settings.technique != Technique::Esm) return {};
-  const shaders::EsmParams& esm = s.params.esm;
-  return {{"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)},
-          {"PENUMBRA_ESM_FALLBACK", std::to_string(esm.fallback)},
-          {"PENUMBRA_ESM_FILTER_SPACE", std::to_string(esm.filterSpace)}};
+  std::vector<ShaderDefine> defines{channelCapacityDefine(s.settings.technique, s.params)};
+  if (s.settings.technique == Technique::Esm) {
+    const shaders::EsmParams& esm = s.params.esm;
+    defines.push_back({"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)});
+    defines.push_back({"PENUMBRA_ESM_FALLBACK", std::to_string(esm.fallback)});
+    defines.push_back({"PENUMBRA_ESM_FILTER_SPACE", std::to_string(esm.filterSpace)});
+  }
+  return defines;
 }
 
 ShadowFilter::ShadowFilter() {
@@ -358,7 +368,8 @@ LinearDepthMaps importDepth(ShadowFilter::State& s, const DepthInput& d) {
   program.dispatch((unsigned(d.size) + 7u) / 8u, (unsigned(d.size) + 7u) / 8u, unsigned(d.layers));
   glMemoryBarrier(GL_TEXTURE_FETCH_BARRIER_BIT | GL_SHADER_IMAGE_ACCESS_BARRIER_BIT);
   s.importTimer.end();
-  if (mode != GL_DEPTH_COMPONENT) glTextureParameteri(d.texture, GL_DEPTH_STENCIL_TEXTURE_MODE, mode);
+  if (mode != GL_DEPTH_COMPONENT)
+    glTextureParameteri(d.texture, GL_DEPTH_STENCIL_TEXTURE_MODE, mode);
   return {s.importedDepth.id(), d.size, d.layers, 1};
 }
 
@@ -523,8 +534,7 @@ void ShadowFilter::bind(const ShadowBindings& b) const {
   const State& s = *state_;
   if (s.depth.texture == 0) throw Error("ShadowFilter::bind: nothing filtered yet");
   s.checkBindings(b);
-  setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings,
-                     s.anisotropicFiltering);
+  setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings, s.anisotropicFiltering);
   glBindTextureUnit(unsigned(b.channelUnit), s.maps.channels().id());
   glBindSampler(unsigned(b.channelUnit), 0);
   if (s.filtered && s.zmax.built()) {
@@ -544,8 +554,9 @@ void ShadowFilter::bind(const ShadowBindings& b) const {
 
 std::string ShadowFilter::shaderPreamble(const ShadowBindings& b) const {
   if (state_->depth.texture == 0) {
-    throw Error("ShadowFilter::shaderPreamble: nothing filtered yet (the defines depend on the "
-                "technique and the filter)");
+    throw Error(
+        "ShadowFilter::shaderPreamble: nothing filtered yet (the defines depend on the "
+        "technique and the filter)");
   }
   state_->checkBindings(b);
   std::string text =

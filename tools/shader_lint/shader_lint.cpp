@@ -62,8 +62,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 // Every variant the renderer generates for a shader, from the variant macros its text uses:
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
 // camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, the
-// lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the blur kernels' radius and weights)
-// and LAYER_COUNT (the encode's fewest and most texel layers).
+// lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the
+// blur kernels' radius and weights) and LAYER_COUNT (the encode's fewest and most texel layers).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -94,10 +94,11 @@ std::vector<Defines> variants(const std::string& source) {
   // switches, so one variant each compiles every path (their full product would be 16x).
   if (source.find("LIGHT_PERSPECTIVE") != std::string::npos) {
     const Defines base = result.front();
-    for (const Defines& kind : std::vector<Defines>{{{"LIGHT_PERSPECTIVE", "1"}},
-                                                    {{"LIGHT_PERSPECTIVE", "1"}, {"POINT_LIGHT", "1"}},
-                                                    {{"CASCADED", "1"}},
-                                                    {{"SOFT_LIGHT", "1"}}}) {
+    for (const Defines& kind :
+         std::vector<Defines>{{{"LIGHT_PERSPECTIVE", "1"}},
+                              {{"LIGHT_PERSPECTIVE", "1"}, {"POINT_LIGHT", "1"}},
+                              {{"CASCADED", "1"}},
+                              {{"SOFT_LIGHT", "1"}}}) {
       Defines with = base;
       with.insert(with.end(), kind.begin(), kind.end());
       result.push_back(with);
@@ -105,12 +106,13 @@ std::vector<Defines> variants(const std::string& source) {
   }
   expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
   // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h), the camera
-  // pass without the lookup's inputs (RenderSettings::lookupInputs), and lookupVariantDefines'
-  // compiled-in paths: ESM's Z-max classifier, the paper's
+  // pass without the lookup's inputs (RenderSettings::lookupInputs), and lookupParameterDefines'
+  // compiled-in sizes and paths: one texel layer of channels, ESM's Z-max classifier, the paper's
   // fallback and log-space filtering (the first variant has their run-time switches).
   const std::vector<std::pair<const char*, Defines>> beside{
       {"ALPHA_TEST", {{"ALPHA_TEST", "0"}}},
       {"LOOKUP_INPUTS", {{"LOOKUP_INPUTS", "0"}}},
+      {"PENUMBRA_CHANNEL_CAPACITY", {{"PENUMBRA_CHANNEL_CAPACITY", "4"}}},
       {"PENUMBRA_ESM_CLASSIFIER",
        {{"PENUMBRA_ESM_CLASSIFIER", "2"},
         {"PENUMBRA_ESM_FALLBACK", "1"},

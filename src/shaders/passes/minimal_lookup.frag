@@ -43,8 +43,8 @@ void main() {
   vec4 clip = lightClipFromView * view;
   vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
   float receiver = lightLinearDepth(view.xyz, LIGHT_PERSPECTIVE != 0, lightNear, lightFar);
-  float channels[kMaxChannels];
-  for (int i = 0; i < kMaxChannels; ++i) channels[i] = 0.0f;
+  float channels[PENUMBRA_CHANNEL_CAPACITY];  // 4 x LAYER_COUNT where the pass defines it
+  for (int i = 0; i < PENUMBRA_CHANNEL_CAPACITY; ++i) channels[i] = 0.0f;
   for (int layer = 0; layer < LAYER_COUNT; ++layer) {
     vec4 v = textureLod(penumbraChannelMap, vec3(uv, float(layer)), 0.0f);
     for (int k = 0; k < 4; ++k) channels[4 * layer + k] = v[k];

@@ -20,7 +20,7 @@ PENUMBRA_BEGIN_SHARED
 const float kReferenceTie = 0.00002f;
 
 struct FilteredChannels {
-  float values[kMaxChannels];
+  float values[PENUMBRA_CHANNEL_CAPACITY];
 };
 
 // A texel layer's four channels, each reduced by its own reduction.
@@ -137,7 +137,7 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
                                                 TechniqueParams p, vec2 uv, vec2 uvDx, vec2 uvDy,
                                                 float receiverDepth) {
   FilteredChannels f;
-  for (int i = 0; i < kMaxChannels; ++i) f.values[i] = 0.0f;
+  for (int i = 0; i < PENUMBRA_CHANNEL_CAPACITY; ++i) f.values[i] = 0.0f;
   ivec2 range = receiverChannelRange(technique, p, receiverDepth);
 #if PENUMBRA_SUMMED_AREA
   if (ls.filterMode == kFilterSummedArea) {
@@ -189,7 +189,7 @@ PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSetti
   SoftFootprint probe =
       softFootprint(vec2(0.0f), vec2(0.0f), width / float(kSoftProbeSide), size, ls.filterMode);
   ivec2 range = receiverChannelRange(technique, p, receiverDepth);
-  ChannelAccumulator acc[kMaxChannels];
+  ChannelAccumulator acc[PENUMBRA_CHANNEL_CAPACITY];
   for (int c = range.x; c <= range.y; ++c) {
     acc[c] = startReduction(channelReduction(technique, c, p), p.esm.exponent);
   }
@@ -203,7 +203,7 @@ PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSetti
     }
   }
   FilteredChannels result;
-  for (int c = 0; c < kMaxChannels; ++c) result.values[c] = 0.0f;
+  for (int c = 0; c < PENUMBRA_CHANNEL_CAPACITY; ++c) result.values[c] = 0.0f;
   for (int c = range.x; c <= range.y; ++c) result.values[c] = reductionResult(acc[c]);
   return result;
 }

@@ -28,5 +28,8 @@ void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= caseCount) return;
   ParityCase c = cases[i];
-  visibility[i] = reconstructVisibility(c.penumbraTechnique, c.channels, c.receiverDepth, paramSets[i]);
+  // The dispatcher's array: all kMaxChannels unless a variant sizes it (PENUMBRA_CHANNEL_CAPACITY).
+  float channels[PENUMBRA_CHANNEL_CAPACITY];
+  for (int k = 0; k < PENUMBRA_CHANNEL_CAPACITY; ++k) channels[k] = c.channels[k];
+  visibility[i] = reconstructVisibility(c.penumbraTechnique, channels, c.receiverDepth, paramSets[i]);
 }
