@@ -70,15 +70,16 @@ Scene stripedQuadScene() {
   return s;
 }
 
-// Mean visibility over the pixels whose ground point lies in x in [x0, x1], z in [z0, z1], and
-// that rectangle's exact width in metres (whole pixels).
+// Mean of a one-channel image over the pixels whose point on the horizontal plane at `height`
+// (the ground: 0) lies in x in [x0, x1], z in [z0, z1], and that rectangle's exact width in
+// metres (whole pixels).
 struct RegionMean {
   double mean;
   double widthMetres;
 };
 
 RegionMean groundRegionMean(const Image& visibility, const Scene& s, float x0, float x1, float z0,
-                            float z1) {
+                            float z1, float height = 0.0f) {
   const float aspect = float(visibility.width()) / float(visibility.height());
   const glm::mat4 clipFromWorld =
       clipFromView(s.camera, aspect, s.viewBounds()) * viewFromWorld(s.camera);
@@ -93,7 +94,7 @@ RegionMean groundRegionMean(const Image& visibility, const Scene& s, float x0, f
       glm::vec4 far = worldFromClip * glm::vec4(ndc, 1.0f, 1.0f);
       const glm::vec3 farPoint = glm::vec3(far) / far.w;
       const glm::vec3 dir = farPoint - s.camera.position;
-      const glm::vec3 ground = s.camera.position - dir * (s.camera.position.y / dir.y);
+      const glm::vec3 ground = s.camera.position - dir * ((s.camera.position.y - height) / dir.y);
       if (ground.x >= x0 && ground.x <= x1 && ground.z >= z0 && ground.z <= z1) {
         sum += visibility.at(x, y);
         ++count;
@@ -102,8 +103,9 @@ RegionMean groundRegionMean(const Image& visibility, const Scene& s, float x0, f
       }
     }
   }
-  // Pixels per metre on the ground: the image height spans 2 * 4 m * tan(22.5 degrees).
-  const double metresPerPixel = 2.0 * 4.0 * std::tan(glm::radians(22.5)) / visibility.height();
+  // Pixels per metre on the plane: the image height spans 2 * (4 m - height) * tan(22.5 degrees).
+  const double metresPerPixel =
+      2.0 * (4.0 - height) * std::tan(glm::radians(22.5)) / visibility.height();
   return {count > 0 ? sum / count : -1.0, double(maxColumn - minColumn + 1) * metresPerPixel};
 }
 
@@ -125,6 +127,37 @@ TEST_F(SceneRenderingTest, AlphaMaskedQuadShadowIsLitWhereTheTextureIsTransparen
     // A stripe is 11 shadow-map texels wide (texel 5.7 mm: a 5.8 m sphere fit over 1024); each
     // of the four stripe edges may land half a texel off: 4 x 2.8 mm of 500 mm = 0.023.
     EXPECT_NEAR(m.mean, expected, 0.023) << "msaa " << msaa;
+  }
+}
+
+// The camera pass cuts masked texels out as the light pass does (the alpha-tested variant,
+// gl/material_programs.h): looking down through the striped card, a quarter of its pixels show
+// the card and the rest the ground beneath. Both are lit there (the card's shadow falls at
+// x > 0.5), so the card (albedo 1) shades brighter than the ground (albedo 0.8).
+TEST_F(SceneRenderingTest, TheCameraSeesTheGroundThroughAnAlphaMaskedCard) {
+  if (!renderer) GTEST_SKIP();
+  const Scene s = stripedQuadScene();
+  for (Technique t : {Technique::Hard, Technique::Vsm}) {
+    gl::RenderSettings settings;
+    settings.technique = t;
+    settings.width = settings.height = 512;
+    const gl::RenderResult r = renderer->render(s, settings);
+    float brightest = 0.0f;
+    for (int y = 0; y < r.color.height(); ++y) {
+      for (int x = 0; x < r.color.width(); ++x)
+        brightest = std::max(brightest, r.color.at(x, y, 0));
+    }
+    // 1 where the pixel shades as the card, between the ground's 0.8 and the card's 1 of it.
+    Image card(r.color.width(), r.color.height(), 1);
+    for (int y = 0; y < card.height(); ++y) {
+      for (int x = 0; x < card.width(); ++x) card.at(x, y) = r.color.at(x, y, 0) > 0.9f * brightest;
+    }
+    // Two stripe periods of the card's plane (u = x + 0.5: opaque columns at x in [0, 1/16) and
+    // [1/4, 5/16)): exactly two covered stripes of 1/16 m in 0.5 m.
+    const RegionMean m = groundRegionMean(card, s, -0.1f, 0.4f, -0.4f, 0.4f, 1.0f);
+    // The plane is 3 m from the camera: 206 pixels a metre, 103 across the region; each of the
+    // four stripe edges may fall one pixel either way: 4 / 103 = 0.039.
+    EXPECT_NEAR(m.mean, 0.25, 0.039) << techniqueId(t);
   }
 }
 
