@@ -10,10 +10,10 @@
 #include "penumbra/area_light.h"
 #include "penumbra/error.h"
 #include "penumbra/gl/renderer.h"
-#include "renderer_state.h"
 #include "penumbra/shared/light_depth.h"
 #include "penumbra/shared/point_light_faces.h"
 #include "penumbra/shared/shadow_lookup.h"
+#include "renderer_state.h"
 
 namespace penumbra::gl {
 namespace {
@@ -113,10 +113,15 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
   Image weightedColor(hard.width, hard.height, 4);
   Image weights(hard.width, hard.height, 1);
   PassTimes wall, gpu;
+  // A light sample's frame gives its colour and visibility only: the lookup's inputs are the
+  // centre's (below), so the samples' frames neither write nor read them.
+  RenderSettings sampleSettings = hard;
+  sampleSettings.lookupInputs = false;
+  sampleSettings.readBack = frame_image::kColor | frame_image::kVisibility;
   for (size_t i = 0; i < lights.size(); ++i) {
     FrameView sample = view;
     sample.light = lights[i];
-    const RenderResult r = renderFrame(hard, sample, false);
+    const RenderResult r = renderFrame(sampleSettings, sample, false);
     accumulate(visibility, r.visibility);
     accumulate(color, r.color);
     if (sphere) {

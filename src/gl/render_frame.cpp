@@ -192,6 +192,11 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   big.height = settings.height * supersample;
   requireCascadableLight(settings.cascades, view.light);
   validate(big, view.light.kind);
+  // Supersampled, only the averaged colour, visibility and diagnostic are returned: the lookup's
+  // inputs are read back only when the CPU has pixels to complete (completeReferenceOnCpu).
+  if (supersample > 1) {
+    big.readBack = frame_image::kColor | frame_image::kVisibility | frame_image::kDiagnostic;
+  }
   RenderResult full = renderFrame(big, view, true);
   completeReferenceOnCpu(full);
   if (supersample == 1) return full;
@@ -323,7 +328,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
 
   RenderResult result;
   namespace fi = frame_image;
-  const unsigned reads = reference ? fi::kAll : settings.readBack | diagnosticReadFor(settings);
+  // A reference frame's colour, visibility and diagnostic are what the CPU completes.
+  const unsigned reads =
+      settings.readBack |
+      (reference ? fi::kColor | fi::kVisibility | fi::kDiagnostic : diagnosticReadFor(settings));
   if (reads & fi::kColor) result.color = s.camera.readColor();
   if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
   if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();
@@ -369,6 +377,13 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
 void Renderer::completeReferenceOnCpu(RenderResult& r) const {
   const State& s = *state_;
   const RenderSettings& settings = s.settings;
+  const auto& marked = r.visibility.data();
+  if (std::none_of(marked.begin(), marked.end(), [](float v) { return v < 0.0f; })) return;
+  // The lookup's inputs of the frame just drawn, where the frame did not read them back.
+  if (r.lookup.empty()) r.lookup = s.camera.readLookup();
+  if (r.receiverPlane.empty()) r.receiverPlane = s.camera.readReceiverPlane();
+  if (r.uvDerivatives.empty()) r.uvDerivatives = s.camera.readUvDerivatives();
+  if (r.cascades.empty()) r.cascades = s.camera.readCascades();
   CascadedReference reference(r, settings.shadowMapSize, settings.filter, settings.anisotropy,
                               s.limits.halfRounding,
                               [this](int cascade) { return readDepthMap(cascade); });

@@ -305,5 +305,36 @@ TEST_F(ReferenceParity, WideMinifiedKernelsAreNeverTruncatedByTheDriver) {
       << render("reference", "minification", "trilinear", d);
 }
 
+// A supersampled reference reads its lookup's inputs back only when the CPU has pixels to
+// complete from them (Renderer::completeReferenceOnCpu); the far posts at 1024^2 give it such
+// pixels, and it must average the same completed frame the full-size reference returns.
+TEST_F(ReferenceParity, ASupersampledReferenceCompletesItsPixelsAsTheFullSizeOneDoes) {
+  gl::Renderer renderer(*context);
+  gl::RenderSettings s;
+  s.technique = Technique::Pcf;
+  s.filter = FilterMode::Trilinear;
+  s.shadowMapSize = 1024;
+  s.width = 80;
+  s.height = 45;
+  s.blur = {BlurKernel::Box, 2, 1.0f};
+  const Scene scene = makeBuiltinScene("minification");
+  const Image averaged = renderer.renderReference(scene, s, 2).visibility;
+  gl::RenderSettings big = s;
+  big.width = 2 * s.width;
+  big.height = 2 * s.height;
+  const Image full = renderer.renderReference(scene, big, 1).visibility;
+  int differing = 0;
+  for (int y = 0; y < s.height; ++y) {
+    for (int x = 0; x < s.width; ++x) {
+      // The same four floats summed in the same order: equal to the last bit.
+      const float mean = (full.at(2 * x, 2 * y) + full.at(2 * x + 1, 2 * y) +
+                          full.at(2 * x, 2 * y + 1) + full.at(2 * x + 1, 2 * y + 1)) /
+                         4.0f;
+      differing += std::abs(averaged.at(x, y) - mean) > 1e-6f;
+    }
+  }
+  EXPECT_EQ(differing, 0);
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -81,8 +81,9 @@ struct RenderSettings {
   // to 1.6x (docs/results/passes-llvmpipe-2026-12-05.md). Reference frames always write them.
   bool lookupInputs = false;
   // Which images the frame reads back (frame_image bits). A frame that reads none and is not
-  // timed runs without waiting for the GPU. Reference frames read every image: the CPU
-  // completes their pixels from them.
+  // timed runs without waiting for the GPU. Reference frames also read their colour,
+  // visibility and diagnostic, and the lookup's inputs where the CPU completes pixels from them
+  // (a supersampled reference returns only the first three, averaged).
   unsigned readBack = frame_image::kAll;
   // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
   // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,
