@@ -273,20 +273,27 @@ INSTANTIATE_TEST_SUITE_P(AllTechniques, LookupParity, ::testing::ValuesIn(allTec
 namespace penumbra {
 namespace {
 
+// The minification scene's far posts under trilinear lookups at 1024^2: kernels of hundreds of
+// thousands of texel tests, beyond what one shader invocation may run.
+gl::RenderSettings wideMinifiedKernels(int width, int height) {
+  gl::RenderSettings s;
+  s.technique = Technique::Pcf;
+  s.filter = FilterMode::Trilinear;
+  s.shadowMapSize = 1024;
+  s.width = width;
+  s.height = height;
+  s.blur = {BlurKernel::Box, 2, 1.0f};
+  return s;
+}
+
 TEST_F(ReferenceParity, WideMinifiedKernelsAreNeverTruncatedByTheDriver) {
   // Trilinear lookups of the far posts at 1024^2 reach mip levels whose kernels need hundreds of
   // thousands of texel tests; llvmpipe ends an invocation's loops after 65535 iterations and
   // returns whatever was summed (3% of these pixels were off by up to 0.44). The camera pass
   // leaves such pixels to the CPU twin: every pixel must equal the CPU reference.
   gl::Renderer renderer(*context);
-  gl::RenderSettings s;
+  gl::RenderSettings s = wideMinifiedKernels(160, 90);
   s.lookupInputs = true;  // the test reads the lookup's inputs
-  s.technique = Technique::Pcf;
-  s.filter = FilterMode::Trilinear;
-  s.shadowMapSize = 1024;
-  s.width = 160;
-  s.height = 90;
-  s.blur = {BlurKernel::Box, 2, 1.0f};
   const gl::RenderResult r = renderer.renderReference(makeBuiltinScene("minification"), s, 1);
   const CpuShadowLookup twin(renderer.readDepthMap(),
                              {Technique::Pcf, r.params, s.filter, s.blur, s.anisotropy});
@@ -310,13 +317,7 @@ TEST_F(ReferenceParity, WideMinifiedKernelsAreNeverTruncatedByTheDriver) {
 // pixels, and it must average the same completed frame the full-size reference returns.
 TEST_F(ReferenceParity, ASupersampledReferenceCompletesItsPixelsAsTheFullSizeOneDoes) {
   gl::Renderer renderer(*context);
-  gl::RenderSettings s;
-  s.technique = Technique::Pcf;
-  s.filter = FilterMode::Trilinear;
-  s.shadowMapSize = 1024;
-  s.width = 80;
-  s.height = 45;
-  s.blur = {BlurKernel::Box, 2, 1.0f};
+  const gl::RenderSettings s = wideMinifiedKernels(80, 45);
   const Scene scene = makeBuiltinScene("minification");
   const Image averaged = renderer.renderReference(scene, s, 2).visibility;
   gl::RenderSettings big = s;
