@@ -44,8 +44,10 @@ class GnuplotRun {
   // A path in the private folder for a data file the script reads (`name` a plain file name).
   std::filesystem::path scratchFile(std::string_view name) const;
 
-  // Queues one figure's script (its own terminal and output). Each figure starts from
-  // gnuplot's defaults (`reset`), so no setting leaks from one figure into the next.
+  // Queues one figure's script (its own terminal and output). Each figure starts with `reset`,
+  // which restores every plot setting but not linetypes (`set linetype`), user variables or
+  // functions: a figure that sets those must not rely on an earlier one's or leave them to a
+  // later one (plotCurves sets all it uses and is queued last).
   // `pixels`, the figure's canvas size, balances the processes: drawing time follows it.
   void add(const std::string& figure, double pixels = 1.0);
   // How many figures have been queued since this run began (names their scratch files apart).

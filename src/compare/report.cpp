@@ -684,7 +684,7 @@ void writeContents(const ComparisonResult& r, const fs::path& dir) {
     if (ec) throw Error("cannot create " + (dir / sub).string() + ": " + ec.message());
   }
   const double range = 0.5;
-  GnuplotRun gnuplot(dir);  // every figure of the report, drawn by one gnuplot process
+  GnuplotRun gnuplot(dir);  // every figure of the report, drawn in one batch
   std::vector<GridTile> tiles;
   writeColorPng(r.referenceColor, dir / "images" / "reference_shaded.png");
   // Visibility is a quantity, not light: its value is the grey level (no sRGB encoding).

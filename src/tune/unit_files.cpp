@@ -120,7 +120,7 @@ void writeUnitFiles(const TuneRequest& request, const UnitResult& r, const fs::p
     gl::writeSettingsFile(dir / kBestFile, best);
   }
   writeColorPng(r.defaultColor, dir / "default_shaded.png");
-  GnuplotRun gnuplot(dir);  // both heat maps, one gnuplot process
+  GnuplotRun gnuplot(dir);  // both heat maps, one batch
   compare::plotErrorHeatMap(gnuplot, r.defaultError, kHeatMapRange,
                             std::string(techniqueId(r.unit.technique)) +
                                 ", the user's setting: visibility - target",

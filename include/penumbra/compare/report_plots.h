@@ -11,7 +11,7 @@
 namespace penumbra::compare {
 
 // Each figure is queued into a GnuplotRun and drawn when the run runs: a report draws all its
-// figures with one gnuplot process. The heat map's overload without a run draws at once.
+// figures in one batch (GnuplotRun::run). The heat map's overload without a run draws at once.
 
 // A diverging heat map of signed error (blue: over-darkening, red: light leaking) with its
 // colour bar, over [-range, range].

@@ -81,7 +81,8 @@ struct RenderSettings {
   // to 1.6x (docs/results/passes-llvmpipe-2026-12-05.md). Reference frames always write them.
   bool lookupInputs = false;
   // Which images the frame reads back (frame_image bits). A frame that reads none and is not
-  // timed runs without waiting for the GPU. Reference frames also read their colour,
+  // timed has no glFinish and no image read-back (the cascaded depth-bounds fit and LVSM's
+  // Lloyd placement still read their small buffers back). Reference frames also read their colour,
   // visibility and diagnostic, and the lookup's inputs where the CPU completes pixels from them
   // (a supersampled reference returns only the first three, averaged).
   unsigned readBack = frame_image::kAll;
