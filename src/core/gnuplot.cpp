@@ -158,10 +158,10 @@ void GnuplotRun::run() {
     recordOutput(processes[p].log);
   }
   figures_.clear();
+  std::vector<std::string> spawnErrors(count);
   {
     // runProgram creates the log (or throws when it cannot) and waits for its own child only.
-    std::vector<std::thread> others;
-    std::vector<std::string> spawnErrors(count);
+    // jthreads join when this scope ends, also when starting one of them throws.
     auto draw = [&](size_t p) {
       try {
         processes[p].result =
@@ -170,14 +170,14 @@ void GnuplotRun::run() {
         spawnErrors[p] = e.what();
       }
     };
+    std::vector<std::jthread> others;
     for (size_t p = 1; p < count; ++p) others.emplace_back(draw, p);
     if (count > 0) draw(0);
-    for (std::thread& t : others) t.join();
-    for (const std::string& e : spawnErrors) {
-      if (!e.empty()) throw Error(e);
-    }
   }
+  // Every process's script and log are removed before any error is reported, so the run can
+  // queue and draw again.
   std::string failure;
+  bool installed = true;
   for (const Process& process : processes) {
     std::error_code ec;
     fs::remove(process.script, ec);
@@ -186,11 +186,8 @@ void GnuplotRun::run() {
     log << logFile.rdbuf();
     logFile.close();
     fs::remove(process.log, ec);
-    if (!process.result.started) {
-      throw Error(
-          "gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
-    }
-    if (process.result.succeeded() || !failure.empty()) continue;
+    installed = installed && process.result.started;
+    if (!process.result.started || process.result.succeeded() || !failure.empty()) continue;
     failure = log.str();
     while (!failure.empty() && (failure.back() == '\n' || failure.back() == ' '))
       failure.pop_back();
@@ -199,6 +196,12 @@ void GnuplotRun::run() {
                     ? "killed by a signal"
                     : "exit status " + std::to_string(process.result.exitCode);
     }
+  }
+  for (const std::string& e : spawnErrors) {
+    if (!e.empty()) throw Error(e);
+  }
+  if (!installed) {
+    throw Error("gnuplot is not installed: run scripts/install-deps (Debian package gnuplot-nox)");
   }
   if (!failure.empty()) throw Error("gnuplot failed: " + failure);
 }

@@ -177,6 +177,30 @@ TEST(Gnuplot, FiguresSpreadOverProcessesAreAllDrawn) {
   EXPECT_EQ(namesIn(scratch.path()).size(), 5u);
 }
 
+// A run whose gnuplot cannot start says so and leaves nothing queued behind it: the same run
+// draws again once gnuplot is found.
+TEST(Gnuplot, ARunThatCouldNotStartGnuplotCanDrawAgain) {
+  ScratchFolder scratch;
+  const fs::path out = scratch.path() / "again.txt";
+  const std::string figure = "set terminal dumb size 300,12\nset output " + gnuplotPath(out) +
+                             "\nset title 'AGAIN'\nplot x notitle\n";
+  GnuplotRun run(scratch.path(), 2);
+  const std::string path = std::getenv("PATH") ? std::getenv("PATH") : "";
+  ::setenv("PATH", scratch.path().c_str(), 1);  // a folder without gnuplot
+  run.add(figure);
+  run.add(figure);
+  try {
+    run.run();
+    ADD_FAILURE() << "a run without gnuplot succeeded";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not installed"), std::string::npos) << e.what();
+  }
+  ::setenv("PATH", path.c_str(), 1);
+  run.add(figure);  // two processes again: neither may find its script from the failed run
+  run.run(figure);
+  EXPECT_NE(readText(out).find("AGAIN"), std::string::npos);
+}
+
 TEST(Gnuplot, ScratchFilesStayInThePrivateFolder) {
   ScratchFolder scratch;
   {
