@@ -71,6 +71,13 @@ std::vector<std::optional<glm::vec3>> pointLightReceivers(const RenderResult& r,
   return receivers;
 }
 
+// The centre frame a sphere light's receivers are found from: its lookup and cascades, whatever
+// else the caller's settings read back.
+RenderSettings receiverSettings(RenderSettings settings) {
+  settings.readBack |= frame_image::kLookup | frame_image::kCascades;
+  return settings;
+}
+
 }  // namespace
 
 RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
@@ -105,7 +112,8 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
   // from the centre's frame; pixels outside the map, or that see no sample (on the light), take
   // the plain mean.
   const std::vector<std::optional<glm::vec3>> receivers =
-      sphere ? pointLightReceivers(renderFrame(hard, centre, false), view.light.position)
+      sphere ? pointLightReceivers(renderFrame(receiverSettings(hard), centre, false),
+                                   view.light.position)
              : std::vector<std::optional<glm::vec3>>{};
   Image visibility(hard.width, hard.height, 1);
   Image color(hard.width, hard.height, 4);
@@ -151,18 +159,18 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
       for (int c = 0; c < 4; ++c) color.at(x, y, c) = weightedColor.at(x, y, c) / total;
     }
   }
-  // The centre's lookup: coverage, receiver planes and the depth map the report reads.
-  RenderResult result = renderFrame(hard, centre, false);
+  // The centre's lookup: coverage, receiver planes and the depth map the report reads. Its
+  // colour, visibility and diagnostic give way to the samples' averages, and supersampled, its
+  // per-pixel lookup inputs have no meaning at the frame's size: neither is read back.
+  namespace fi = frame_image;
+  RenderSettings centreSettings = hard;
+  centreSettings.readBack = supersample > 1
+                                ? fi::kNone
+                                : hard.readBack & ~(fi::kColor | fi::kVisibility | fi::kDiagnostic);
+  RenderResult result = renderFrame(centreSettings, centre, false);
   result.visibility = boxDownsample(visibility, supersample);
   result.color = boxDownsample(color, supersample);
   result.diagnostic = Image(result.visibility.width(), result.visibility.height(), 1);
-  if (supersample > 1) {
-    // Per-pixel lookup inputs have no meaning at the frame's size once averaged.
-    result.lookup = Image();
-    result.receiverPlane = Image();
-    result.uvDerivatives = Image();
-    result.cascades = Image();
-  }
   result.params = settings.params;
   result.wallTimes = wall;
   result.gpuTimes = gpu;

@@ -121,6 +121,25 @@ TEST_F(SoftShadowGpu, SphereLightReferenceEqualsTheAnalyticPenumbraAndConvergesW
   EXPECT_LT(fine.rmse, 0.5 * coarse.rmse);
 }
 
+// The sphere light's receivers come from the centre frame's lookup and cascades whatever the
+// caller reads back: a reference that reads only its visibility has the same visibility.
+TEST_F(SoftShadowGpu, ASphereLightReferenceReadingOnlyItsVisibilityWeighsItsSamplesTheSame) {
+  gl::Renderer renderer(*context);
+  const Scene scene = sphereEdgeScene();
+  gl::RenderSettings s;
+  s.shadowMapSize = 256;
+  s.width = 48;
+  s.height = 32;
+  renderer.setScene(scene);
+  const gl::FrameView view{scene.camera, scene.light};
+  const Image all = renderer.renderAreaLightReference(s, view, 64, 1).visibility;
+  s.readBack = gl::frame_image::kVisibility;
+  const gl::RenderResult lean = renderer.renderAreaLightReference(s, view, 64, 1);
+  EXPECT_TRUE(lean.lookup.empty());
+  // The same frames and sums: equal to the last bit.
+  EXPECT_TRUE(std::ranges::equal(lean.visibility.data(), all.data()));
+}
+
 // Every pixel's |GPU - CPU| under a soft light. LookupParity holds each pixel to an envelope
 // derived from the twin's filtered channels, but CpuShadowLookup::filteredChannels does not
 // model the soft probes, so this bound is not derived: it is the largest difference on these
