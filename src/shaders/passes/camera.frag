@@ -220,6 +220,9 @@ void main() {
     vec2 result = cascadeVisibility(cascade, uv, uvDx, uvDy, depthPerTexel, receiver);
     visibility = result.x;
     diagnostic = result.y;
+#if CASCADED
+    // One map (and a point light's faces) has no blend band (selectCascade's last cascade fades
+    // into nothing): compiled out there, this second lookup doubled the pass's compile time.
     if (choice.blend > 0.0f) {
       // The blend band: the next cascade's lookup of the same point, mixed in (its box covers
       // this band by construction, penumbra/cascades.h).
@@ -233,6 +236,7 @@ void main() {
                        ? -1.0f
                        : mix(visibility, blended.x, choice.blend);
     }
+#endif
   }
 
   // The sRGB texture reads linear; sampled in uniform control flow (its mip level needs
