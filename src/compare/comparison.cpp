@@ -63,12 +63,15 @@ VisibilityErrors errorsAgainstReference(const Image& visibility, const Image& re
 }  // namespace
 
 gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
-                                    const gl::FrameView& view, bool areaLight, int supersample) {
+                                    const gl::FrameView& view, bool areaLight, int supersample,
+                                    unsigned readBack) {
   if (areaLight) {
     return renderer.renderAreaLightReference(request.settings, view, request.areaLightSamples,
                                              supersample);
   }
-  return renderer.renderReference(request.settings, view, supersample);
+  gl::RenderSettings settings = request.settings;
+  settings.readBack = readBack;
+  return renderer.renderReference(settings, view, supersample);
 }
 
 std::string_view truthKindName(TruthKind kind) {
@@ -207,7 +210,10 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
     const gl::FrameView view{path[frame], result.scene.light};
     showFrame(frame);
     step("reference, frame " + std::to_string(frame + 1));
-    gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1);
+    namespace fi = gl::frame_image;
+    // Later frames feed only the flicker's reference visibility.
+    gl::RenderResult reference = renderReferenceFor(request, renderer, view, areaLight, 1,
+                                                    frame == 0 ? fi::kAll : fi::kVisibility);
     references.push_back(reference.visibility);
     if (frame > 0) continue;
     result.referenceColor = reference.color;
@@ -227,7 +233,8 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       depths.push_back(renderer.readDepthMap(c));
     step("supersampled ground truth");
     result.groundTruthVisibility =
-        renderReferenceFor(request, renderer, view, areaLight, request.supersample).visibility;
+        renderReferenceFor(request, renderer, view, areaLight, request.supersample, fi::kVisibility)
+            .visibility;
     if (traces) {
       step("ray-traced truth");
       const Image depth = renderer.readCameraDepth();  // the ground truth's sub-pixels

@@ -192,18 +192,23 @@ RenderResult Renderer::renderReference(const RenderSettings& settings, const Fra
   big.height = settings.height * supersample;
   requireCascadableLight(settings.cascades, view.light);
   validate(big, view.light.kind);
-  // Supersampled, only the averaged colour, visibility and diagnostic are returned: the lookup's
+  // Supersampled, only the averaged colour, visibility and diagnostic are returned, as the
+  // caller asks (the visibility always: it marks the pixels left to the CPU); the lookup's
   // inputs are read back only when the CPU has pixels to complete (completeReferenceOnCpu).
+  namespace fi = frame_image;
   if (supersample > 1) {
-    big.readBack = frame_image::kColor | frame_image::kVisibility | frame_image::kDiagnostic;
+    big.readBack = (settings.readBack & (fi::kColor | fi::kDiagnostic)) | fi::kVisibility;
   }
   RenderResult full = renderFrame(big, view, true);
   completeReferenceOnCpu(full);
   if (supersample == 1) return full;
+  auto averaged = [&](const Image& image, unsigned bit) {
+    return settings.readBack & bit ? boxDownsample(image, supersample) : Image{};
+  };
   RenderResult result;
-  result.color = boxDownsample(full.color, supersample);
+  result.color = averaged(full.color, fi::kColor);
   result.visibility = boxDownsample(full.visibility, supersample);
-  result.diagnostic = boxDownsample(full.diagnostic, supersample);
+  result.diagnostic = averaged(full.diagnostic, fi::kDiagnostic);
   result.params = full.params;
   result.cascadeFrame = full.cascadeFrame;
   result.cascadeBlurs = full.cascadeBlurs;
@@ -328,10 +333,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
 
   RenderResult result;
   namespace fi = frame_image;
-  // A reference frame's colour, visibility and diagnostic are what the CPU completes.
+  // A reference frame's visibility marks the pixels the CPU completes (completeReferenceOnCpu
+  // reads the colour and diagnostic it shades them from where they were not asked for).
   const unsigned reads =
-      settings.readBack |
-      (reference ? fi::kColor | fi::kVisibility | fi::kDiagnostic : diagnosticReadFor(settings));
+      settings.readBack | (reference ? fi::kVisibility : diagnosticReadFor(settings));
   if (reads & fi::kColor) result.color = s.camera.readColor();
   if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
   if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();
@@ -384,6 +389,9 @@ void Renderer::completeReferenceOnCpu(RenderResult& r) const {
   if (r.receiverPlane.empty()) r.receiverPlane = s.camera.readReceiverPlane();
   if (r.uvDerivatives.empty()) r.uvDerivatives = s.camera.readUvDerivatives();
   if (r.cascades.empty()) r.cascades = s.camera.readCascades();
+  // The shading of the completed pixels needs their albedo and light amount.
+  if (r.color.empty()) r.color = s.camera.readColor();
+  if (r.diagnostic.empty()) r.diagnostic = s.camera.readDiagnostic();
   CascadedReference reference(r, settings.shadowMapSize, settings.filter, settings.anisotropy,
                               s.limits.halfRounding,
                               [this](int cascade) { return readDepthMap(cascade); });

@@ -52,10 +52,12 @@ PathTargets traceTargets(const TuneRequest& request, gl::Renderer& renderer,
   PathTargets targets{width, height, {}};
   for (size_t f = 0; f < path.size(); ++f) {
     const gl::FrameView view{path[f], scene.light};
-    const gl::RenderResult reference = compare::renderReferenceFor(c, renderer, view, areaLight, 1);
+    namespace fi = gl::frame_image;
+    const gl::RenderResult reference =
+        compare::renderReferenceFor(c, renderer, view, areaLight, 1, fi::kVisibility | fi::kLookup);
     const Image coverage = litSurfaceMask(reference.lookup);
-    const gl::RenderResult groundTruth =
-        compare::renderReferenceFor(c, renderer, view, areaLight, request.supersample);
+    const gl::RenderResult groundTruth = compare::renderReferenceFor(
+        c, renderer, view, areaLight, request.supersample, fi::kVisibility);
     FrameTarget t;
     if (rays) {
       const Image depth = renderer.readCameraDepth();

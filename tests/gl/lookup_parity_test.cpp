@@ -337,5 +337,28 @@ TEST_F(ReferenceParity, ASupersampledReferenceCompletesItsPixelsAsTheFullSizeOne
   EXPECT_EQ(differing, 0);
 }
 
+// compare's ground truth reads back only its visibility: the pixels left to the CPU are then
+// shaded from a colour and light amount the frame did not read back, so the completion reads
+// them itself; the visibility is the full read-back's to the last bit (the same frame), and the
+// images not asked for stay empty.
+TEST_F(ReferenceParity, AReferenceReadingOnlyItsVisibilityCompletesItsPixelsTheSame) {
+  gl::Renderer renderer(*context);
+  const gl::RenderSettings s = wideMinifiedKernels(80, 45);
+  const Scene scene = makeBuiltinScene("minification");
+  const gl::RenderResult everything = renderer.renderReference(scene, s, 2);
+  gl::RenderSettings visibilityOnly = s;
+  visibilityOnly.readBack = gl::frame_image::kVisibility;
+  const gl::RenderResult r = renderer.renderReference(scene, visibilityOnly, 2);
+  EXPECT_TRUE(r.color.empty());
+  EXPECT_TRUE(r.diagnostic.empty());
+  ASSERT_FALSE(everything.color.empty());
+  ASSERT_EQ(r.visibility.data().size(), everything.visibility.data().size());
+  int differing = 0;
+  for (size_t i = 0; i < r.visibility.data().size(); ++i) {
+    differing += r.visibility.data()[i] != everything.visibility.data()[i];
+  }
+  EXPECT_EQ(differing, 0);
+}
+
 }  // namespace
 }  // namespace penumbra

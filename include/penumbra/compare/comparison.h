@@ -161,9 +161,11 @@ bool matchedPcfIsReference(const ComparisonRequest& request, bool areaLight);
 shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings);
 
 // The frame's reference at `supersample` sub-pixels per side: the area-light reference when the
-// light has a size (`areaLight`), else the filtered reference, of `request.settings`.
+// light has a size (`areaLight`), else the filtered reference, of `request.settings`, reading
+// back the images in `readBack` (gl::frame_image; the area-light reference reads its own).
 gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
-                                    const gl::FrameView& view, bool areaLight, int supersample);
+                                    const gl::FrameView& view, bool areaLight, int supersample,
+                                    unsigned readBack = gl::frame_image::kAll);
 
 // step: what is being done; done/total: steps so far and in all.
 using Progress = std::function<void(int done, int total, const std::string& step)>;

@@ -223,7 +223,9 @@ class Renderer {
   // the effective kernel of `settings` (its blur, filter mode and anisotropy) in the pixel's
   // cascade (blended like the technique in the blend band), evaluated at supersample x
   // supersample sub-pixel positions and averaged (1: the filtered reference itself; 4 or more:
-  // the supersampled ground truth). MSAA is off for the reference.
+  // the supersampled ground truth). MSAA is off for the reference. Reads back the images of
+  // settings.readBack; supersampled, only its colour and diagnostic, averaged, and always the
+  // visibility.
   RenderResult renderReference(const RenderSettings& settings, const FrameView& view,
                                int supersample);
   RenderResult renderReference(const Scene& scene, const RenderSettings& settings, int supersample);
