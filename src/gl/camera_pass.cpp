@@ -185,7 +185,9 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), false);
   defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
   defines.push_back({"LAYER_COUNT", std::to_string(layers)});
-  defines.push_back({"PENUMBRA_CHANNEL_CAPACITY", std::to_string(4 * layers)});
+  // The parameters the production pass compiles in (ESM's filter space decides its channel's
+  // reduction), and its channel arrays' size, 4 x layers.
+  for (const ShaderDefine& d : lookupParameterDefines(shadows.state())) defines.push_back(d);
   const Program& program =
       programs.graphics("passes/camera.vert", "passes/minimal_lookup.frag", defines);
   shadows.bind();

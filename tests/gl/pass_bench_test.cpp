@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "gl_test_context.h"
@@ -64,13 +65,20 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
 
 // The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset
 // or receiver plane, the channels at level 0. With bilinear lookups on a flat-lit scene that
-// changes the shadows' edges only.
+// changes the shadows' edges only. The power CDF's min and max channels and ESM's log-space one
+// are reduced by hand as the pass's are: averaged by the hardware they shade other pixels.
 TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   gl::Renderer renderer(*context);
   const Scene scene = makeBuiltinScene("backyard");
-  for (Technique t : {Technique::Vsm, Technique::Csm}) {
-    SCOPED_TRACE(techniqueId(t));
+  for (const char* id : {"vsm", "csm", "powercdf", "esm-log"}) {
+    SCOPED_TRACE(id);
+    const bool logEsm = std::string_view(id) == "esm-log";
+    const Technique t = logEsm ? Technique::Esm : parseTechnique(id);
     gl::RenderSettings s = small(t);
+    if (logEsm) {
+      s.params.esm.filterSpace = shaders::kEsmFilterLog;
+      s.params.esm.classifier = shaders::kEsmClassifyNone;  // no fallback: the yardstick has none
+    }
     s.shadowMapSize = 512;
     s.width = 160;
     s.height = 90;
@@ -95,10 +103,11 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     const int pixels = s.width * s.height;
     EXPECT_GT(shadowed, pixels / 50) << "the view must show shadows for this to test them";
     // Measured: every pixel agrees (bilinear lookups at level 0 on both sides, no normal offset
-    // asked for); 1% left for shadow edges that the receiver plane would move.
-    EXPECT_GT(near, pixels * 99 / 100);
-    std::printf("%s: %d of %d pixels agree, %d shadowed\n", techniqueId(t).data(), near, pixels,
-                shadowed);
+    // asked for); 0.1% left for shadow-edge pixels that the receiver plane could move. Averaged
+    // by the hardware, the power CDF's min and max channels moved 149 pixels, ESM's log-space
+    // channel 24.
+    EXPECT_GE(near, pixels - pixels / 1000);
+    std::printf("%s: %d of %d pixels agree, %d shadowed\n", id, near, pixels, shadowed);
   }
 }
 

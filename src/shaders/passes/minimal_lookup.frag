@@ -1,6 +1,8 @@
 // The camera pass's yardstick (bench --passes): the least a lookup of the technique can do on
 // one map. The receiver in the light's map, the channels by one hardware-filtered fetch per
-// channel layer at level 0 (bilinear), the technique's own reconstruction
+// channel layer at level 0 (bilinear) where they average linearly, else the layer's four texels
+// reduced by hand (the power CDF's min and max, ESM's log space: bilinear hardware filtering
+// would average them into a wrong visibility), the technique's own reconstruction
 // (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
 // normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
 // production pass (camera.frag) adds to this is its cost over the yardstick.
@@ -43,15 +45,28 @@ void main() {
   vec4 clip = lightClipFromView * view;
   vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
   float receiver = lightLinearDepth(view.xyz, LIGHT_PERSPECTIVE != 0, lightNear, lightFar);
+  TechniqueParams params = lookupParams();  // ESM's filter space compiled in, as the pass's
+  LookupSources sources;
+  sources.cascade = 0;
   float channels[PENUMBRA_CHANNEL_CAPACITY];  // 4 x LAYER_COUNT where the pass defines it
   for (int i = 0; i < PENUMBRA_CHANNEL_CAPACITY; ++i) channels[i] = 0.0f;
   for (int layer = 0; layer < LAYER_COUNT; ++layer) {
-    vec4 v = textureLod(penumbraChannelMap, vec3(uv, float(layer)), 0.0f);
+    ivec4 reductions = ivec4(kReduceMean);
+    for (int k = 0; k < 4; ++k) {
+      reductions[k] = channelReduction(penumbraTechnique, 4 * layer + k, params);
+    }
+    vec4 v;
+    if (all(equal(reductions, ivec4(kReduceMean)))) {
+      v = textureLod(penumbraChannelMap, vec3(uv, float(layer)), 0.0f);
+    } else {
+      LayerAccumulator a = startLayerReduction(reductions, params.esm.exponent);
+      a = accumulateBilinear(sources, a, layer, uv, 0, penumbraLookup.shadowMapSize, 1.0f);
+      v = layerReductionResult(a);
+    }
     for (int k = 0; k < 4; ++k) channels[4 * layer + k] = v[k];
   }
   float visibility =
-      clamp(reconstructVisibility(penumbraTechnique, channels, receiver, penumbraParams), 0.0f,
-            1.0f);
+      clamp(reconstructVisibility(penumbraTechnique, channels, receiver, params), 0.0f, 1.0f);
   color = vec4(shadeLambert(materialBaseColor(baseColorTexcoord).rgb, ambient, cosine, visibility),
                1.0f);
 }
