@@ -148,7 +148,16 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
     return f;
   }
 #endif
-  for (int layer = range.x / 4; layer <= range.y / 4; ++layer) {
+  // A capacity of up to 8 texel layers (every technique but the layered power CDF) loops over
+  // all of them, those outside the range fetched and left unread: the loop's count is then a
+  // constant, it unrolls and indexes the channel array by constants. Over the range, a run-time
+  // count, llvmpipe keeps the array in per-lane memory (scattered stores and loads for every
+  // channel): CSM's camera pass took 1.7-2.5x its minimal lookup, the one-layer power CDF's
+  // 2.3-2.6x, LVSM's 1.6-2.8x. The layered power CDF's 12 layers keep the range: it reads 1-2.
+  bool everyLayer = PENUMBRA_CHANNEL_CAPACITY <= 32;
+  int fromLayer = everyLayer ? 0 : range.x / 4;
+  int toLayer = everyLayer ? PENUMBRA_CHANNEL_CAPACITY / 4 - 1 : range.y / 4;
+  for (int layer = fromLayer; layer <= toLayer; ++layer) {
     bool linear = true;  // every channel of this layer that is read averages linearly
     for (int k = 0; k < 4; ++k) {
       int c = 4 * layer + k;
