@@ -69,6 +69,13 @@ LookupSettings lookupSettings(int cascade) {
   // instead of sizing every pixel's registers.
   s.filterMode = PENUMBRA_FILTER_MODE;
 #endif
+#ifdef PENUMBRA_BLUR_KERNEL
+  // The prefilter's kernel, compiled in where the renderer's camera pass defines it
+  // (lookupParameterDefines): the kernel ESM's PCF fallback and the reference weigh their taps
+  // with; llvmpipe evaluated every kernel's weights, the Gaussian's exponentials included, for
+  // every tap.
+  s.blurKernel = PENUMBRA_BLUR_KERNEL;
+#endif
   return s;
 }
 
