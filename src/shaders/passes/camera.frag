@@ -65,6 +65,13 @@ uniform float lightSize;  // Light::size: 0 hard, else soft (shared/soft_shadow.
 // 0: one map, uv through lightClipFromView. 1: cascades, boxes on the light's view plane.
 const int cascaded = CASCADED;
 uniform int cascadeCount;
+// One map (CascadeFrame of one cascade, no point light) has one cascade, compiled in: the
+// selection loop and the cascade arrays' indices become constants.
+#if CASCADED || POINT_LIGHT
+#define FRAME_CASCADES cascadeCount
+#else
+#define FRAME_CASCADES 1
+#endif
 uniform vec4 cascadeBoxes[kMaxCascades];   // one map: (0, 0, 1, 1) over its uv
 uniform float cascadeTexelWorldSize[kMaxCascades];  // per unit distance for spot lights
 uniform float cascadeStart;
@@ -169,8 +176,8 @@ void main() {
 
   float viewDepth = -(cameraViewFromWorld * vec4(worldPosition, 1.0f)).z;
   CascadeChoice choice = selectCascade(viewDepth, cascadeStart, cascadeEnds0, cascadeEnds1,
-                                       cascadeCount, cascadeBlendBand);
-  int cascade = min(choice.index, cascadeCount - 1);
+                                       FRAME_CASCADES, cascadeBlendBand);
+  int cascade = min(choice.index, FRAME_CASCADES - 1);
   vec4 box = cascadeBoxes[cascade];
 
   float offsetScale = lightPerspective != 0 ? length(lightPosition - worldPosition) : 1.0f;
@@ -214,7 +221,7 @@ void main() {
     choice.index = pointFace;
     choice.blend = 0.0f;
   }
-  bool inside = choice.index < cascadeCount && all(greaterThanEqual(uv, vec2(0.0f))) &&
+  bool inside = choice.index < FRAME_CASCADES && all(greaterThanEqual(uv, vec2(0.0f))) &&
                 all(lessThanEqual(uv, vec2(1.0f))) && receiver <= 1.0f && planeAndDepth.w > 0.0f;
   if (inside) {
     vec2 result = cascadeVisibility(cascade, uv, uvDx, uvDy, depthPerTexel, receiver);
@@ -245,7 +252,7 @@ void main() {
   float lightAmount = cosine;
   if (lightPerspective != 0 && pointLight == 0) lightAmount *= spotConeFalloff(dot(-toLight, spotAxis), spotCosine);
   vec3 surface = baseColor.rgb;
-  if (cascadeOverlay != 0 && choice.index < cascadeCount) {
+  if (cascadeOverlay != 0 && choice.index < FRAME_CASCADES) {
     vec3 tint = cascadeTint(cascade);
     if (choice.blend > 0.0f) tint = mix(tint, cascadeTint(cascade + 1), choice.blend);
     surface *= tint;
