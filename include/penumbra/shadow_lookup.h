@@ -66,6 +66,9 @@ class CpuShadowLookup {
   // The filtered reference for the pixel (docs/reference.md). Mip-mapped filter modes need a
   // power-of-two map size (throws Error otherwise).
   float referenceVisibility(const LookupPixel& pixel) const;
+  // Whether the GPU's camera pass leaves the pixel's reference to this twin: its kernel needs
+  // more texel tests than one shader invocation may loop over (shaders::referenceLeftToCpu).
+  bool referenceLeftToCpu(const LookupPixel& pixel) const;
 
   // The filtered channels the technique's reconstruction reads for the pixel, channel c at index
   // c (channels it does not read are 0); empty for PCF and the hard test, which filter after the

@@ -70,7 +70,7 @@ gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Render
                                              supersample);
   }
   gl::RenderSettings settings = request.settings;
-  settings.readBack = readBack;
+  settings.readBack = request.settings.readBack & readBack;  // neither's images beyond its own
   return renderer.renderReference(settings, view, supersample);
 }
 

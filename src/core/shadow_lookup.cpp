@@ -10,10 +10,10 @@
 #include "penumbra/channel_layout.h"
 #include "penumbra/error.h"
 #include "penumbra/params.h"
-#include "penumbra/storage_format.h"
-#include "penumbra/summed_area_table.h"
 #include "penumbra/shared/filtered_reference.h"
 #include "penumbra/shared/shadow_lookup.h"
+#include "penumbra/storage_format.h"
+#include "penumbra/summed_area_table.h"
 
 namespace penumbra {
 
@@ -166,10 +166,9 @@ CpuShadowLookup::~CpuShadowLookup() = default;
 
 LookupSample CpuShadowLookup::lookup(const LookupPixel& p) const {
   const shaders::LookupSources sources{textures_.get()};
-  const shaders::ShadowSample s =
-      shaders::shadowLookup(sources, textures_->settings, int(config_.technique), config_.params,
-                            p.uv, p.receiverDepth, p.uvDx, p.uvDy, p.depthPerTexel,
-                            config_.softLight);
+  const shaders::ShadowSample s = shaders::shadowLookup(
+      sources, textures_->settings, int(config_.technique), config_.params, p.uv, p.receiverDepth,
+      p.uvDx, p.uvDy, p.depthPerTexel, config_.softLight);
   return {s.visibility, s.diagnostic};
 }
 
@@ -183,10 +182,12 @@ std::vector<float> CpuShadowLookup::filteredChannels(const LookupPixel& p) const
   return std::vector<float>(f.values, f.values + count);
 }
 
-float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
-  shaders::LookupSettings settings = textures_->settings;
+namespace {
+
+// The settings the reference reads: every mip level for the mip-mapped filter modes.
+shaders::LookupSettings referenceSettings(shaders::LookupSettings settings, FilterMode filter) {
   const int size = settings.shadowMapSize;
-  if (usesMips(config_.filter)) {
+  if (usesMips(filter)) {
     if (!isPowerOfTwo(size)) {
       throw Error(
           "the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
@@ -195,6 +196,18 @@ float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
     }
     settings.channelLevels = mipLevelCount(size, size);
   }
+  return settings;
+}
+
+}  // namespace
+
+bool CpuShadowLookup::referenceLeftToCpu(const LookupPixel& p) const {
+  return shaders::referenceLeftToCpu(referenceSettings(textures_->settings, config_.filter), p.uv,
+                                     p.uvDx, p.uvDy);
+}
+
+float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
+  const shaders::LookupSettings settings = referenceSettings(textures_->settings, config_.filter);
   const shaders::LookupSources sources{textures_.get()};
   return std::clamp(shaders::referenceVisibility(sources, settings, p.uv, p.receiverDepth, p.uvDx,
                                                  p.uvDy, p.depthPerTexel),

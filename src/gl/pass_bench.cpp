@@ -275,7 +275,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              generateMips.median(), "", 0.0});
   }
   result.passes.push_back({"camera", median(passes.camera),
-                           "minimal lookup: one filtered fetch per layer, reconstruct, Lambert, "
+                           "minimal lookup: each layer filtered once, reconstruct, Lambert, "
                            "RGBA8",
                            minimalLookup.median(), "", 0.0});
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).

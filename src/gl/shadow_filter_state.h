@@ -76,6 +76,7 @@ ShaderDefine channelCapacityDefine(Technique technique, const TechniqueParams& p
 
 // What the renderer's own camera pass compiles in from the parameters, so the paths not taken
 // fold away: ESM's classifier, fallback and filter space (lib/lookup_access.glsl lookupParams),
+// the prefilter's kernel (lookupSettings),
 // and the channel arrays' size (channelCapacityDefine). A host's preamble leaves them to the
 // parameter block and kMaxChannels, so that a host shader compiled once follows parameter
 // changes. On llvmpipe they took ESM's camera pass from 6x its minimal lookup to 3.5x, and

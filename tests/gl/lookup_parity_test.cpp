@@ -345,6 +345,21 @@ TEST_F(ReferenceParity, AReferenceReadingOnlyItsVisibilityCompletesItsPixelsTheS
   gl::Renderer renderer(*context);
   const gl::RenderSettings s = wideMinifiedKernels(80, 45);
   const Scene scene = makeBuiltinScene("minification");
+  // The sub-pixels' frame, to count the pixels left to the CPU: the test needs some.
+  gl::RenderSettings big = s;
+  big.width = 2 * s.width;
+  big.height = 2 * s.height;
+  const gl::RenderResult subPixels = renderer.renderReference(scene, big, 1);
+  const CpuShadowLookup twin(renderer.readDepthMap(),
+                             {Technique::Pcf, subPixels.params, s.filter, s.blur, s.anisotropy});
+  int leftToCpu = 0;
+  for (int y = 0; y < big.height; ++y) {
+    for (int x = 0; x < big.width; ++x) {
+      leftToCpu += subPixels.lookup.at(x, y, 3) > 0.0f &&
+                   twin.referenceLeftToCpu(gl::lookupPixelAt(subPixels, x, y));
+    }
+  }
+  EXPECT_GT(leftToCpu, 10);
   const gl::RenderResult everything = renderer.renderReference(scene, s, 2);
   gl::RenderSettings visibilityOnly = s;
   visibilityOnly.readBack = gl::frame_image::kVisibility;

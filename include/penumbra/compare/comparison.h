@@ -162,7 +162,8 @@ shaders::PcfParams pcfMatchingPrefilter(const gl::RenderSettings& settings);
 
 // The frame's reference at `supersample` sub-pixels per side: the area-light reference when the
 // light has a size (`areaLight`), else the filtered reference, of `request.settings`, reading
-// back the images in `readBack` (gl::frame_image; the area-light reference reads its own).
+// back the images both `readBack` and the request's settings name (gl::frame_image; the
+// area-light reference reads its own).
 gl::RenderResult renderReferenceFor(const ComparisonRequest& request, gl::Renderer& renderer,
                                     const gl::FrameView& view, bool areaLight, int supersample,
                                     unsigned readBack = gl::frame_image::kAll);

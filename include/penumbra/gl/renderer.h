@@ -82,9 +82,10 @@ struct RenderSettings {
   bool lookupInputs = false;
   // Which images the frame reads back (frame_image bits). A frame that reads none and is not
   // timed has no glFinish and no image read-back (the cascaded depth-bounds fit and LVSM's
-  // Lloyd placement still read their small buffers back). Reference frames also read their colour,
-  // visibility and diagnostic, and the lookup's inputs where the CPU completes pixels from them
-  // (a supersampled reference returns only the first three, averaged).
+  // Lloyd placement still read their small buffers back). Reference frames also read their
+  // visibility, and where the CPU completes pixels the colour, diagnostic and lookup's inputs
+  // it completes them from (a supersampled reference returns only the colour, visibility and
+  // diagnostic asked for, averaged).
   unsigned readBack = frame_image::kAll;
   // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
   // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,

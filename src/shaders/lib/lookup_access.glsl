@@ -81,7 +81,8 @@ LookupSettings lookupSettings(int cascade) {
 
 // The technique's parameters as the lookup reads them: the block's, with those that choose
 // among whole paths of the lookup compiled in where the renderer's camera pass defines them
-// (gl/shadow_filter_state.h lookupParameterDefines: ESM's classifier, fallback and filter space),
+// (gl/shadow_filter_state.h lookupParameterDefines: ESM's classifier, fallback and filter space;
+// the blur kernel in lookupSettings),
 // so the paths not taken fold away; llvmpipe ran every path, and ESM's camera pass took 6x its
 // minimal lookup (3.5x compiled in). A host's preamble leaves them to the block.
 TechniqueParams lookupParams() {

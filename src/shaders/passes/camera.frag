@@ -91,9 +91,6 @@ layout(location = 5) out vec4 uvDerivativesOut;  // dFdx(uv), dFdy(uv): the look
 layout(location = 6) out vec2 cascadeOut;        // the deciding cascade (-1: none) and blend
 #endif
 
-// Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows.
-const float kMaxReferenceTestsPerPixel = 48000.0f;
-
 // A point light's face for this pixel: every position of the pixel's lookup (its receiver-plane
 // steps, its neighbours' for the footprint) is projected into it, so nothing straddles faces.
 int pointFace = 0;
@@ -140,7 +137,7 @@ vec2 cascadeVisibility(int cascade, vec2 uv, vec2 uvDx, vec2 uvDy, vec2 depthPer
 #if REFERENCE
   // Weights sum to 1 up to fp32 rounding. A lookup whose kernel needs more texel tests than
   // one invocation may loop over is marked -1 for the CPU twin to evaluate (Renderer).
-  if (referenceTexelTests(settings, uv, uvDx, uvDy) > kMaxReferenceTestsPerPixel) {
+  if (referenceLeftToCpu(settings, uv, uvDx, uvDy)) {
     return vec2(-1.0f, 0.0f);
   }
   return vec2(clamp(referenceVisibility(sources, settings, uv, receiver, uvDx, uvDy,

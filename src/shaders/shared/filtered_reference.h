@@ -148,5 +148,14 @@ PENUMBRA_INLINE float referenceTexelTests(LookupSettings ls, vec2 uv, vec2 uvDx,
   return float(probes.count) * (first * first + second * second);
 }
 
+// Below llvmpipe's 65535 loop iterations per invocation, with room for the loops' own rows: a
+// lookup whose kernel needs more texel tests is left by the camera pass to the CPU twin
+// (Renderer::completeReferenceOnCpu).
+const float kMaxReferenceTestsPerPixel = 48000.0f;
+
+PENUMBRA_INLINE bool referenceLeftToCpu(LookupSettings ls, vec2 uv, vec2 uvDx, vec2 uvDy) {
+  return referenceTexelTests(ls, uv, uvDx, uvDy) > kMaxReferenceTestsPerPixel;
+}
+
 PENUMBRA_END_SHARED
 #endif

@@ -132,7 +132,7 @@ PENUMBRA_INLINE float summedAreaBoxMean(LookupSources s, int channel, SummedArea
 #endif
 
 // The technique's filtered channels at uv; only those the receiver's reconstruction reads are
-// fetched (layered techniques: the receiver's layers), the others stay 0.
+// kept (layered techniques: the receiver's layers), the others stay 0.
 PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings ls, int technique,
                                                 TechniqueParams p, vec2 uv, vec2 uvDx, vec2 uvDy,
                                                 float receiverDepth) {
@@ -148,13 +148,16 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
     return f;
   }
 #endif
-  // A capacity of up to 8 texel layers (every technique but the layered power CDF) loops over
-  // all of them, those outside the range fetched and left unread: the loop's count is then a
-  // constant, it unrolls and indexes the channel array by constants. Over the range, a run-time
-  // count, llvmpipe keeps the array in per-lane memory (scattered stores and loads for every
-  // channel): CSM's camera pass took 1.7-2.5x its minimal lookup, the one-layer power CDF's
-  // 2.3-2.6x, LVSM's 1.6-2.8x. The layered power CDF's 12 layers keep the range: it reads 1-2.
-  bool everyLayer = PENUMBRA_CHANNEL_CAPACITY <= 32;
+  // The techniques that read all their channels (all but LVSM and the power CDF), and the
+  // layered two within two texel layers of capacity, loop over every layer of the capacity,
+  // those outside the range fetched and left unread: the loop's count is then a constant, it
+  // unrolls and indexes the channel array by constants. Over the range, a run-time count,
+  // llvmpipe keeps the array in per-lane memory (scattered stores and loads for every channel):
+  // CSM's camera pass took 1.7-2.5x its minimal lookup, the one-layer power CDF's 2.3-2.6x,
+  // LVSM's 1.6-2.8x. More layers of LVSM or the power CDF keep the range, of which they read
+  // one or two layers. A host's shader (capacity 48) and the CPU keep it too.
+  bool readsAll = technique != kTechniqueLvsm && technique != kTechniquePowerCdf;
+  bool everyLayer = PENUMBRA_CHANNEL_CAPACITY <= 32 && (readsAll || PENUMBRA_CHANNEL_CAPACITY <= 8);
   int fromLayer = everyLayer ? 0 : range.x / 4;
   int toLayer = everyLayer ? PENUMBRA_CHANNEL_CAPACITY / 4 - 1 : range.y / 4;
   for (int layer = fromLayer; layer <= toLayer; ++layer) {

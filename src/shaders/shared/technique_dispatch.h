@@ -168,7 +168,8 @@ PENUMBRA_INLINE int channelReduction(int technique, int channel, TechniqueParams
 
 // The channels [x, y] that reconstructVisibility reads for a receiver at `receiverDepth`: the
 // receiver's layer (and LVSM's next one, for its transition) for the layered techniques, all
-// channels otherwise. The lookup fetches only these.
+// channels otherwise. The lookup keeps only these (and with more than two texel layers fetches
+// only their layers, shadow_lookup.h filterChannels).
 PENUMBRA_INLINE ivec2 receiverChannelRange(int technique, TechniqueParams p, float receiverDepth) {
   if (technique == kTechniqueLvsm) {
     int layer = selectLayer(receiverDepth, p.lvsm.splits);
