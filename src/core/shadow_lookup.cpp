@@ -93,6 +93,21 @@ bool isPowerOfTwo(int n) {
   return n > 0 && (n & (n - 1)) == 0;
 }
 
+// The settings the reference reads: every mip level for the mip-mapped filter modes.
+shaders::LookupSettings referenceSettings(shaders::LookupSettings settings, FilterMode filter) {
+  const int size = settings.shadowMapSize;
+  if (usesMips(filter)) {
+    if (!isPowerOfTwo(size)) {
+      throw Error(
+          "the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
+          "size; " +
+          std::to_string(size) + " is not");
+    }
+    settings.channelLevels = mipLevelCount(size, size);
+  }
+  return settings;
+}
+
 }  // namespace
 
 CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
@@ -181,25 +196,6 @@ std::vector<float> CpuShadowLookup::filteredChannels(const LookupPixel& p) const
   const int count = channelCount(config_.technique, config_.params);
   return std::vector<float>(f.values, f.values + count);
 }
-
-namespace {
-
-// The settings the reference reads: every mip level for the mip-mapped filter modes.
-shaders::LookupSettings referenceSettings(shaders::LookupSettings settings, FilterMode filter) {
-  const int size = settings.shadowMapSize;
-  if (usesMips(filter)) {
-    if (!isPowerOfTwo(size)) {
-      throw Error(
-          "the filtered reference of mip-mapped lookups needs a power-of-two shadow-map "
-          "size; " +
-          std::to_string(size) + " is not");
-    }
-    settings.channelLevels = mipLevelCount(size, size);
-  }
-  return settings;
-}
-
-}  // namespace
 
 bool CpuShadowLookup::referenceLeftToCpu(const LookupPixel& p) const {
   return shaders::referenceLeftToCpu(referenceSettings(textures_->settings, config_.filter), p.uv,
