@@ -35,6 +35,11 @@ void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout
 std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
 ShaderDefine blurRadiusDefine(const BlurSpec& spec);
 void setBlurWeights(const Program& p, const BlurSpec& spec);
+// The fused prefilter's work group, TILE x TILE texels (passes/prefilter_fused.comp, and its
+// minimal kernel passes/baseline_fused.comp), and its shared arrays' components: TILE and
+// TEXEL_COMPONENTS, the format's 1, 2 or 4.
+inline constexpr int kFusedTile = 16;
+std::vector<ShaderDefine> fusedTileDefines(const ChannelLayout& layout);
 void setSize(const Program& p, const char* name, int size);
 
 }  // namespace penumbra::gl

@@ -18,10 +18,8 @@ namespace penumbra::gl {
 
 namespace {
 constexpr unsigned kGroup = kChannelGroup;
-// The fused prefilter's work group: TILE x TILE texels (passes/prefilter_fused.comp's TILE). Its
-// shared memory, the tile with its border and the rows' results in RGBA32F, must fit the 32 KiB
-// every GL 4.5 device has for the largest radius it takes.
-constexpr int kFusedTile = 16;
+// The fused prefilter's shared memory, the tile with its border and the rows' results (RGBA32F at
+// most), must fit the 32 KiB every GL 4.5 device has for the largest radius it takes.
 constexpr int fusedSharedBytes(int radius) {
   const int span = kFusedTile + 2 * radius;
   return 16 * (span * span + span * kFusedTile);
@@ -63,6 +61,11 @@ std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec) {
     weights += i + 1 < w.size() ? ", " : ")";
   }
   return {blurRadiusDefine(spec), {"WEIGHTS", weights}};
+}
+
+std::vector<ShaderDefine> fusedTileDefines(const ChannelLayout& layout) {
+  return {{"TILE", std::to_string(kFusedTile)},
+          {"TEXEL_COMPONENTS", std::to_string(layout.componentsPerTexel)}};
 }
 
 ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
@@ -234,7 +237,7 @@ void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const Parameter
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     std::vector<ShaderDefine> fusedDefines = defines;
     fusedDefines.push_back(blurRadiusDefine(spec));
-    fusedDefines.push_back({"TILE", std::to_string(kFusedTile)});
+    for (ShaderDefine& d : fusedTileDefines(shape_.layout)) fusedDefines.push_back(std::move(d));
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
     setBlurWeights(fused, spec);
     parameters.bind();

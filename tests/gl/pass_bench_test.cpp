@@ -37,7 +37,7 @@ void expectTimed(const gl::PassBenchResult& r, const std::vector<std::string>& p
 
 TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   gl::Renderer renderer(*context);
-  // RGBA32F: the separate passes, and the fused one beside both their minimal kernels.
+  // RGBA32F: the separate passes, and the fused one beside the plain fused kernel of its traffic.
   const gl::PassBenchResult evsm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Evsm4), 2);
   EXPECT_EQ(evsm.format, "rgba32f x 1 layer");

@@ -54,6 +54,13 @@ PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float val
 PENUMBRA_INLINE vec4 accumulateMeanTexel(vec4 sum, vec4 texel, float weight) {
   return sum + weight * texel;
 }
+// The same for a texel of two or one components (the fused prefilter keeps only the format's).
+PENUMBRA_INLINE vec2 accumulateMeanTexel(vec2 sum, vec2 texel, float weight) {
+  return sum + weight * texel;
+}
+PENUMBRA_INLINE float accumulateMeanTexel(float sum, float texel, float weight) {
+  return sum + weight * texel;
+}
 
 // The reduced value of the taps so far (0 before any tap).
 PENUMBRA_INLINE float reductionResult(ChannelAccumulator a) {

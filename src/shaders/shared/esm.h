@@ -60,9 +60,14 @@ PENUMBRA_INLINE float esmEncode(float depth, EsmParams p) {
 PENUMBRA_INLINE vec2 esmLogSumStart(float value, float weight) {
   return vec2(value, weight);
 }
+// The exponential is taken once, of minus the distance to the new peak, before choosing which
+// side it scales: as two branches each with its own exp, SIMD rasterisers (llvmpipe) evaluate
+// both for every tap. The same bits either way: -(c |v - s|) is c (v - s) for v <= s and
+// c (s - v) otherwise, the negations exact.
 PENUMBRA_INLINE vec2 esmLogSumAdd(vec2 sum, float value, float weight, float exponent) {
-  if (value <= sum.x) return vec2(sum.x, sum.y + weight * exp(exponent * (value - sum.x)));
-  return vec2(value, sum.y * exp(exponent * (sum.x - value)) + weight);
+  float scale = exp(-exponent * abs(value - sum.x));
+  if (value <= sum.x) return vec2(sum.x, sum.y + weight * scale);
+  return vec2(value, sum.y * scale + weight);
 }
 // The log-space value of the sum: ln(sum_i w_i exp(c v_i)) / c.
 PENUMBRA_INLINE float esmLogSumValue(vec2 sum, float exponent) {
