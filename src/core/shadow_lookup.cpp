@@ -60,6 +60,13 @@ float lightDepthTexel(LookupSources s, ivec2 texel) {
   return s.textures->depth.at(texel.x, texel.y);
 }
 
+vec4 lightDepthQuad(LookupSources s, ivec2 texel, int size) {
+  return vec4(lightDepthTexel(s, clampTexel(texel, size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 0), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(0, 1), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
+}
+
 float zmaxTexel(LookupSources s, ivec2 texel, int level) {
   return s.textures->zmax[size_t(level)].at(texel.x, texel.y);
 }

@@ -194,6 +194,9 @@ ShadowFilter::State::State() {
   glSamplerParameteri(rawSampler, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
   glSamplerParameteri(rawSampler, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
   glSamplerParameteri(rawSampler, GL_TEXTURE_COMPARE_MODE, GL_NONE);
+  // The PCF fallback gathers 2x2 texels (lightDepthQuad): clamped as each texel fetch is.
+  glSamplerParameteri(rawSampler, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glSamplerParameteri(rawSampler, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
 }
 
 void ShadowFilter::State::checkFilter(const RenderSettings& r, int layers) const {
@@ -287,6 +290,12 @@ std::vector<ShaderDefine> lookupParameterDefines(const ShadowFilter::State& s) {
   std::vector<ShaderDefine> defines{channelCapacityDefine(s.settings.technique, s.params),
                                     {"PENUMBRA_BLUR_KERNEL",
                                      std::to_string(blurKernelId(s.settings.blur.kernel))}};
+  const bool oneRadius = std::all_of(s.layerBlurs.begin(), s.layerBlurs.end(), [&](const BlurSpec& b) {
+    return b.radius == s.layerBlurs.front().radius;
+  });
+  if (!s.layerBlurs.empty() && oneRadius) {
+    defines.push_back({"PENUMBRA_BLUR_RADIUS", std::to_string(s.layerBlurs.front().radius)});
+  }
   if (s.settings.technique == Technique::Esm) {
     const shaders::EsmParams& esm = s.params.esm;
     defines.push_back({"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)});

@@ -76,6 +76,11 @@ LookupSettings lookupSettings(int cascade) {
   // every tap.
   s.blurKernel = PENUMBRA_BLUR_KERNEL;
 #endif
+#ifdef PENUMBRA_BLUR_RADIUS
+  // Every map layer's radius where they are all one (one map, a point light's faces): the PCF
+  // fallback's and the reference's tap loops get a constant trip count.
+  s.blurRadius = PENUMBRA_BLUR_RADIUS;
+#endif
   return s;
 }
 
@@ -124,6 +129,23 @@ float lightDepthTexel(LookupSources s, ivec2 texel) {
   return z;
 #else
   return texelFetch(penumbraDepthMap, ivec3(texel, s.cascade), 0).x;
+#endif
+}
+
+vec4 lightDepthQuad(LookupSources s, ivec2 texel, int size) {
+#if MSAA
+  // No gather from a multisampled texture: each texel's nearest sample.
+  return vec4(lightDepthTexel(s, clampTexel(texel, size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 0), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(0, 1), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
+#else
+  // At the four texels' shared corner the gather's footprint is exactly them (its lower left at
+  // floor(corner * size - 0.5) = texel, half a texel from any rounding), and the raw sampler's
+  // clamp-to-edge clamps each as clampTexel. The gather's order is (0,1), (1,1), (1,0), (0,0).
+  vec2 corner = vec2(texel + ivec2(1, 1)) / float(size);
+  vec4 g = textureGather(penumbraDepthMap, vec3(corner, float(s.cascade)));
+  return vec4(g.w, g.z, g.x, g.y);
 #endif
 }
 

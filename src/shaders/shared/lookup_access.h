@@ -30,6 +30,10 @@ vec4 channelLinear(LookupSources s, int layer, vec2 uv, float lod);
 vec4 channelAnisotropic(LookupSources s, int layer, vec2 uv, vec2 uvDx, vec2 uvDy);
 // The light pass's linear depth at a level-0 texel, unfiltered (the nearest sample under MSAA).
 float lightDepthTexel(LookupSources s, ivec2 texel);
+// The same at the four texels texel + (0,0), (1,0), (0,1), (1,1) (x, y, z, w), each clamped into
+// the map of `size` texels as clampTexel does: one gather on the GPU, where four fetches cost
+// llvmpipe most of ESM's PCF fallback.
+vec4 lightDepthQuad(LookupSources s, ivec2 texel, int size);
 // ESM's Z-max pyramid: the largest depth under a texel of `level`.
 float zmaxTexel(LookupSources s, ivec2 texel, int level);
 // The prefilter's blur weights w_-r..w_r summed up to tap u, for u in [-r, r].

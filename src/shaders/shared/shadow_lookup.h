@@ -220,14 +220,10 @@ PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSetti
   return result;
 }
 
-// A level-0 depth for PCF: the channel texture holds raw depth for PCF and the hard test; ESM's
-// fallback reads the light pass's depth, which its prefilter never touched.
-PENUMBRA_INLINE float pcfDepthTexel(LookupSources s, bool fromLightDepth, ivec2 texel) {
-  return fromLightDepth ? lightDepthTexel(s, texel) : channelTexel(s, 0, texel, 0).x;
-}
-
-// PCF (or the hard test, a 1-tap PCF) over raw depth. depthPerTexel is the receiver plane's
-// depth gradient per shadow-map texel (receiver-plane depth bias).
+// PCF (or the hard test, a 1-tap PCF) over raw depth: the channel texture holds it for PCF and
+// the hard test; ESM's fallback reads the light pass's depth (fromLightDepth), which its
+// prefilter never touched. depthPerTexel is the receiver plane's depth gradient per shadow-map
+// texel (receiver-plane depth bias).
 PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, vec2 uv,
                                 float receiverDepth, vec2 depthPerTexel, PcfParams pcf) {
   vec2 position = uv * float(size);
@@ -237,15 +233,23 @@ PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, 
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
   float lit = 0.0f;
   float kernelSum = pcfKernelSum(pcf);  // once per lookup (pcf.h)
-  for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); ++j) {
-    for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); ++i) {
-      float w = pcfTapWeightWithSum(i, j, fraction, pcf, kernelSum);
-      if (w <= 0.0f) continue;
-      vec2 tap = origin + vec2(float(i), float(j));
-      float z = pcfDepthTexel(s, fromLightDepth, clampTexel(ivec2(tap), size));
-      float d = receiverDepth;
-      if (pcf.receiverPlane != 0) d += dot(depthPerTexel, tap + 0.5f - position);
-      lit += w * hardVisibility(z, biasedReceiverDepth(d, slope, pcf.bias));
+  // 2x2 taps at a time: the light pass's depth comes as one quad (lightDepthQuad), the channel
+  // texture's (PCF, the hard test's single tap) tap by tap. A quad's taps beyond the kernel
+  // (an odd tap count) weigh 0.
+  for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); j += 2) {
+    for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); i += 2) {
+      vec2 corner = origin + vec2(float(i), float(j));
+      vec4 quad = fromLightDepth ? lightDepthQuad(s, ivec2(corner), size) : vec4(0.0f);
+      for (int k = 0; k < 4; ++k) {
+        ivec2 offset = ivec2(k % 2, k / 2);
+        float w = pcfTapWeightWithSum(i + offset.x, j + offset.y, fraction, pcf, kernelSum);
+        if (w <= 0.0f) continue;
+        vec2 tap = corner + vec2(offset);
+        float z = fromLightDepth ? quad[k] : channelTexel(s, 0, clampTexel(ivec2(tap), size), 0).x;
+        float d = receiverDepth;
+        if (pcf.receiverPlane != 0) d += dot(depthPerTexel, tap + 0.5f - position);
+        lit += w * hardVisibility(z, biasedReceiverDepth(d, slope, pcf.bias));
+      }
     }
   }
   return clamp(lit, 0.0f, 1.0f);  // the weights sum to 1 up to fp32 rounding
