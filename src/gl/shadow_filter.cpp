@@ -290,12 +290,6 @@ std::vector<ShaderDefine> lookupParameterDefines(const ShadowFilter::State& s) {
   std::vector<ShaderDefine> defines{channelCapacityDefine(s.settings.technique, s.params),
                                     {"PENUMBRA_BLUR_KERNEL",
                                      std::to_string(blurKernelId(s.settings.blur.kernel))}};
-  const bool oneRadius = std::all_of(s.layerBlurs.begin(), s.layerBlurs.end(), [&](const BlurSpec& b) {
-    return b.radius == s.layerBlurs.front().radius;
-  });
-  if (!s.layerBlurs.empty() && oneRadius) {
-    defines.push_back({"PENUMBRA_BLUR_RADIUS", std::to_string(s.layerBlurs.front().radius)});
-  }
   if (s.settings.technique == Technique::Esm) {
     const shaders::EsmParams& esm = s.params.esm;
     defines.push_back({"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)});

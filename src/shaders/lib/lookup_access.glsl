@@ -76,11 +76,6 @@ LookupSettings lookupSettings(int cascade) {
   // every tap.
   s.blurKernel = PENUMBRA_BLUR_KERNEL;
 #endif
-#ifdef PENUMBRA_BLUR_RADIUS
-  // Every map layer's radius where they are all one (one map, a point light's faces): the PCF
-  // fallback's and the reference's tap loops get a constant trip count.
-  s.blurRadius = PENUMBRA_BLUR_RADIUS;
-#endif
   return s;
 }
 
