@@ -61,10 +61,7 @@ float lightDepthTexel(LookupSources s, ivec2 texel) {
 }
 
 vec4 lightDepthQuad(LookupSources s, ivec2 texel, int size) {
-  return vec4(lightDepthTexel(s, clampTexel(texel, size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(1, 0), size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(0, 1), size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
+  return lightDepthQuadOfTexels(s, texel, size);
 }
 
 float zmaxTexel(LookupSources s, ivec2 texel, int level) {

@@ -1,6 +1,6 @@
 // The minimal kernels: a copy of the depth into every channel layer (beside encode), a plain
-// separable blur of whole texels with the same taps (beside the prefilter; both beside the fused
-// prefilter), the driver's own mipmap generation (beside the mip pass), plain 64-bit prefix
+// separable blur of whole texels with the same taps (beside the prefilter), a plain tile blur of
+// the depth in one dispatch (beside the fused prefilter), the driver's own mipmap generation (beside the mip pass), plain 64-bit prefix
 // sums (beside the summed-area table), on textures like the channel texture, and the least
 // lookup of the technique (beside the camera pass, Renderer::timeMinimalLookup).
 #include "penumbra/gl/pass_bench.h"

@@ -43,6 +43,12 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   EXPECT_EQ(evsm.format, "rgba32f x 1 layer");
   EXPECT_EQ(evsm.timing, gl::passTimingDescription(renderer));
   expectTimed(evsm, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
+  EXPECT_EQ(evsm.passes[4].baseline, "plain fused tile blur of depth, 5 taps");
+  // R32F: the fused pass's and its minimal kernel's one-component tiles compile and run.
+  const gl::PassBenchResult esm =
+      gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Esm), 1);
+  EXPECT_EQ(esm.format, "r32f x 1 layer");
+  expectTimed(esm, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
   // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
   // the blur and the fused pass; the mips and the camera pass have none.
   const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",

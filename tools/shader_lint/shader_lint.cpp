@@ -63,7 +63,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
 // camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, the
 // lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the
-// blur kernels' radius and weights) and LAYER_COUNT (the encode's fewest and most texel layers).
+// blur kernels' radius and weights), LAYER_COUNT (the encode's fewest and most texel layers), and
+// the fused tile's TILE and TEXEL_COMPONENTS (the format's).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -86,6 +87,19 @@ std::vector<Defines> variants(const std::string& source) {
       formats.push_back(std::string(components) + suffix);
   }
   expand("CHANNEL_FORMAT", formats);
+  // The fused tile's shared arrays hold the format's components (fusedTileDefines).
+  if (source.find("TEXEL_COMPONENTS") != std::string::npos) {
+    for (Defines& d : result) {
+      for (const penumbra::ShaderDefine& format : Defines(d)) {
+        if (format.name != "CHANNEL_FORMAT") continue;
+        const std::string components = format.value.rfind("rgba", 0) == 0 ? "4"
+                                       : format.value.rfind("rg", 0) == 0 ? "2"
+                                                                          : "1";
+        d.push_back({"TEXEL_COMPONENTS", components});
+      }
+    }
+  }
+  expand("TILE", {"16"});  // the fused prefilter's work group (kFusedTile)
   expand("MSAA", {"0", "1"});
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});

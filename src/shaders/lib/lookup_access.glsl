@@ -129,11 +129,7 @@ float lightDepthTexel(LookupSources s, ivec2 texel) {
 
 vec4 lightDepthQuad(LookupSources s, ivec2 texel, int size) {
 #if MSAA
-  // No gather from a multisampled texture: each texel's nearest sample.
-  return vec4(lightDepthTexel(s, clampTexel(texel, size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(1, 0), size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(0, 1), size)),
-              lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
+  return lightDepthQuadOfTexels(s, texel, size);  // no gather from a multisampled texture
 #else
   // At the four texels' shared corner the gather's footprint is exactly them (its lower left at
   // floor(corner * size - 0.5) = texel, half a texel from any rounding), and the raw sampler's

@@ -3,7 +3,10 @@
 // texels and channel layer loads its tile and a radius-wide border of depth once into shared
 // memory, blurs the rows, then the columns, and writes each texel once. No technique math: the
 // depth goes in as baseline_copy.comp's values, the radius and weights are compile-time constants
-// (RADIUS, WEIGHTS) and the shared arrays hold the format's components only (TEXEL_COMPONENTS).
+// (RADIUS, WEIGHTS) and the shared arrays hold the format's components only
+// (lib/texel_components.glsl).
+#include "../lib/texel_components.glsl"
+
 layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(binding = 0) uniform sampler2DArray depth;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
@@ -13,22 +16,8 @@ const int kRadius = RADIUS;
 const float kWeights[2 * kRadius + 1] = WEIGHTS;
 const int kSpan = TILE + 2 * kRadius;
 
-#if TEXEL_COMPONENTS == 1
-#define Texel float
-#define COMPONENTS x
-#elif TEXEL_COMPONENTS == 2
-#define Texel vec2
-#define COMPONENTS xy
-#else
-#define Texel vec4
-#define COMPONENTS xyzw
-#endif
 shared Texel loaded[kSpan * kSpan];
 shared Texel rows[kSpan * TILE];
-
-vec4 widen(float t) { return vec4(t, 0.0f, 0.0f, 0.0f); }
-vec4 widen(vec2 t) { return vec4(t, 0.0f, 0.0f); }
-vec4 widen(vec4 t) { return t; }
 
 void main() {
   int layer = int(gl_WorkGroupID.z);
@@ -38,7 +27,7 @@ void main() {
   for (int i = local; i < kSpan * kSpan; i += TILE * TILE) {
     ivec2 q = clamp(origin + ivec2(i % kSpan, i / kSpan), ivec2(0), size - 1);
     float z = texelFetch(depth, ivec3(q, 0), 0).x;
-    loaded[i] = (z * channelScale + float(layer) / 16.0).COMPONENTS;
+    loaded[i] = (z * channelScale + float(layer) / 16.0).TEXEL_SWIZZLE;
   }
   barrier();
   for (int i = local; i < kSpan * TILE; i += TILE * TILE) {
@@ -53,5 +42,5 @@ void main() {
   int first = int(gl_LocalInvocationID.y) * TILE + int(gl_LocalInvocationID.x);
   Texel sum = Texel(0.0f);
   for (int t = 0; t <= 2 * kRadius; ++t) sum += kWeights[t] * rows[first + t * TILE];
-  imageStore(target, ivec3(p, layer), widen(sum));
+  imageStore(target, ivec3(p, layer), widenTexel(sum));
 }

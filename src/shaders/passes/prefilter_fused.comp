@@ -9,10 +9,8 @@
 // renderer takes this path only for them: 16- and 8-bit storage rounds the horizontal result
 // in the scratch texture, which the CPU reference reproduces).
 #include "../lib/layer_reduction.glsl"
+#include "../lib/texel_components.glsl"
 
-#ifndef TILE
-#define TILE 16
-#endif
 // The radius at compile time (RADIUS): the shared arrays have their size, the loops a constant
 // trip count. The weights are uniforms, as blur.comp's (same arithmetic, same bits).
 const int kRadius = RADIUS;
@@ -27,34 +25,17 @@ uniform ivec2 size;
 uniform int cascade;
 uniform int layerCount;  // channel layers per cascade
 
-// Shared memory holds the texel's components only (TEXEL_COMPONENTS: 1, 2 or 4, the channel
-// format's): llvmpipe reads and writes shared memory one lane and one component at a time, so an
-// RGBA32F array for an R32F map did four times the traffic (ESM's fused pass took 2.9x the separate
-// passes' minimal kernels with vec4 arrays).
-#if TEXEL_COMPONENTS == 1
-#define SharedTexel float
-#define SHARED_COMPONENTS x
-#elif TEXEL_COMPONENTS == 2
-#define SharedTexel vec2
-#define SHARED_COMPONENTS xy
-#else
-#define SharedTexel vec4
-#define SHARED_COMPONENTS xyzw
-#endif
-shared SharedTexel encoded[kSpan * kSpan];  // the tile and its border, row by row
-shared SharedTexel rows[kSpan * TILE];      // the horizontal pass: the tile's columns, every row
-
-vec4 widenTexel(float t) { return vec4(t, 0.0f, 0.0f, 0.0f); }
-vec4 widenTexel(vec2 t) { return vec4(t, 0.0f, 0.0f); }
-vec4 widenTexel(vec4 t) { return t; }
+// Both hold the format's components only (lib/texel_components.glsl).
+shared Texel encoded[kSpan * kSpan];  // the tile and its border, row by row
+shared Texel rows[kSpan * TILE];      // the horizontal pass: the tile's columns, every row
 
 // The kernel over the taps at first, first + stride, ... of `encoded` (fromEncoded) or `rows`.
 // Components beyond TEXEL_COMPONENTS come out 0: the image format stores none of them.
-SharedTexel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
+Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
 #if ALL_MEAN
-  SharedTexel sum = SharedTexel(0.0f);
+  Texel sum = Texel(0.0f);
   for (int i = 0; i <= 2 * kRadius; ++i) {
-    SharedTexel texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
+    Texel texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
     sum = accumulateMeanTexel(sum, texel, weights[i]);
   }
   return sum;
@@ -71,7 +52,7 @@ SharedTexel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   }
   vec4 result = vec4(0.0f);
   for (int c = 0; c < TEXEL_COMPONENTS; ++c) result[c] = reductionResult(acc[c]);
-  return result.SHARED_COMPONENTS;
+  return result.TEXEL_SWIZZLE;
 #endif
 }
 
@@ -86,7 +67,7 @@ void main() {
                         penumbraParams);
     encoded[i] = encodeCurrentTexelLayer(penumbraTechnique, e, penumbraRangeTable.texelLayer[layer],
                                          penumbraParams)
-                     .SHARED_COMPONENTS;
+                     .TEXEL_SWIZZLE;
   }
   barrier();
   for (int i = local; i < kSpan * TILE; i += TILE * TILE) {

@@ -220,6 +220,15 @@ PENUMBRA_INLINE FilteredChannels softFilterChannels(LookupSources s, LookupSetti
   return result;
 }
 
+// A light-depth quad (lightDepthQuad) texel by texel: the CPU's, and the GPU's where a
+// multisampled depth has no gather.
+PENUMBRA_INLINE vec4 lightDepthQuadOfTexels(LookupSources s, ivec2 texel, int size) {
+  return vec4(lightDepthTexel(s, clampTexel(texel, size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 0), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(0, 1), size)),
+              lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
+}
+
 // PCF (or the hard test, a 1-tap PCF) over raw depth: the channel texture holds it for PCF and
 // the hard test; ESM's fallback reads the light pass's depth (fromLightDepth), which its
 // prefilter never touched. depthPerTexel is the receiver plane's depth gradient per shadow-map
@@ -233,15 +242,16 @@ PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, 
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
   float lit = 0.0f;
   float kernelSum = pcfKernelSum(pcf);  // once per lookup (pcf.h)
-  // 2x2 taps at a time: the light pass's depth comes as one quad (lightDepthQuad), the channel
-  // texture's (PCF, the hard test's single tap) tap by tap. A quad's taps beyond the kernel
-  // (an odd tap count) weigh 0.
-  for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); j += 2) {
-    for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); i += 2) {
+  // The light pass's depth 2x2 taps at a time, one quad each (lightDepthQuad; a quad's taps
+  // beyond an odd tap count weigh 0 and are skipped); the channel texture's (PCF, the hard test's
+  // single tap) tap by tap, in rows as ever.
+  int step = fromLightDepth ? 2 : 1;
+  for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); j += step) {
+    for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); i += step) {
       vec2 corner = origin + vec2(float(i), float(j));
       vec4 quad = fromLightDepth ? lightDepthQuad(s, ivec2(corner), size) : vec4(0.0f);
-      for (int k = 0; k < 4; ++k) {
-        ivec2 offset = ivec2(k % 2, k / 2);
+      for (int k = 0; k < step * step; ++k) {
+        ivec2 offset = ivec2(k % step, k / step);
         float w = pcfTapWeightWithSum(i + offset.x, j + offset.y, fraction, pcf, kernelSum);
         if (w <= 0.0f) continue;
         vec2 tap = corner + vec2(offset);
