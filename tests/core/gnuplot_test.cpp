@@ -148,12 +148,15 @@ TEST(Gnuplot, FiguresQueuedInOneRunAreDrawnApart) {
 }
 
 // Figures spread over several processes: every figure is drawn, and one process's failure is
-// reported after the others have drawn theirs.
+// reported after the others have drawn theirs. Each figure says whether it is its process's first
+// (a user variable survives `reset`, so a process's later figures see it): three processes for
+// three or more figures, each process's first titled FIRST.
 TEST(Gnuplot, FiguresSpreadOverProcessesAreAllDrawn) {
   ScratchFolder scratch;
   auto figure = [&](const std::string& name, const std::string& title) {
     return "set terminal dumb size 300,12\nset output " + gnuplotPath(scratch.path() / name) +
-           "\nset title '" + title + "'\nplot x notitle\n";
+           "\nif (exists('drawnBefore')) { set title '" + title + " LATER' } else { set title '" +
+           title + " FIRST' }\ndrawnBefore = 1\nplot x notitle\n";
   };
   {
     GnuplotRun run(scratch.path(), 3);
@@ -167,12 +170,15 @@ TEST(Gnuplot, FiguresSpreadOverProcessesAreAllDrawn) {
       EXPECT_NE(std::string(e.what()).find("no_such_function"), std::string::npos) << e.what();
     }
   }
-  EXPECT_NE(readText(scratch.path() / "big.txt").find("BIG"), std::string::npos);
+  EXPECT_NE(readText(scratch.path() / "big.txt").find("BIG FIRST"), std::string::npos)
+      << "the big figure shares a process";
+  int firsts = 0;
   for (int i = 0; i < 4; ++i) {
-    EXPECT_NE(readText(scratch.path() / ("small" + std::to_string(i) + ".txt")).find("SMALL"),
-              std::string::npos)
-        << "small figure " << i;
+    const std::string text = readText(scratch.path() / ("small" + std::to_string(i) + ".txt"));
+    EXPECT_NE(text.find("SMALL"), std::string::npos) << "small figure " << i;
+    firsts += text.find("SMALL FIRST") != std::string::npos ? 1 : 0;
   }
+  EXPECT_EQ(firsts, 2) << "the small figures were not drawn by the two other processes";
   // Only the figures are left: scripts, logs and the private folder are gone.
   EXPECT_EQ(namesIn(scratch.path()).size(), 5u);
 }

@@ -633,7 +633,9 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
     EXPECT_TRUE(std::ranges::equal((r.*image).data(), (full.*image).data())) << bit;
     EXPECT_EQ(r.failureRatePercent, full.failureRatePercent) << bit;
     EXPECT_EQ(r.wallTimes.total(), 0.0) << "an untimed frame reported times";
-    EXPECT_EQ(r.gpuTimes.total(), 0.0);
+    // A software rasteriser reports no GPU times even for a timed frame (its queries see only
+    // submission): the check means something where the queries measure execution.
+    if (renderer->timerQueriesMeasureExecution()) EXPECT_EQ(r.gpuTimes.total(), 0.0);
   }
   // Timing on again: the passes are timed.
   EXPECT_GT(renderer->render(scene, s).wallTimes.total(), 0.0);
