@@ -635,7 +635,9 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
     EXPECT_EQ(r.wallTimes.total(), 0.0) << "an untimed frame reported times";
     // A software rasteriser reports no GPU times even for a timed frame (its queries see only
     // submission): the check means something where the queries measure execution.
-    if (renderer->timerQueriesMeasureExecution()) EXPECT_EQ(r.gpuTimes.total(), 0.0);
+    if (renderer->timerQueriesMeasureExecution()) {
+      EXPECT_EQ(r.gpuTimes.total(), 0.0);
+    }
   }
   // Timing on again: the passes are timed.
   EXPECT_GT(renderer->render(scene, s).wallTimes.total(), 0.0);
