@@ -24,8 +24,8 @@ std::vector<ShaderDefine> reductionDefines(Technique technique, const TechniqueP
                                            const ChannelLayout& layout);
 void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int level);
 // One layer of a channel texture (level 0) as a 2D image at `unit`, GL_READ_ONLY or GL_WRITE_ONLY.
-void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout,
-                      int layer, unsigned access);
+void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout, int layer,
+                      unsigned access);
 // A blur kernel as compile-time constants: RADIUS and WEIGHTS (a GLSL float array of its 2r+1
 // weights, each written as its exact bits). A loop bounded by a uniform radius, or layers by a
 // uniform count, costs llvmpipe 1.4-2x the same loop of constant trip count

@@ -1,8 +1,9 @@
 // The minimal kernels: a copy of the depth into every channel layer (beside encode), a plain
 // separable blur of whole texels with the same taps (beside the prefilter), a plain tile blur of
-// the depth in one dispatch (beside the fused prefilter), the driver's own mipmap generation (beside the mip pass), plain 64-bit prefix
-// sums (beside the summed-area table), on textures like the channel texture, and the least
-// lookup of the technique (beside the camera pass, Renderer::timeMinimalLookup).
+// the depth in one dispatch (beside the fused prefilter), the driver's own mipmap generation
+// (beside the mip pass), plain 64-bit prefix sums (beside the summed-area table), on textures like
+// the channel texture, and the least lookup of the technique (beside the camera pass,
+// Renderer::timeMinimalLookup).
 #include "penumbra/gl/pass_bench.h"
 
 #include <epoxy/gl.h>
@@ -299,11 +300,11 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     for (MinimalKernel* k : {&yardstickCopy, &yardstickBlur}) k->times.clear();
     const std::vector<MinimalKernel*> both{&fusedBlur, &yardstickCopy, &yardstickBlur};
     const FramePasses fused = renderPasses(renderer, scene, fusedSettings, repeats, gpuTime, both);
-    result.passes.push_back(
-        {"encode + prefilter, fused", median(sums(fused.encode, fused.prefilter)),
-         "plain fused tile blur of depth, " + taps, fusedBlur.median(),
-         yardstick.describe("copy + blur, " + taps),
-         median(sums(yardstickCopy.times, yardstickBlur.times))});
+    result.passes.push_back({"encode + prefilter, fused",
+                             median(sums(fused.encode, fused.prefilter)),
+                             "plain fused tile blur of depth, " + taps, fusedBlur.median(),
+                             yardstick.describe("copy + blur, " + taps),
+                             median(sums(yardstickCopy.times, yardstickBlur.times))});
   }
   checkErrors("bench --passes");
   return result;

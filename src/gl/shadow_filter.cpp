@@ -287,9 +287,9 @@ ShaderDefine channelCapacityDefine(Technique technique, const TechniqueParams& p
 }
 
 std::vector<ShaderDefine> lookupParameterDefines(const ShadowFilter::State& s) {
-  std::vector<ShaderDefine> defines{channelCapacityDefine(s.settings.technique, s.params),
-                                    {"PENUMBRA_BLUR_KERNEL",
-                                     std::to_string(blurKernelId(s.settings.blur.kernel))}};
+  std::vector<ShaderDefine> defines{
+      channelCapacityDefine(s.settings.technique, s.params),
+      {"PENUMBRA_BLUR_KERNEL", std::to_string(blurKernelId(s.settings.blur.kernel))}};
   if (s.settings.technique == Technique::Esm) {
     const shaders::EsmParams& esm = s.params.esm;
     defines.push_back({"PENUMBRA_ESM_CLASSIFIER", std::to_string(esm.classifier)});

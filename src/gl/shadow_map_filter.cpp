@@ -81,8 +81,8 @@ void bindChannelImage(const Texture& texture, const ChannelLayout& layout, int l
   glBindImageTexture(0, texture.id(), level, GL_TRUE, 0, GL_WRITE_ONLY, internalFormat(layout));
 }
 
-void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout,
-                      int layer, unsigned access) {
+void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout& layout, int layer,
+                      unsigned access) {
   glBindImageTexture(unit, texture.id(), 0, GL_FALSE, layer, access, internalFormat(layout));
 }
 

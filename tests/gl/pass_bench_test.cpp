@@ -99,7 +99,8 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
       for (int x = 0; x < s.width; ++x) {
         float difference = 0.0f;
         for (int c = 0; c < 3; ++c) {
-          difference = std::max(difference, std::abs(minimal.at(x, y, c) - frame.color.at(x, y, c)));
+          difference =
+              std::max(difference, std::abs(minimal.at(x, y, c) - frame.color.at(x, y, c)));
         }
         // 8 bits of the yardstick's target (1/255) and a shadow edge's shift of a texel.
         if (difference < 0.02f) ++near;
