@@ -12,6 +12,7 @@
 #include <functional>
 #include <optional>
 #include <span>
+#include <vector>
 
 #include "channel_dispatch.h"
 #include "gl_formats.h"
@@ -187,9 +188,13 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   const int levels = renderer.channelMipLevels();
   ProgramCache programs;
   const std::vector<ShaderDefine> defines = formatDefines(layout);
+  // Varied depths, as the yardstick's values: a cleared texture may be read from a GPU's
+  // fast-clear compression, which no light pass's depth is.
   Texture depth = arrayTexture(GL_R32F, size, 1, 1);
-  const float clearDepth = 0.5f;
-  glClearTexImage(depth.id(), 0, GL_RED, GL_FLOAT, &clearDepth);
+  std::vector<float> depths(size_t(size) * size_t(size));
+  for (size_t i = 0; i < depths.size(); ++i) depths[i] = float(i % 997) / 997.0f;
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+  glTextureSubImage3D(depth.id(), 0, 0, 0, 0, size, size, 1, GL_RED, GL_FLOAT, depths.data());
   Texture channels = arrayTexture(format, size, layout.layers, levels);
   Texture scratch = arrayTexture(format, size, layout.layers, 1);
 
