@@ -57,7 +57,6 @@ struct MinimalKernel {
     timer.end();
     times.push_back(gpuTime ? timer.gpuMilliseconds() : timer.wallMilliseconds());
   }
-  double median() const { return penumbra::median(times); }
 };
 
 // The yardstick's kernels (../shared/yardsticks/rawblur.c, passes/yardstick_*.comp) on 2D
@@ -154,6 +153,11 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
 }
 
 }  // namespace
+
+FrameTimes frameTimes(const std::vector<double>& times) {
+  if (times.empty()) return {};
+  return {*std::min_element(times.begin(), times.end()), penumbra::median(times)};
+}
 
 std::string passTimingDescription(const Renderer& renderer) {
   return renderer.timerQueriesMeasureExecution() ? "GPU timer queries"
@@ -277,25 +281,27 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   result.timing = passTimingDescription(renderer);
   result.format = imageFormatQualifier(layout) + " x " + std::to_string(layout.layers) +
                   (layout.layers == 1 ? " layer" : " layers");
-  result.passes.push_back({"encode", median(passes.encode), "copy depth to every layer",
-                           copy.median(), yardstick.describe("copy"), yardstickCopy.median()});
+  result.passes.push_back({"encode", frameTimes(passes.encode), "copy depth to every layer",
+                           frameTimes(copy.times), yardstick.describe("copy"),
+                           frameTimes(yardstickCopy.times)});
   const std::string taps = std::to_string(2 * settings.blur.radius + 1) + " taps";
   if (blurs) {
-    result.passes.push_back({"prefilter", median(passes.prefilter), "plain separable blur, " + taps,
-                             blur.median(), yardstick.describe("blur, " + taps),
-                             yardstickBlur.median()});
+    result.passes.push_back({"prefilter", frameTimes(passes.prefilter),
+                             "plain separable blur, " + taps, frameTimes(blur.times),
+                             yardstick.describe("blur, " + taps), frameTimes(yardstickBlur.times)});
   }
   if (summedArea) {
-    result.passes.push_back({"summed-area table", median(passes.mipsOrSat),
-                             "plain 64-bit row and column prefix sums", prefix.median(), "", 0.0});
+    result.passes.push_back({"summed-area table", frameTimes(passes.mipsOrSat),
+                             "plain 64-bit row and column prefix sums", frameTimes(prefix.times),
+                             "", {}});
   } else if (levels > 1) {
-    result.passes.push_back({"mips", median(passes.mipsOrSat), "glGenerateTextureMipmap",
-                             generateMips.median(), "", 0.0});
+    result.passes.push_back({"mips", frameTimes(passes.mipsOrSat), "glGenerateTextureMipmap",
+                             frameTimes(generateMips.times), "", {}});
   }
-  result.passes.push_back({"camera", median(passes.camera),
+  result.passes.push_back({"camera", frameTimes(passes.camera),
                            "minimal lookup: each layer filtered once, reconstruct, Lambert, "
                            "RGBA8",
-                           minimalLookup.median(), "", 0.0});
+                           frameTimes(minimalLookup.times), "", {}});
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;
   fusedSettings.fusePrefilter = true;
@@ -306,10 +312,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     const std::vector<MinimalKernel*> both{&fusedBlur, &yardstickCopy, &yardstickBlur};
     const FramePasses fused = renderPasses(renderer, scene, fusedSettings, repeats, gpuTime, both);
     result.passes.push_back({"encode + prefilter, fused",
-                             median(sums(fused.encode, fused.prefilter)),
-                             "plain fused tile blur of depth, " + taps, fusedBlur.median(),
+                             frameTimes(sums(fused.encode, fused.prefilter)),
+                             "plain fused tile blur of depth, " + taps, frameTimes(fusedBlur.times),
                              yardstick.describe("copy + blur, " + taps),
-                             median(sums(yardstickCopy.times, yardstickBlur.times))});
+                             frameTimes(sums(yardstickCopy.times, yardstickBlur.times))});
   }
   checkErrors("bench --passes");
   return result;

@@ -9,20 +9,38 @@
 
 namespace penumbra::gl {
 
+// The times of a pass and its kernels over the warm frames: the fastest frame's, which the ratios
+// use, and the median. On a 2-core machine llvmpipe's two rasteriser threads sometimes share one
+// core for a whole pass, which doubles its time (one thread, LP_NUM_THREADS=1, gives the slow
+// mode on every frame); the fastest frame is the pass with the device to itself, as a GPU's pass
+// is, and the median mixes the modes in a proportion that differs between the two sides.
+struct FrameTimes {
+  double fastestMs = 0.0;
+  double medianMs = 0.0;
+};
+
+// The fastest and the median of a pass's frame times; zeros for none.
+FrameTimes frameTimes(const std::vector<double>& times);
+
 struct PassTiming {
-  std::string pass;      // "encode", "prefilter", "encode + prefilter, fused", "mips", ...
-  double passMs = 0.0;   // the renderer's pass, median wall time of the warm frames
+  std::string pass;  // "encode", "prefilter", "encode + prefilter, fused", "mips", ...
+  FrameTimes passTimes;  // the renderer's pass
   std::string baseline;  // what the minimal kernel does
-  double baselineMs = 0.0;
+  FrameTimes baselineTimes;
   // The independent yardstick (../shared/yardsticks/rawblur.c's copy and blur, run here on a 2D
   // texture of as many 32-bit float components per texel as the channel texture has, once per
   // layer: for 8- and 16-bit channels it moves 2-4x their bytes), beside the encode, the blur
   // and the fused pass: empty and 0 for the mips and the summed-area table.
   std::string yardstick;
-  double yardstickMs = 0.0;
-  double ratio() const { return baselineMs > 0.0 ? passMs / baselineMs : 0.0; }
+  FrameTimes yardstickTimes;
+  double passMs() const { return passTimes.fastestMs; }
+  double baselineMs() const { return baselineTimes.fastestMs; }
+  double yardstickMs() const { return yardstickTimes.fastestMs; }
+  double ratio() const { return baselineMs() > 0.0 ? passMs() / baselineMs() : 0.0; }
   // The minimal kernel against the yardstick: at most about 1 when the minimal kernel is minimal.
-  double baselineToYardstick() const { return yardstickMs > 0.0 ? baselineMs / yardstickMs : 0.0; }
+  double baselineToYardstick() const {
+    return yardstickMs() > 0.0 ? baselineMs() / yardstickMs() : 0.0;
+  }
 };
 
 struct PassBenchResult {
@@ -38,9 +56,9 @@ std::string passTimingDescription(const Renderer& renderer);
 
 // Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) with the separate
 // passes and, where the settings allow it, with the fused prefilter, and runs the minimal kernels
-// as many times on textures of the channel texture's format, size and layers; medians of GPU
-// timer queries on vendor drivers, of wall-clock times on software rasterisers (llvmpipe's
-// queries see only submission). The mip chain or, with the sat filter, the summed-area table.
+// as many times on textures of the channel texture's format, size and layers (FrameTimes: the
+// fastest frame and the median) of GPU timer queries on vendor drivers, of wall-clock times on
+// software rasterisers (llvmpipe's queries see only submission). The mip chain or, with the sat filter, the summed-area table.
 // PCF and the hard test have no prefilter, cascades have several maps: they are refused.
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats);
