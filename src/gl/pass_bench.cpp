@@ -299,8 +299,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              frameTimes(generateMips.times), "", {}});
   }
   result.passes.push_back({"camera", frameTimes(passes.camera),
-                           "minimal lookup: each layer filtered once, reconstruct, Lambert, "
-                           "RGBA8",
+                           summedArea ? "minimal lookup: each channel's mean over the blur's box "
+                                        "from the table, reconstruct, Lambert, RGBA8"
+                                      : "minimal lookup: each layer filtered once, reconstruct, "
+                                        "Lambert, RGBA8",
                            frameTimes(minimalLookup.times), "", {}});
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;

@@ -79,21 +79,29 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   // The summed-area filter: encode and the table, no blur.
   gl::RenderSettings sat = small(Technique::Vsm);
   sat.filter = gl::FilterMode::SummedArea;
-  expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), sat, 1),
-              {"encode", "summed-area table", "camera"});
+  const gl::PassBenchResult summed = gl::benchPasses(renderer, makeBuiltinScene("planar"), sat, 1);
+  expectTimed(summed, {"encode", "summed-area table", "camera"});
+  // Its camera pass stands beside a yardstick that reads the table, not the channel texture.
+  EXPECT_EQ(summed.passes[2].baseline,
+            "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
+            "Lambert, RGBA8");
 }
 
 // The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset
-// or receiver plane, the channels at level 0. With bilinear lookups on a flat-lit scene that
+// or receiver plane, the channels at level 0 (or the summed-area table's box of the blur's width). With bilinear lookups on a flat-lit scene that
 // changes the shadows' edges only. The power CDF's min and max channels and ESM's log-space one
 // are reduced by hand as the pass's are: averaged by the hardware they shade other pixels.
 TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   gl::Renderer renderer(*context);
   const Scene scene = makeBuiltinScene("backyard");
-  for (const char* id : {"vsm", "csm", "powercdf", "esm-log"}) {
+  for (const char* id : {"vsm", "csm", "powercdf", "esm-log", "vsm-sat", "lvsm-sat"}) {
     SCOPED_TRACE(id);
-    const bool logEsm = std::string_view(id) == "esm-log";
-    const Technique t = logEsm ? Technique::Esm : parseTechnique(id);
+    const std::string_view name(id);
+    const bool logEsm = name == "esm-log";
+    const bool summedArea = name.ends_with("-sat");
+    const Technique t = logEsm       ? Technique::Esm
+                        : summedArea ? parseTechnique(std::string(name.substr(0, name.size() - 4)))
+                                     : parseTechnique(id);
     gl::RenderSettings s = small(t);
     if (logEsm) {
       s.params.esm.filterSpace = shaders::kEsmFilterLog;
@@ -102,7 +110,7 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     s.shadowMapSize = 512;
     s.width = 160;
     s.height = 90;
-    s.filter = gl::FilterMode::Bilinear;
+    s.filter = summedArea ? gl::FilterMode::SummedArea : gl::FilterMode::Bilinear;
     const gl::RenderResult frame = renderer.render(scene, s);
     EXPECT_GT(renderer.timeMinimalLookup(), 0.0);
     const Image minimal = renderer.readMinimalLookupColor();
@@ -127,7 +135,14 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     // none of these techniques' lookups reads the receiver plane (measured: all agree). Averaged
     // by the hardware, the power CDF's min and max channels moved 149 pixels, ESM's log-space
     // channel 24.
-    EXPECT_EQ(near, pixels);
+    // The summed-area lookup widens its box to the pixel's footprint where that is wider than
+    // the blur, the yardstick keeps the blur's box: at grazing angles on the far ground only
+    // (measured: 1 pixel of 14400 for VSM and LVSM).
+    if (summedArea) {
+      EXPECT_GE(near, pixels - pixels / 1000);
+    } else {
+      EXPECT_EQ(near, pixels);
+    }
     std::printf("%s: %d of %d pixels agree, %d shadowed\n", id, near, pixels, shadowed);
   }
 }

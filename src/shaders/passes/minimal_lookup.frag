@@ -2,7 +2,9 @@
 // one map. The receiver in the light's map, the channels by one hardware-filtered fetch per
 // channel layer at level 0 (bilinear) where they average linearly, else the layer's four texels
 // reduced by hand (the power CDF's min and max, ESM's log space: bilinear hardware filtering
-// would average them into a wrong visibility), the technique's own reconstruction
+// would average them into a wrong visibility); with the summed-area filter (SUMMED_AREA), each
+// read channel's mean over the least box the production lookup takes (the blur's width, no
+// footprint) from the table, as it reads the table; the technique's own reconstruction
 // (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
 // normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
 // production pass (camera.frag) adds to this is its cost over the yardstick.
@@ -50,6 +52,15 @@ void main() {
   sources.cascade = 0;
   float channels[PENUMBRA_CHANNEL_CAPACITY];  // 4 x LAYER_COUNT where the pass defines it
   for (int i = 0; i < PENUMBRA_CHANNEL_CAPACITY; ++i) channels[i] = 0.0f;
+#if SUMMED_AREA
+  // Only the channels the reconstruction reads, as the production lookup (LVSM: the receiver's
+  // layers): each costs sixteen 64-bit reads here, not a share of one fetch.
+  SummedAreaBox box = summedAreaBox(uv, vec2(0.0f), vec2(0.0f), lookupSettings(0));
+  ivec2 range = receiverChannelRange(penumbraTechnique, params, clamp(receiver, 0.0f, 1.0f));
+  for (int c = range.x; c <= range.y; ++c) {
+    channels[c] = summedAreaBoxMean(sources, c, box, penumbraLookup.shadowMapSize);
+  }
+#else
   for (int layer = 0; layer < LAYER_COUNT; ++layer) {
     ivec4 reductions = ivec4(kReduceMean);
     for (int k = 0; k < 4; ++k) {
@@ -65,6 +76,7 @@ void main() {
     }
     for (int k = 0; k < 4; ++k) channels[4 * layer + k] = v[k];
   }
+#endif
   float visibility =
       clamp(reconstructVisibility(penumbraTechnique, channels, receiver, params), 0.0f, 1.0f);
   color = vec4(shadeLambert(materialBaseColor(baseColorTexcoord).rgb, ambient, cosine, visibility),
