@@ -80,7 +80,7 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   gl::RenderSettings sat = small(Technique::Vsm);
   sat.filter = gl::FilterMode::SummedArea;
   const gl::PassBenchResult summed = gl::benchPasses(renderer, makeBuiltinScene("planar"), sat, 1);
-  expectTimed(summed, {"encode", "summed-area table", "camera"});
+  ASSERT_NO_FATAL_FAILURE(expectTimed(summed, {"encode", "summed-area table", "camera"}));
   // Its camera pass stands beside a yardstick that reads the table, not the channel texture.
   EXPECT_EQ(summed.passes[2].baseline,
             "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
@@ -88,7 +88,8 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
 }
 
 // The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset
-// or receiver plane, the channels at level 0 (or the summed-area table's box of the blur's width). With bilinear lookups on a flat-lit scene that
+// or receiver plane, the channels at level 0 (or the summed-area table's box of the blur's
+// width). With bilinear lookups on a flat-lit scene that
 // changes the shadows' edges only. The power CDF's min and max channels and ESM's log-space one
 // are reduced by hand as the pass's are: averaged by the hardware they shade other pixels.
 TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
@@ -137,7 +138,8 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     // channel 24.
     // The summed-area lookup widens its box to the pixel's footprint where that is wider than
     // the blur, the yardstick keeps the blur's box: at grazing angles on the far ground only
-    // (measured: 1 pixel of 14400 for VSM and LVSM).
+    // (measured: 1 pixel of 14400 for VSM and LVSM). 0.1% leaves room for other drivers'
+    // derivatives at those pixels; the yardstick reading a wrong channel moved 650-950.
     if (summedArea) {
       EXPECT_GE(near, pixels - pixels / 1000);
     } else {

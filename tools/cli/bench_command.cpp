@@ -37,6 +37,9 @@ struct BenchOptions {
   TechniqueOptions technique{"esm,vsm,evsm4,msm", {}};
   RenderOptions render;
   int repeat = 3;
+  // --passes takes each side's fastest frame: enough frames that both catch llvmpipe's fast mode
+  // (docs/results/passes-llvmpipe-2026-12-06-fastest.md). A given --repeat is kept.
+  static constexpr int kPassesRepeat = 15;
   OutputOptions output{"out/bench"};
 
   BenchOptions() {
@@ -241,8 +244,10 @@ void registerBenchCommand(CLI::App& app) {
   addSceneOptions(*cmd, o->scene);
   addTechniqueOptions(*cmd, o->technique);
   addRenderOptions(*cmd, o->render);
-  cmd->add_option("--repeat", o->repeat, "timed frames after one warm-up (--experiment: medians; --passes: the "
-                  "fastest frame's ratios, medians beside them in the CSV and JSON)")
+  cmd->add_option("--repeat", o->repeat,
+                  "timed frames after one warm-up: --experiment takes their medians; --passes "
+                  "(15 frames unless given) the fastest frame's ratios, medians beside them in "
+                  "the CSV and JSON")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   addOutputOptions(*cmd, o->output, "the results");
@@ -260,6 +265,7 @@ void registerBenchCommand(CLI::App& app) {
         }
       }
     }
+    if (o->passes && cmd->count("--repeat") == 0) o->repeat = BenchOptions::kPassesRepeat;
     o->commandLine = givenCommandLine(*cmd);
     runBench(*o);
   });

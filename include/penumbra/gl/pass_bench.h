@@ -58,8 +58,9 @@ std::string passTimingDescription(const Renderer& renderer);
 // passes and, where the settings allow it, with the fused prefilter, and runs the minimal kernels
 // as many times on textures of the channel texture's format, size and layers (FrameTimes: the
 // fastest frame and the median) of GPU timer queries on vendor drivers, of wall-clock times on
-// software rasterisers (llvmpipe's queries see only submission). The mip chain or, with the sat filter, the summed-area table.
-// PCF and the hard test have no prefilter, cascades have several maps: they are refused.
+// software rasterisers (llvmpipe's queries see only submission). The mip chain or, with the sat
+// filter, the summed-area table. PCF and the hard test have no prefilter, cascades have several
+// maps: they are refused.
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats);
 

@@ -257,7 +257,8 @@ class Renderer {
   int channelMipLevels() const;
   // bench --passes' yardstick for the camera pass: the last frame's view drawn again with the
   // least lookup of its technique (passes/minimal_lookup.frag: one map, one filtered fetch per
-  // channel layer, the reconstruction, Lambert, one RGBA8 target), after render() of one map.
+  // channel layer, or with the summed-area filter each read channel's box mean from the table,
+  // the reconstruction, Lambert, one RGBA8 target), after render() of one map.
   // The draw's milliseconds: a GPU timer query where they measure execution, else wall clock.
   double timeMinimalLookup();
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top

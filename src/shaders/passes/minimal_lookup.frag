@@ -46,7 +46,9 @@ void main() {
   vec4 view = lightViewFromWorld * vec4(worldPosition, 1.0f);
   vec4 clip = lightClipFromView * view;
   vec2 uv = clip.xy / clip.w * 0.5f + 0.5f;
-  float receiver = lightLinearDepth(view.xyz, LIGHT_PERSPECTIVE != 0, lightNear, lightFar);
+  // Clamped once, as the production lookup's (shadowLookup): the range and the reconstruction.
+  float receiver =
+      clamp(lightLinearDepth(view.xyz, LIGHT_PERSPECTIVE != 0, lightNear, lightFar), 0.0f, 1.0f);
   TechniqueParams params = lookupParams();  // ESM's filter space compiled in, as the pass's
   LookupSources sources;
   sources.cascade = 0;
@@ -56,7 +58,7 @@ void main() {
   // Only the channels the reconstruction reads, as the production lookup (LVSM: the receiver's
   // layers): each costs sixteen 64-bit reads here, not a share of one fetch.
   SummedAreaBox box = summedAreaBox(uv, vec2(0.0f), vec2(0.0f), lookupSettings(0));
-  ivec2 range = receiverChannelRange(penumbraTechnique, params, clamp(receiver, 0.0f, 1.0f));
+  ivec2 range = receiverChannelRange(penumbraTechnique, params, receiver);
   for (int c = range.x; c <= range.y; ++c) {
     channels[c] = summedAreaBoxMean(sources, c, box, penumbraLookup.shadowMapSize);
   }
