@@ -4,6 +4,7 @@
 // technique_dispatch.h).
 #pragma once
 
+#include <optional>
 #include <span>
 #include <string>
 #include <string_view>
@@ -66,10 +67,12 @@ std::string translucencyWarning(const Scene& scene, std::span<const Technique> t
 // test (which does not filter). The one answer to "does it prefilter" for the GPU passes, the
 // CPU twin and the front ends.
 bool prefiltersChannels(Technique technique);
-// Throws Error when the summed-area filter cannot hold this technique's channels: it averages
-// (no min/max or log-space reductions) in fixed point relative to the channels' range
+// Why the summed-area filter cannot hold this technique's channels, or nothing where it can: it
+// averages (no min/max or log-space reductions) in fixed point relative to the channels' range
 // (exponential channels span too many orders of magnitude). Techniques that do not prefilter
 // pass.
+std::optional<std::string> summedAreaRefusal(Technique technique, const TechniqueParams& params);
+// Throws Error with summedAreaRefusal's reason.
 void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params);
 
 }  // namespace penumbra

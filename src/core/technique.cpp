@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <array>
 #include <cassert>
+#include <optional>
 #include <type_traits>
 
 #include "penumbra/error.h"
@@ -190,24 +191,31 @@ bool prefiltersChannels(Technique technique) {
   return shaders::techniquePrefiltersChannels(sharedId(technique));
 }
 
-void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params) {
-  if (!prefiltersChannels(technique)) return;
+std::optional<std::string> summedAreaRefusal(Technique technique, const TechniqueParams& params) {
+  if (!prefiltersChannels(technique)) return std::nullopt;
   if (technique == Technique::Evsm2 || technique == Technique::Evsm4 ||
       technique == Technique::Esm) {
     // Fixed-point sums bound the error by the channel's largest deviation (R * 2^-32):
     // exponential channels span up to e^+-84, so every small value would drown.
-    throw Error("the summed-area filter sums channels in fixed point relative to their range; " +
-                std::string(techniqueId(technique)) +
-                "'s exponential channels span too many orders of magnitude; use vsm, lvsm, csm or "
-                "msm with sat, or trilinear/anisotropic for this technique");
+    return "the summed-area filter sums channels in fixed point relative to their range; " +
+           std::string(techniqueId(technique)) +
+           "'s exponential channels span too many orders of magnitude; use vsm, lvsm, csm or "
+           "msm with sat, or trilinear/anisotropic for this technique";
   }
   for (int c = 0; c < channelCount(technique, params); ++c) {
     if (channelReduction(technique, params, c) != ChannelReduction::Mean) {
-      throw Error("the summed-area filter averages channels, but " +
-                  std::string(techniqueId(technique)) +
-                  " has min/max or log-space channels; use point, bilinear, trilinear or "
-                  "anisotropic");
+      return "the summed-area filter averages channels, but " +
+             std::string(techniqueId(technique)) +
+             " has min/max or log-space channels; use point, bilinear, trilinear or "
+             "anisotropic";
     }
+  }
+  return std::nullopt;
+}
+
+void checkSummedAreaFilterable(Technique technique, const TechniqueParams& params) {
+  if (std::optional<std::string> refusal = summedAreaRefusal(technique, params)) {
+    throw Error(*refusal);
   }
 }
 

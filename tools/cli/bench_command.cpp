@@ -129,10 +129,24 @@ void runBench(const BenchOptions& o) {
   gl::RenderSettings settings = toRenderSettings(o.render);
   settings.params = selectedParams(o.technique, techniques);
   // PCF and the hard test filter after the test: "all" means the techniques with a prefilter,
-  // naming them is an error before anything runs.
+  // naming them is an error before anything runs. With --filter sat, "all" also leaves out those
+  // whose channels the summed-area filter cannot hold, and says so; naming one is refused with
+  // the reason (Renderer::validate).
   const auto withoutPrefilter = [](Technique t) { return !prefiltersChannels(t); };
   if (o.technique.techniques == "all") {
     std::erase_if(techniques, withoutPrefilter);
+    if (settings.filter == gl::FilterMode::SummedArea) {
+      std::string leftOut;
+      std::erase_if(techniques, [&](Technique t) {
+        if (!summedAreaRefusal(t, settings.params)) return false;
+        leftOut += (leftOut.empty() ? "" : ", ") + std::string(techniqueId(t));
+        return true;
+      });
+      if (!leftOut.empty()) {
+        std::cout << "left out: " << leftOut
+                  << " (the summed-area filter cannot hold their channels)\n";
+      }
+    }
   } else if (const auto t = std::find_if(techniques.begin(), techniques.end(), withoutPrefilter);
              t != techniques.end()) {
     throw Error(std::string(techniqueId(*t)) +
