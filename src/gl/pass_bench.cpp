@@ -35,6 +35,14 @@ Texture arrayTexture(unsigned format, int size, int layers, int levels) {
   return t;
 }
 
+// rawblur's values, (i mod 997) / 997: varied, so that no GPU reads them from a cleared
+// texture's fast-clear compression, as no light pass's depth is.
+std::vector<float> yardstickValues(size_t count) {
+  std::vector<float> values(count);
+  for (size_t i = 0; i < count; ++i) values[i] = float(i % 997) / 997.0f;
+  return values;
+}
+
 // A minimal kernel and its times: timed once after each frame the renderer renders, so that load
 // on the machine falls on the passes and their minimal kernels alike.
 struct MinimalKernel {
@@ -76,10 +84,9 @@ struct Yardstick {
       *t = Texture(GL_TEXTURE_2D);
       glTextureStorage2D(t->id(), 1, format, size, size);
     }
-    // rawblur's values, (i mod 997) / 997, uploaded as RGBA (an R32F or RG32F texture keeps
-    // every fourth or every other one: the timing does not depend on them).
-    std::vector<float> data(size_t(size) * size_t(size) * 4);
-    for (size_t i = 0; i < data.size(); ++i) data[i] = float(i % 997) / 997.0f;
+    // rawblur's values uploaded as RGBA (an R32F or RG32F texture keeps every fourth or every
+    // other one: the timing does not depend on them).
+    const std::vector<float> data = yardstickValues(size_t(size) * size_t(size) * 4);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
     glTextureSubImage2D(source.id(), 0, 0, 0, size, size, GL_RGBA, GL_FLOAT, data.data());
     const std::vector<ShaderDefine> defines{{"CHANNEL_FORMAT", name},
@@ -192,11 +199,9 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   const int levels = renderer.channelMipLevels();
   ProgramCache programs;
   const std::vector<ShaderDefine> defines = formatDefines(layout);
-  // Varied depths, as the yardstick's values: a cleared texture may be read from a GPU's
-  // fast-clear compression, which no light pass's depth is.
+  // The yardstick's values as depths.
   Texture depth = arrayTexture(GL_R32F, size, 1, 1);
-  std::vector<float> depths(size_t(size) * size_t(size));
-  for (size_t i = 0; i < depths.size(); ++i) depths[i] = float(i % 997) / 997.0f;
+  const std::vector<float> depths = yardstickValues(size_t(size) * size_t(size));
   glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
   glTextureSubImage3D(depth.id(), 0, 0, 0, 0, size, size, 1, GL_RED, GL_FLOAT, depths.data());
   Texture channels = arrayTexture(format, size, layout.layers, levels);
