@@ -159,6 +159,24 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
+// What the camera pass's yardstick does (passes/minimal_lookup.frag): ESM's reconstruction
+// carries its threshold classification and fallback, as the paper gives it (§3.3).
+std::string minimalLookupDescription(const RenderSettings& settings, bool summedArea) {
+  if (summedArea) {
+    return "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
+           "Lambert, RGBA8";
+  }
+  std::string reconstruct = "reconstruct";
+  const shaders::EsmParams& esm = settings.params.esm;
+  if (settings.technique == Technique::Esm && esm.classifier == shaders::kEsmClassifyThreshold) {
+    reconstruct += esm.fallback == shaders::kEsmFallbackPaper
+                       ? " (the paper's 2x2 fallback where the threshold test fails)"
+                       : " (PCF of the light's depth under the blur's kernel where the "
+                         "threshold test fails)";
+  }
+  return "minimal lookup: each layer filtered once, " + reconstruct + ", Lambert, RGBA8";
+}
+
 }  // namespace
 
 FrameTimes frameTimes(const std::vector<double>& times) {
@@ -304,10 +322,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              frameTimes(generateMips.times), "", {}});
   }
   result.passes.push_back({"camera", frameTimes(passes.camera),
-                           summedArea ? "minimal lookup: each channel's mean over the blur's box "
-                                        "from the table, reconstruct, Lambert, RGBA8"
-                                      : "minimal lookup: each layer filtered once, reconstruct, "
-                                        "Lambert, RGBA8",
+                           minimalLookupDescription(settings, summedArea),
                            frameTimes(minimalLookup.times), "", {}});
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;

@@ -87,27 +87,26 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
             "Lambert, RGBA8");
 }
 
-// The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset
-// or receiver plane, the channels at level 0 (or the summed-area table's box of the blur's
+// The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset,
+// no receiver plane but under ESM's fallback, the channels at level 0 (or the summed-area table's box of the blur's
 // width). With bilinear lookups on a flat-lit scene that
 // changes the shadows' edges only. The power CDF's min and max channels and ESM's log-space one
 // are reduced by hand as the pass's are: averaged by the hardware they shade other pixels.
 TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   gl::Renderer renderer(*context);
   const Scene scene = makeBuiltinScene("backyard");
-  for (const char* id : {"vsm", "csm", "powercdf", "esm-log", "vsm-sat", "lvsm-sat"}) {
+  for (const char* id :
+       {"vsm", "csm", "powercdf", "esm", "esm-paper", "esm-log", "vsm-sat", "lvsm-sat"}) {
     SCOPED_TRACE(id);
     const std::string_view name(id);
-    const bool logEsm = name == "esm-log";
+    const bool esmVariant = name.starts_with("esm-");
     const bool summedArea = name.ends_with("-sat");
-    const Technique t = logEsm       ? Technique::Esm
+    const Technique t = esmVariant   ? Technique::Esm
                         : summedArea ? parseTechnique(std::string(name.substr(0, name.size() - 4)))
                                      : parseTechnique(id);
     gl::RenderSettings s = small(t);
-    if (logEsm) {
-      s.params.esm.filterSpace = shaders::kEsmFilterLog;
-      s.params.esm.classifier = shaders::kEsmClassifyNone;  // no fallback: the yardstick has none
-    }
+    if (name == "esm-log") s.params.esm.filterSpace = shaders::kEsmFilterLog;
+    if (name == "esm-paper") s.params.esm.fallback = shaders::kEsmFallbackPaper;
     s.shadowMapSize = 512;
     s.width = 160;
     s.height = 90;
@@ -117,7 +116,7 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     const Image minimal = renderer.readMinimalLookupColor();
     ASSERT_EQ(minimal.width(), s.width);
     ASSERT_EQ(minimal.height(), s.height);
-    int near = 0, shadowed = 0;
+    int near = 0, shadowed = 0, fellBack = 0;
     for (int y = 0; y < s.height; ++y) {
       for (int x = 0; x < s.width; ++x) {
         float difference = 0.0f;
@@ -128,12 +127,19 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
         // 8 bits of the yardstick's target (1/255) and a shadow edge's shift of a texel.
         if (difference < 0.02f) ++near;
         if (frame.visibility.at(x, y) < 0.5f) ++shadowed;
+        if (t == Technique::Esm && frame.diagnostic.at(x, y) == 1.0f) ++fellBack;
       }
     }
     const int pixels = s.width * s.height;
     EXPECT_GT(shadowed, pixels / 50) << "the view must show shadows for this to test them";
+    if (t == Technique::Esm) {
+      // Without its fallback the yardstick moved 49 of these pixels, without the fallback's
+      // receiver plane 240 (measured).
+      EXPECT_GT(fellBack, pixels / 50) << "the view must show ESM's fallback for this to test it";
+    }
     // Every pixel: bilinear lookups at level 0 on both sides, no normal offset asked for, and
-    // none of these techniques' lookups reads the receiver plane (measured: all agree). Averaged
+    // none of these techniques' lookups reads the receiver plane but ESM's fallback, whose plane
+    // the yardstick solves from screen derivatives (measured: all agree). Averaged
     // by the hardware, the power CDF's min and max channels moved 149 pixels, ESM's log-space
     // channel 24.
     // The summed-area lookup widens its box to the pixel's footprint where that is wider than
@@ -145,7 +151,8 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     } else {
       EXPECT_EQ(near, pixels);
     }
-    std::printf("%s: %d of %d pixels agree, %d shadowed\n", id, near, pixels, shadowed);
+    std::printf("%s: %d of %d pixels agree, %d shadowed, %d fell back\n", id, near, pixels,
+                shadowed, fellBack);
   }
 }
 

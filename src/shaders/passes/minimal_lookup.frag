@@ -5,15 +5,17 @@
 // would average them into a wrong visibility); with the summed-area filter (SUMMED_AREA), each
 // read channel's mean over the least box the production lookup takes (the blur's width, no
 // footprint) from the table, as it reads the table; the technique's own reconstruction
-// (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
-// normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
-// production pass (camera.frag) adds to this is its cost over the yardstick.
+// (shared/technique_dispatch.h) with ESM's threshold classification and fallback, Lambert +
+// ambient of the base colour, one RGBA8 target. No normal offset, footprint, cascade or
+// diagnostics, and a receiver plane only under ESM's fallback: what the production pass
+// (camera.frag) adds to this is its cost over the yardstick.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
 #include "../lib/lookup_access.glsl"
 #include "../lib/material.glsl"
 #include "../shared/light_depth.h"
+#include "../shared/receiver_plane.h"
 #include "../shared/shading.h"
 
 #ifndef LIGHT_PERSPECTIVE
@@ -81,6 +83,27 @@ void main() {
 #endif
   float visibility =
       clamp(reconstructVisibility(penumbraTechnique, channels, receiver, params), 0.0f, 1.0f);
+  // ESM's reconstruction as the paper gives it (§3.3): where the threshold classifier finds the
+  // planar-receiver assumption failed, the fallback in place of the exponential test, both
+  // compiled in as the production pass's. Its PCF of the light's depth under the blur's kernel
+  // is the production fallback's loop (the fastest form here: with the radius compiled in, the
+  // unrolled taps ran for every pixel, 5.5-6.2 ms a frame against the loop's 4.9), on the
+  // receiver plane solved from the screen derivatives, the least that keeps the curved faces
+  // from shading themselves (the production pass takes it from the triangle's plane). The
+  // Z-max classifier reads a pyramid the yardstick does not: none there.
+  vec2 texelPosition = uv * float(penumbraLookup.shadowMapSize);
+  vec2 depthPerTexel = solveDepthGradient(vec3(dFdx(texelPosition), dFdx(receiver)),
+                                          vec3(dFdy(texelPosition), dFdy(receiver)));
+  if (penumbraTechnique == kTechniqueEsm && params.esm.classifier == kEsmClassifyThreshold &&
+      esmFailsThreshold(channels[0], receiver, params.esm)) {
+    LookupSettings settings = lookupSettings(0);
+    if (params.esm.fallback == kEsmFallbackPaper) {
+      visibility = esmPaperFallback(sources, settings, params.esm, uv, receiver);
+    } else {
+      PcfParams pcf = pcfMatchingPrefilter(settings);
+      visibility = pcfLookup(sources, settings.shadowMapSize, true, uv, receiver, depthPerTexel, pcf);
+    }
+  }
   color = vec4(shadeLambert(materialBaseColor(baseColorTexcoord).rgb, ambient, cosine, visibility),
                1.0f);
 }
