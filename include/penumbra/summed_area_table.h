@@ -1,8 +1,8 @@
 // Summed-area tables (Crow 1984; thesis §3.5 summed-area VSM) whose box means stay accurate at
-// any size. Precision strategy: each channel is centred on the midpoint of its range and quantised
-// to a 64-bit fixed-point integer with a power-of-two step in (R * 2^-32, R * 2^-31], R half the
-// range (its largest deviation from the centre); prefix sums wrap modulo 2^64, which leaves every
-// box sum exact. The only error is that quantisation:
+// any size. Precision strategy: each channel is quantised to a 64-bit fixed-point integer with a
+// power-of-two step in (R * 2^-32, R * 2^-31], R half the range (its largest deviation from the
+// range's midpoint), centred on the step's grid point at or below that midpoint; prefix sums wrap
+// modulo 2^64, which leaves every box sum exact. The only error is that quantisation:
 //   |boxMean - exact mean| <= R * 2^-32   (about 2.3e-10 R) for every box at every image size.
 // The GPU's summed-area passes use the same integer scheme and reach the same bits
 // (shared/summed_area.h).
@@ -41,7 +41,7 @@ class SummedAreaTable {
   int height_ = 0;
   int channels_ = 0;
   std::vector<double> centre_;
-  std::vector<double> step_;  // value of one fixed-point unit, a power of two <= R * 2^-31
+  std::vector<double> step_;  // one fixed-point unit: a power of two <= R * 2^-31 if R > 0
   std::vector<uint64_t> sums_;
 };
 

@@ -37,10 +37,12 @@ SummedAreaTable::SummedAreaTable(const Image& image)
   // std::nearbyint in the default rounding mode rounds ties to even, as GLSL's roundEven does.
   detail::parallelForRows(height_, [&](int y) {
     for (int c = 0; c < channels_; ++c) {
+      const shaders::SummedAreaQuantisation& q = quantisation[size_t(c)];
+      const int64_t offset = int64_t(q.offset);
       uint64_t running = 0;
       for (int x = 0; x < width_; ++x) {
-        const double scaled = shaders::summedAreaScaled(image.at(x, y, c), quantisation[size_t(c)]);
-        running += uint64_t(int64_t(std::nearbyint(scaled)));
+        const float units = shaders::summedAreaUnits(image.at(x, y, c), q);
+        running += uint64_t(int64_t(std::nearbyint(units)) - offset);
         sums_[(size_t(y) * size_t(width_) + size_t(x)) * size_t(channels_) + size_t(c)] = running;
       }
     }

@@ -2,6 +2,7 @@
 // sizes where a float SAT falls apart (2048^2, 4096^2).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <random>
 
 #include "penumbra/summed_area_table.h"
@@ -70,6 +71,39 @@ TEST(SummedAreaTable, WholeImageAndClampedBoxes) {
   EXPECT_NEAR(sat.boxMean(-5, -5, 100, 100, 1), double(bruteMean(image, 0, 0, 63, 63, 1)),
               sat.errorBound(1));
   EXPECT_NEAR(sat.boxMean(10, 3, 10, 3, 0), image.at(10, 3, 0), sat.errorBound(0));
+}
+
+// The grid at the ends of fp32 (shared/summed_area.h): a narrow range far from zero (a value
+// times the scale near 2^55), negative values, a constant channel of huge magnitude (its own
+// magnitude's step) and a range under 2^-95 (the step held at 2^-127). Each failed with the
+// centre's units not subtracted, the step left unclamped or the constant channel's step taken
+// from its zero range.
+TEST(SummedAreaTable, ChannelsAtTheEndsOfFp32KeepTheBound) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<int> steps(0, 3);
+  Image image(64, 64, 4);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) {
+      image.at(x, y, 0) = 1000.0f + std::ldexp(float(steps(rng)), -14);  // fp32's spacing there
+      image.at(x, y, 1) = -3.5f - 0.25f * float(steps(rng));
+      image.at(x, y, 2) = 1e30f;
+      image.at(x, y, 3) = std::ldexp(float(1 + steps(rng)), -110);
+    }
+  }
+  const SummedAreaTable sat(image);
+  const int boxes[][4] = {{0, 0, 63, 63}, {5, 7, 5, 7}, {10, 20, 17, 50}, {0, 31, 63, 32}};
+  for (const auto& b : boxes) {
+    for (int c = 0; c < 4; ++c) {
+      const double exact = double(bruteMean(image, b[0], b[1], b[2], b[3], c));
+      EXPECT_LE(std::abs(sat.boxMean(b[0], b[1], b[2], b[3], c) - exact), sat.errorBound(c))
+          << "channel " << c << " box " << b[0] << "," << b[1] << " " << b[2] << "," << b[3];
+    }
+    EXPECT_EQ(sat.boxMean(b[0], b[1], b[2], b[3], 2), 1e30f);
+  }
+  EXPECT_EQ(sat.step(3), std::ldexp(1.0, -127));
+  // The constant channel's units within 2^32: beyond 2^63 they would overflow their conversion
+  // to 64 bits (undefined; x86 happens to saturate both sides alike).
+  EXPECT_LT(1e30 / sat.step(2), std::ldexp(1.0, 32));
 }
 
 TEST(SummedAreaTable, ConstantImagesAreExact) {

@@ -1,6 +1,7 @@
 // Summed-area table, step 2: each channel's quantisation from its extremes (shared/summed_area.h,
 // as the CPU table derives it), then each texel quantised with the power-of-two scale (an exact
-// product, no division) and prefix-summed along its row, wrapping by design.
+// fp32 product, no division), less the centre's units, and prefix-summed along its row, wrapping
+// by design.
 #extension GL_ARB_gpu_shader_int64 : require
 #include "../lib/summed_area.glsl"
 #include "../shared/summed_area.h"
@@ -34,11 +35,12 @@ void main() {
     s.step = q.step;
     stats[channel] = s;
   }
+  int64_t offset = int64_t(q.offset);
   uint64_t running = 0UL;
   for (int x = 0; x < size.x; ++x) {
     float v =
         satChannelValue(penumbraChannelMap, channel, x, y, channelsPerCascade, layersPerCascade);
-    running += uint64_t(int64_t(roundEven(summedAreaScaled(v, q))));
+    running += uint64_t(int64_t(roundEven(summedAreaUnits(v, q))) - offset);
     sums[satIndex(channel, x, y, size)] = running;
   }
 }
