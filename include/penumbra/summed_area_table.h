@@ -1,9 +1,11 @@
 // Summed-area tables (Crow 1984; thesis §3.5 summed-area VSM) whose box means stay accurate at
 // any size. Precision strategy: each channel is quantised to a 64-bit fixed-point integer with a
 // power-of-two step in (R * 2^-32, R * 2^-31], R half the range (its largest deviation from the
-// range's midpoint), centred on the step's grid point at or below that midpoint; prefix sums wrap
-// modulo 2^64, which leaves every box sum exact. The only error is that quantisation:
-//   |boxMean - exact mean| <= R * 2^-32   (about 2.3e-10 R) for every box at every image size.
+// range's midpoint; R >= 2^-95, shared/summed_area.h has the ends), centred on the step's grid
+// point at or below that midpoint; prefix sums wrap modulo 2^64, which leaves every box sum
+// exact. The error is that quantisation and the double's rounding of the mean:
+//   |boxMean - exact mean| <= R * 2^-32 + 2^-52 |mean|   (about 2.3e-10 R) for every box at
+// every image size.
 // The GPU's summed-area passes use the same integer scheme and reach the same bits
 // (shared/summed_area.h).
 #pragma once
@@ -27,7 +29,8 @@ class SummedAreaTable {
   // to the image. Requires x0 <= x1 and y0 <= y1.
   double boxMean(int x0, int y0, int x1, int y1, int channel) const;
 
-  // The guaranteed bound on |boxMean - exact mean| for a channel: half a step, <= R * 2^-32.
+  // The guaranteed bound on |boxMean - exact mean| for a channel: half a step (<= R * 2^-32 where
+  // R >= 2^-95) and the double's rounding of the mean, 2^-52 of its magnitude.
   double errorBound(int channel) const;
 
   // The raw table, as the GPU's lookup reads it: the wrapping fixed-point sum over [0,x] x [0,y]

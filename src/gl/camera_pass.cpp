@@ -162,7 +162,8 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
 
 void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& scene,
                                      const RenderSettings& settings, const FrameGeometry& frame,
-                                     const ShadowFilter& shadows, int layers) {
+                                     const ShadowFilter& shadows, int layers,
+                                     bool esmFallback) {
   if (frame.cascaded || frame.pointLight) {
     throw Error("the minimal lookup runs on one map: no cascades, no point light");
   }
@@ -185,6 +186,7 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), false);
   defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
   defines.push_back({"LAYER_COUNT", std::to_string(layers)});
+  defines.push_back({"ESM_FALLBACK", esmFallback ? "1" : "0"});
   // The parameters the production pass compiles in (ESM's filter space decides its channel's
   // reduction), and its channel arrays' size, 4 x layers.
   for (const ShaderDefine& d : lookupParameterDefines(shadows.state())) defines.push_back(d);

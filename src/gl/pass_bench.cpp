@@ -159,20 +159,20 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
-// What the camera pass's yardstick does (passes/minimal_lookup.frag): ESM's reconstruction
-// carries its threshold classification and fallback, as the paper gives it (§3.3).
-std::string minimalLookupDescription(const RenderSettings& settings, bool summedArea) {
+// What the camera pass's yardstick does (passes/minimal_lookup.frag); esmFallback: ESM's
+// classification and fallback as well (ESM_FALLBACK).
+std::string minimalLookupDescription(const RenderSettings& settings, bool summedArea,
+                                     bool esmFallback) {
   if (summedArea) {
     return "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
            "Lambert, RGBA8";
   }
   std::string reconstruct = "reconstruct";
-  const shaders::EsmParams& esm = settings.params.esm;
-  if (settings.technique == Technique::Esm && esm.classifier == shaders::kEsmClassifyThreshold) {
-    reconstruct += esm.fallback == shaders::kEsmFallbackPaper
-                       ? " (the paper's 2x2 fallback where the threshold test fails)"
-                       : " (PCF of the light's depth under the blur's kernel where the "
-                         "threshold test fails)";
+  if (esmFallback) {
+    reconstruct += settings.params.esm.fallback == shaders::kEsmFallbackPaper
+                       ? ", the paper's 2x2 fallback where the threshold test fails"
+                       : ", where the threshold test fails the pass's own PCF fallback of the "
+                         "light's depth on a receiver plane from screen derivatives";
   }
   return "minimal lookup: each layer filtered once, " + reconstruct + ", Lambert, RGBA8";
 }
@@ -202,6 +202,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     throw Error(
         "bench --passes measures one map (--cascades 1, a directional or spot light): the "
         "minimal kernels run on one, where cascades and a point light's six faces are several");
+  }
+  if (scene.light.size > 0.0f) {
+    throw Error("bench --passes measures hard lights (light size 0): the minimal lookup has no "
+                "blocker search or widened filter to stand beside a soft light's");
   }
   const bool summedArea = settings.filter == FilterMode::SummedArea;
   const bool blurs = settings.blur.radius > 0 && !summedArea;
@@ -288,7 +292,13 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
 
   // After each frame, the same view drawn with the least lookup of the technique.
   MinimalKernel minimalLookup{
-      std::function<double()>([&] { return renderer.timeMinimalLookup(); })};
+      std::function<double()>([&] { return renderer.timeMinimalLookup(false); })};
+  // ESM with a classifier the yardstick can run: a second lookup that falls back where the pass
+  // does, so that the pass's cost besides its fallback shows too.
+  const bool esmFallback = settings.technique == Technique::Esm &&
+                           settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
+  MinimalKernel minimalLookupWithFallback{
+      std::function<double()>([&] { return renderer.timeMinimalLookup(true); })};
 
   MinimalKernel yardstickCopy{[&] { yardstick.copy(); }};
   MinimalKernel yardstickBlur{[&] { yardstick.blurBothAxes(); }};
@@ -297,6 +307,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
   beside.push_back(&minimalLookup);
+  if (esmFallback) beside.push_back(&minimalLookupWithFallback);
   const FramePasses passes = renderPasses(renderer, scene, separate, repeats, gpuTime, beside);
 
   PassBenchResult result;
@@ -322,8 +333,13 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              frameTimes(generateMips.times), "", {}});
   }
   result.passes.push_back({"camera", frameTimes(passes.camera),
-                           minimalLookupDescription(settings, summedArea),
+                           minimalLookupDescription(settings, summedArea, false),
                            frameTimes(minimalLookup.times), "", {}});
+  if (esmFallback) {
+    result.passes.push_back({"camera", frameTimes(passes.camera),
+                             minimalLookupDescription(settings, summedArea, true),
+                             frameTimes(minimalLookupWithFallback.times), "", {}});
+  }
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;
   fusedSettings.fusePrefilter = true;

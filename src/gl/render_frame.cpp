@@ -452,13 +452,14 @@ int Renderer::channelMipLevels() const {
   return state_->shadows.channelMipLevels();
 }
 
-double Renderer::timeMinimalLookup() {
+double Renderer::timeMinimalLookup(bool esmFallback) {
   State& s = *state_;
   if (!s.scene || s.camera.bytes() == 0) {
     throw Error("no frame to draw the minimal lookup of: call Renderer::render first");
   }
   const ChannelLayout layout = channelLayout(s.settings.technique, s.shadows.params());
-  s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows, layout.layers);
+  s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows, layout.layers,
+                               esmFallback);
   return timerQueriesMeasureExecution() ? s.camera.minimalTimer.gpuMilliseconds()
                                         : s.camera.minimalTimer.wallMilliseconds();
 }

@@ -45,8 +45,8 @@ void expectBoxesWithinBound(int size) {
     const int extent = i < 20 ? 0 : (i < 40 ? 7 : size / 2);
     const int x1 = std::min(size - 1, x0 + extent), y1 = std::min(size - 1, y0 + extent);
     for (int c = 0; c < 2; ++c) {
-      const double error =
-          std::abs(sat.boxMean(x0, y0, x1, y1, c) - double(bruteMean(image, x0, y0, x1, y1, c)));
+      const double error = double(std::abs((long double)sat.boxMean(x0, y0, x1, y1, c) -
+                                           bruteMean(image, x0, y0, x1, y1, c)));
       ASSERT_LE(error, sat.errorBound(c)) << size << "^2 box " << x0 << "," << y0 << " " << extent;
       worst = std::max(worst, error);
     }
@@ -75,9 +75,9 @@ TEST(SummedAreaTable, WholeImageAndClampedBoxes) {
 
 // The grid at the ends of fp32 (shared/summed_area.h): a narrow range far from zero (a value
 // times the scale near 2^55), negative values, a constant channel of huge magnitude (its own
-// magnitude's step) and a range under 2^-95 (the step held at 2^-127). Each failed with the
-// centre's units not subtracted, the step left unclamped or the constant channel's step taken
-// from its zero range.
+// magnitude's step) and a range under 2^-95 (the step held at 2^-127, the values off its grid).
+// Each channel's step is the power of two the header derives: 2^(e-32) with 2^(e-1) <= R < 2^e.
+// The box means against long double, within the bound (quantisation and the mean's rounding).
 TEST(SummedAreaTable, ChannelsAtTheEndsOfFp32KeepTheBound) {
   std::mt19937 rng(3);
   std::uniform_int_distribution<int> steps(0, 3);
@@ -87,23 +87,24 @@ TEST(SummedAreaTable, ChannelsAtTheEndsOfFp32KeepTheBound) {
       image.at(x, y, 0) = 1000.0f + std::ldexp(float(steps(rng)), -14);  // fp32's spacing there
       image.at(x, y, 1) = -3.5f - 0.25f * float(steps(rng));
       image.at(x, y, 2) = 1e30f;
-      image.at(x, y, 3) = std::ldexp(float(1 + steps(rng)), -110);
+      image.at(x, y, 3) = std::ldexp(1.0f + std::ldexp(float(steps(rng)), -20), -110);
     }
   }
   const SummedAreaTable sat(image);
+  EXPECT_EQ(sat.step(0), std::ldexp(1.0, -45));   // R = 1.5 * 2^-14
+  EXPECT_EQ(sat.step(1), std::ldexp(1.0, -33));   // R = 0.375
+  EXPECT_EQ(sat.step(2), std::ldexp(1.0, 68));    // 1e30 in [2^99, 2^100)
+  EXPECT_EQ(sat.step(3), std::ldexp(1.0, -127));  // R = 1.5 * 2^-130, below 2^-95
   const int boxes[][4] = {{0, 0, 63, 63}, {5, 7, 5, 7}, {10, 20, 17, 50}, {0, 31, 63, 32}};
   for (const auto& b : boxes) {
     for (int c = 0; c < 4; ++c) {
-      const double exact = double(bruteMean(image, b[0], b[1], b[2], b[3], c));
-      EXPECT_LE(std::abs(sat.boxMean(b[0], b[1], b[2], b[3], c) - exact), sat.errorBound(c))
+      const long double exact = bruteMean(image, b[0], b[1], b[2], b[3], c);
+      const long double mean = sat.boxMean(b[0], b[1], b[2], b[3], c);
+      EXPECT_LE(std::abs(mean - exact), (long double)sat.errorBound(c))
           << "channel " << c << " box " << b[0] << "," << b[1] << " " << b[2] << "," << b[3];
     }
     EXPECT_EQ(sat.boxMean(b[0], b[1], b[2], b[3], 2), 1e30f);
   }
-  EXPECT_EQ(sat.step(3), std::ldexp(1.0, -127));
-  // The constant channel's units within 2^32: beyond 2^63 they would overflow their conversion
-  // to 64 bits (undefined; x86 happens to saturate both sides alike).
-  EXPECT_LT(1e30 / sat.step(2), std::ldexp(1.0, 32));
 }
 
 TEST(SummedAreaTable, ConstantImagesAreExact) {

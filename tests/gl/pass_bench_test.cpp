@@ -62,7 +62,24 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   const gl::PassBenchResult esm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Esm), 1);
   EXPECT_EQ(esm.format, "r32f x 1 layer");
-  expectTimed(esm, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
+  // ESM's camera pass twice: beside the least lookup, and beside one that falls back as it does.
+  expectTimed(esm,
+              {"encode", "prefilter", "mips", "camera", "camera", "encode + prefilter, fused"});
+  EXPECT_EQ(esm.passes[3].baseline,
+            "minimal lookup: each layer filtered once, reconstruct, Lambert, RGBA8");
+  EXPECT_EQ(esm.passes[4].baseline,
+            "minimal lookup: each layer filtered once, reconstruct, where the threshold test "
+            "fails the pass's own PCF fallback of the light's depth on a receiver plane from "
+            "screen derivatives, Lambert, RGBA8");
+  gl::RenderSettings paperFallback = small(Technique::Esm);
+  paperFallback.params.esm.fallback = shaders::kEsmFallbackPaper;
+  EXPECT_EQ(gl::benchPasses(renderer, makeBuiltinScene("planar"), paperFallback, 1).passes[4].baseline,
+            "minimal lookup: each layer filtered once, reconstruct, the paper's 2x2 fallback "
+            "where the threshold test fails, Lambert, RGBA8");
+  gl::RenderSettings unclassified = small(Technique::Esm);
+  unclassified.params.esm.classifier = shaders::kEsmClassifyNone;  // nothing falls back
+  expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), unclassified, 1),
+              {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
   // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
   // the blur and the fused pass; the mips and the camera pass have none.
   const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",
@@ -88,9 +105,9 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
 }
 
 // The camera pass's yardstick draws the same picture, less what it leaves out: no normal offset,
-// no receiver plane but under ESM's fallback, the channels at level 0 (or the summed-area table's box of the blur's
-// width). With bilinear lookups on a flat-lit scene that
-// changes the shadows' edges only. The power CDF's min and max channels and ESM's log-space one
+// no receiver plane but under ESM's fallback, the channels at level 0 (or the summed-area table's
+// box of the blur's width). With bilinear lookups on a flat-lit scene that changes the shadows'
+// edges only. The power CDF's min and max channels and ESM's log-space one
 // are reduced by hand as the pass's are: averaged by the hardware they shade other pixels.
 TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   gl::Renderer renderer(*context);
@@ -112,47 +129,60 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
     s.height = 90;
     s.filter = summedArea ? gl::FilterMode::SummedArea : gl::FilterMode::Bilinear;
     const gl::RenderResult frame = renderer.render(scene, s);
-    EXPECT_GT(renderer.timeMinimalLookup(), 0.0);
-    const Image minimal = renderer.readMinimalLookupColor();
-    ASSERT_EQ(minimal.width(), s.width);
-    ASSERT_EQ(minimal.height(), s.height);
-    int near = 0, shadowed = 0, fellBack = 0;
-    for (int y = 0; y < s.height; ++y) {
-      for (int x = 0; x < s.width; ++x) {
-        float difference = 0.0f;
-        for (int c = 0; c < 3; ++c) {
-          difference =
-              std::max(difference, std::abs(minimal.at(x, y, c) - frame.color.at(x, y, c)));
+    // ESM's yardstick with and without its classification and fallback.
+    for (const bool esmFallback : t == Technique::Esm ? std::vector{false, true}
+                                                      : std::vector{false}) {
+      SCOPED_TRACE(esmFallback ? "with ESM's fallback" : "");
+      EXPECT_GT(renderer.timeMinimalLookup(esmFallback), 0.0);
+      const Image minimal = renderer.readMinimalLookupColor();
+      ASSERT_EQ(minimal.width(), s.width);
+      ASSERT_EQ(minimal.height(), s.height);
+      int near = 0, nearUnclassified = 0, shadowed = 0, fellBack = 0;
+      for (int y = 0; y < s.height; ++y) {
+        for (int x = 0; x < s.width; ++x) {
+          float difference = 0.0f;
+          for (int c = 0; c < 3; ++c) {
+            difference =
+                std::max(difference, std::abs(minimal.at(x, y, c) - frame.color.at(x, y, c)));
+          }
+          // 8 bits of the yardstick's target (1/255) and a shadow edge's shift of a texel.
+          const bool agrees = difference < 0.02f;
+          const bool failed = t == Technique::Esm && frame.diagnostic.at(x, y) == 1.0f;
+          near += agrees ? 1 : 0;
+          nearUnclassified += agrees && !failed ? 1 : 0;
+          fellBack += failed ? 1 : 0;
+          if (frame.visibility.at(x, y) < 0.5f) ++shadowed;
         }
-        // 8 bits of the yardstick's target (1/255) and a shadow edge's shift of a texel.
-        if (difference < 0.02f) ++near;
-        if (frame.visibility.at(x, y) < 0.5f) ++shadowed;
-        if (t == Technique::Esm && frame.diagnostic.at(x, y) == 1.0f) ++fellBack;
       }
+      const int pixels = s.width * s.height;
+      EXPECT_GT(shadowed, pixels / 50) << "the view must show shadows for this to test them";
+      // Every pixel: bilinear lookups at level 0 on both sides, no normal offset asked for, and
+      // none of these techniques' lookups reads the receiver plane but ESM's fallback, whose
+      // plane the yardstick solves from screen derivatives (measured: all agree). Averaged
+      // by the hardware, the power CDF's min and max channels moved 149 pixels, ESM's log-space
+      // channel 24.
+      // The summed-area lookup widens its box to the pixel's footprint where that is wider than
+      // the blur, the yardstick keeps the blur's box: at grazing angles on the far ground only
+      // (measured: 1 pixel of 14400 for VSM and LVSM). 0.1% leaves room for other drivers'
+      // derivatives at those pixels; the yardstick reading a wrong channel moved 650-950.
+      if (summedArea) {
+        EXPECT_GE(near, pixels - pixels / 1000);
+      } else if (t == Technique::Esm && !esmFallback) {
+        // Where the pass fell back, the yardstick without a fallback shades otherwise: every
+        // other pixel agrees.
+        EXPECT_EQ(nearUnclassified, pixels - fellBack);
+        EXPECT_LT(near, pixels);
+      } else {
+        // With the fallback: without its receiver plane the yardstick moved 240 pixels of
+        // ESM's, without the fallback 49 (measured).
+        EXPECT_EQ(near, pixels);
+      }
+      if (t == Technique::Esm) {
+        EXPECT_GT(fellBack, pixels / 50) << "the view must show ESM's fallback to test it";
+      }
+      std::printf("%s%s: %d of %d pixels agree, %d shadowed, %d fell back\n", id,
+                  esmFallback ? " with its fallback" : "", near, pixels, shadowed, fellBack);
     }
-    const int pixels = s.width * s.height;
-    EXPECT_GT(shadowed, pixels / 50) << "the view must show shadows for this to test them";
-    if (t == Technique::Esm) {
-      // Without its fallback the yardstick moved 49 of these pixels, without the fallback's
-      // receiver plane 240 (measured).
-      EXPECT_GT(fellBack, pixels / 50) << "the view must show ESM's fallback for this to test it";
-    }
-    // Every pixel: bilinear lookups at level 0 on both sides, no normal offset asked for, and
-    // none of these techniques' lookups reads the receiver plane but ESM's fallback, whose plane
-    // the yardstick solves from screen derivatives (measured: all agree). Averaged
-    // by the hardware, the power CDF's min and max channels moved 149 pixels, ESM's log-space
-    // channel 24.
-    // The summed-area lookup widens its box to the pixel's footprint where that is wider than
-    // the blur, the yardstick keeps the blur's box: at grazing angles on the far ground only
-    // (measured: 1 pixel of 14400 for VSM and LVSM). 0.1% leaves room for other drivers'
-    // derivatives at those pixels; the yardstick reading a wrong channel moved 650-950.
-    if (summedArea) {
-      EXPECT_GE(near, pixels - pixels / 1000);
-    } else {
-      EXPECT_EQ(near, pixels);
-    }
-    std::printf("%s: %d of %d pixels agree, %d shadowed, %d fell back\n", id, near, pixels,
-                shadowed, fellBack);
   }
 }
 

@@ -258,9 +258,10 @@ class Renderer {
   // bench --passes' yardstick for the camera pass: the last frame's view drawn again with the
   // least lookup of its technique (passes/minimal_lookup.frag: one map, one filtered fetch per
   // channel layer, or with the summed-area filter each read channel's box mean from the table,
-  // the reconstruction, Lambert, one RGBA8 target), after render() of one map.
+  // the reconstruction, Lambert, one RGBA8 target), after render() of one map. esmFallback: with
+  // ESM's threshold classification and its fallback as well, where the pass has them.
   // The draw's milliseconds: a GPU timer query where they measure execution, else wall clock.
-  double timeMinimalLookup();
+  double timeMinimalLookup(bool esmFallback = false);
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.

@@ -1,6 +1,7 @@
 // Summed-area tables in wrapping 64-bit fixed point (include/penumbra/summed_area_table.h): each
-// channel is centred on the midpoint of its range and quantised with a power-of-two step of at
-// most R * 2^-31 (shared/summed_area.h); prefix sums wrap modulo 2^64, leaving box sums exact.
+// channel is quantised with a power-of-two step of at most R * 2^-31 and centred on the step's
+// grid at or below the midpoint of its range (shared/summed_area.h); prefix sums wrap modulo
+// 2^64, leaving box sums exact.
 // Sums are indexed (channel, y, x).
 #ifndef PENUMBRA_LIB_SUMMED_AREA_GLSL
 #define PENUMBRA_LIB_SUMMED_AREA_GLSL

@@ -5,10 +5,11 @@
 // would average them into a wrong visibility); with the summed-area filter (SUMMED_AREA), each
 // read channel's mean over the least box the production lookup takes (the blur's width, no
 // footprint) from the table, as it reads the table; the technique's own reconstruction
-// (shared/technique_dispatch.h) with ESM's threshold classification and fallback, Lambert +
-// ambient of the base colour, one RGBA8 target. No normal offset, footprint, cascade or
-// diagnostics, and a receiver plane only under ESM's fallback: what the production pass
-// (camera.frag) adds to this is its cost over the yardstick.
+// (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
+// normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
+// production pass (camera.frag) adds to this is its cost over the yardstick. With ESM_FALLBACK,
+// ESM's classification and fallback as well (on a receiver plane of its own): what the pass adds
+// besides its fallback.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -23,6 +24,11 @@
 #endif
 #ifndef LAYER_COUNT
 #define LAYER_COUNT 1
+#endif
+// 1: ESM's classification and fallback too (bench --passes' second yardstick of ESM's camera
+// pass, beside the first, which has neither).
+#ifndef ESM_FALLBACK
+#define ESM_FALLBACK 0
 #endif
 
 in vec3 worldPosition;
@@ -83,14 +89,16 @@ void main() {
 #endif
   float visibility =
       clamp(reconstructVisibility(penumbraTechnique, channels, receiver, params), 0.0f, 1.0f);
-  // ESM's reconstruction as the paper gives it (§3.3): where the threshold classifier finds the
-  // planar-receiver assumption failed, the fallback in place of the exponential test, both
-  // compiled in as the production pass's. Its PCF of the light's depth under the blur's kernel
-  // is the production fallback's loop (the fastest form here: with the radius compiled in, the
-  // unrolled taps ran for every pixel, 5.5-6.2 ms a frame against the loop's 4.9), on the
-  // receiver plane solved from the screen derivatives, the least that keeps the curved faces
-  // from shading themselves (the production pass takes it from the triangle's plane). The
-  // Z-max classifier reads a pyramid the yardstick does not: none there.
+#if ESM_FALLBACK
+  // ESM's threshold classification (ESM paper §3.3) and, where it finds the planar-receiver
+  // assumption failed, the fallback in place of the exponential test, both compiled in as the
+  // production pass's: the paper's 2x2 test, or penumbra's PCF of the light's depth under the
+  // blur's kernel (the production fallback's own loop, its fastest form here: with the radius
+  // compiled in, the unrolled taps ran for every pixel, 5.5-6.2 ms a frame against the loop's
+  // 4.9) on the receiver plane solved from the screen derivatives, the least that keeps curved
+  // faces from shading themselves (the production pass takes it from the triangle's plane: the
+  // derivatives' solve is ill-conditioned where the camera grazes a surface). The Z-max
+  // classifier reads a pyramid the yardstick does not: no classification there.
   vec2 texelPosition = uv * float(penumbraLookup.shadowMapSize);
   vec2 depthPerTexel = solveDepthGradient(vec3(dFdx(texelPosition), dFdx(receiver)),
                                           vec3(dFdy(texelPosition), dFdy(receiver)));
@@ -101,9 +109,11 @@ void main() {
       visibility = esmPaperFallback(sources, settings, params.esm, uv, receiver);
     } else {
       PcfParams pcf = pcfMatchingPrefilter(settings);
-      visibility = pcfLookup(sources, settings.shadowMapSize, true, uv, receiver, depthPerTexel, pcf);
+      visibility =
+          pcfLookup(sources, settings.shadowMapSize, true, uv, receiver, depthPerTexel, pcf);
     }
   }
+#endif
   color = vec4(shadeLambert(materialBaseColor(baseColorTexcoord).rgb, ambient, cosine, visibility),
                1.0f);
 }

@@ -18,14 +18,16 @@ struct SummedAreaQuantisation {
 // The quantisation of a channel whose values lie in [lo, hi]. R = (hi - lo) / 2 is the smallest
 // largest deviation of any centre, and the step the power of two 2^(e-32) with
 // 2^(e-1) <= R < 2^e. The centre is the grid point at or below the range's midpoint, so
-// |fixed| <= R / step + 1 < 2^32 + 1, and a value's fixed point is its own product with the scale
-// rounded, less the centre's: per texel one fp32 product, exact (a power of two), where centring
-// each value first took a double subtraction (1.3 ms of VSM's 1024^2 table on llvmpipe). The
-// quantisation error stays half a step, at most R * 2^-32. A constant channel (R = 0) takes its
-// magnitude's step, so its units stay within 2^32 and its box means are its value exactly; an R
-// under 2^-95 takes the step 2^-127, fp32's smallest normal scale, of no consequence at values
-// under 2^-70 (a range of distinct fp32 values is at least 2^-25 of their magnitude). Only the
-// extremes enter, so a GPU reduction in any order reaches the same bits as the CPU.
+// |fixed| < R / step + 1.5, at most 2^32 + 1, and a value's fixed point is its own product with
+// the scale rounded, less the centre's: per texel one fp32 product, exact (a power of two), where
+// centring each value first took a double subtraction (1.3 ms of VSM's 1024^2 table on
+// llvmpipe). The quantisation error stays half a step, at most R * 2^-32. A constant channel
+// (R = 0) takes its magnitude's step, so its units stay within 2^32 and its box means are its
+// value exactly (for |value| >= 2^-104). An R under 2^-95 takes the step 2^-127 (the scale
+// 2^127, fp32's largest power of two), coarser than R * 2^-31 there but of no consequence at
+// values under 2^-70 (a range of distinct fp32 values spans at least 2^-25 of their magnitude).
+// Only the extremes enter, so a GPU reduction in any order reaches the same bits as the CPU
+// (fp32 denormals aside, which a GPU may flush: values under 2^-126, in ranges under 2^-94).
 PENUMBRA_INLINE SummedAreaQuantisation summedAreaQuantisationFor(float lo, float hi) {
   SummedAreaQuantisation q;
   const double midpoint = (double(lo) + double(hi)) * double(0.5f);
@@ -43,7 +45,7 @@ PENUMBRA_INLINE SummedAreaQuantisation summedAreaQuantisationFor(float lo, float
 }
 
 // A texel's value in fixed-point units before rounding and centring: value * scale, exact in fp32
-// (|value| * scale < 2^57). Each side rounds it to the nearest integer, ties to even (GLSL
+// (|value| * scale <= 2^56). Each side rounds it to the nearest integer, ties to even (GLSL
 // roundEven, C++ std::nearbyint: both IEEE roundToIntegralTiesToEven), and subtracts the offset
 // in 64-bit integers, so GPU and CPU quantise identically.
 PENUMBRA_INLINE float summedAreaUnits(float value, SummedAreaQuantisation q) {
