@@ -4,8 +4,8 @@
 // range's midpoint; R >= 2^-95, shared/summed_area.h has the ends), centred on the step's grid
 // point at or below that midpoint; prefix sums wrap modulo 2^64, which leaves every box sum
 // exact. The error is that quantisation and the double's rounding of the mean:
-//   |boxMean - exact mean| <= R * 2^-32 + 2^-52 |mean|   (about 2.3e-10 R) for every box at
-// every image size.
+//   |boxMean - exact mean| <= R * 2^-32 + 2^-52 (|centre| + 4R)   for every box at every image
+// size (about 2.3e-10 R while |centre| <= 2^20 R).
 // The GPU's summed-area passes use the same integer scheme and reach the same bits
 // (shared/summed_area.h).
 #pragma once
@@ -30,7 +30,7 @@ class SummedAreaTable {
   double boxMean(int x0, int y0, int x1, int y1, int channel) const;
 
   // The guaranteed bound on |boxMean - exact mean| for a channel: half a step (<= R * 2^-32 where
-  // R >= 2^-95) and the double's rounding of the mean, 2^-52 of its magnitude.
+  // R >= 2^-95) and the double's rounding of the mean, 2^-52 (|centre| + 2^33 steps).
   double errorBound(int channel) const;
 
   // The raw table, as the GPU's lookup reads it: the wrapping fixed-point sum over [0,x] x [0,y]

@@ -74,8 +74,9 @@ double SummedAreaTable::boxMean(int x0, int y0, int x1, int y1, int channel) con
 }
 
 double SummedAreaTable::errorBound(int channel) const {
-  // The mean is the box's fixed-point mean (within 2^32 + 1 steps of the centre) divided by its
-  // area and added to the centre in double: two roundings of 2^-53 of their results each.
+  // The mean is the box's fixed-point sum converted to double, divided by its area (within
+  // 2^32 + 1 steps of the centre) and added to the centre: three roundings of 2^-53 of their
+  // results each, covered by 2^-52 of the centre's magnitude and 2^33 steps.
   const double step = step_[size_t(channel)];
   const double magnitude = std::abs(centre_[size_t(channel)]) + 0x1p33 * step;
   return 0.5 * step + 0x1p-52 * magnitude;

@@ -186,7 +186,7 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   std::vector<ShaderDefine> defines = lookupVariantDefines(shadows.state(), false);
   defines.push_back({"LIGHT_PERSPECTIVE", frame.lightView.perspective ? "1" : "0"});
   defines.push_back({"LAYER_COUNT", std::to_string(layers)});
-  defines.push_back({"ESM_FALLBACK", esmFallback ? "1" : "0"});
+  defines.push_back({"WITH_ESM_FALLBACK", esmFallback ? "1" : "0"});
   // The parameters the production pass compiles in (ESM's filter space decides its channel's
   // reduction), and its channel arrays' size, 4 x layers.
   for (const ShaderDefine& d : lookupParameterDefines(shadows.state())) defines.push_back(d);

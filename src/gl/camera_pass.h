@@ -61,7 +61,7 @@ class CameraPass {
   // bench --passes' yardstick for this pass: the same geometry drawn with the least lookup of the
   // technique (passes/minimal_lookup.frag) into a target of its own, one map only; `layers` is
   // the channel texture's layer count; esmFallback: with ESM's classification and fallback
-  // (ESM_FALLBACK). Timed by minimalTimer like `timer`: the draw alone.
+  // (WITH_ESM_FALLBACK). Timed by minimalTimer like `timer`: the draw alone.
   void renderMinimalLookup(ProgramCache& programs, const GpuScene& scene,
                            const RenderSettings& settings, const FrameGeometry& frame,
                            const ShadowFilter& shadows, int layers, bool esmFallback);

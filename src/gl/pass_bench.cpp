@@ -159,20 +159,23 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
-// What the camera pass's yardstick does (passes/minimal_lookup.frag); esmFallback: ESM's
-// classification and fallback as well (ESM_FALLBACK).
+// What the camera pass's yardstick does (passes/minimal_lookup.frag). ESM with the threshold
+// classifier has two: without (esmFallback false) and with its classification and fallback.
 std::string minimalLookupDescription(const RenderSettings& settings, bool summedArea,
                                      bool esmFallback) {
   if (summedArea) {
     return "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
            "Lambert, RGBA8";
   }
+  const bool classified = settings.technique == Technique::Esm &&
+                          settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
   std::string reconstruct = "reconstruct";
-  if (esmFallback) {
+  if (classified && !esmFallback) reconstruct += " (no classification or fallback)";
+  if (classified && esmFallback) {
     reconstruct += settings.params.esm.fallback == shaders::kEsmFallbackPaper
-                       ? ", the paper's 2x2 fallback where the threshold test fails"
-                       : ", where the threshold test fails the pass's own PCF fallback of the "
-                         "light's depth on a receiver plane from screen derivatives";
+                       ? " with the threshold test, and where it fails the paper's 2x2 fallback"
+                       : " with the threshold test, and where it fails the pass's own PCF "
+                         "fallback (the light's depth, a receiver plane from screen derivatives)";
   }
   return "minimal lookup: each layer filtered once, " + reconstruct + ", Lambert, RGBA8";
 }

@@ -23,7 +23,8 @@ struct FrameTimes {
 FrameTimes frameTimes(const std::vector<double>& times);
 
 struct PassTiming {
-  std::string pass;  // "encode", "prefilter", "encode + prefilter, fused", "mips", ...
+  // "encode", "prefilter", "encode + prefilter, fused", "mips", ... ("camera" twice for ESM)
+  std::string pass;
   FrameTimes passTimes;  // the renderer's pass
   std::string baseline;  // what the minimal kernel does
   FrameTimes baselineTimes;
@@ -59,8 +60,11 @@ std::string passTimingDescription(const Renderer& renderer);
 // as many times on textures of the channel texture's format, size and layers (FrameTimes: the
 // fastest frame and the median) of GPU timer queries on vendor drivers, of wall-clock times on
 // software rasterisers (llvmpipe's queries see only submission). The mip chain or, with the sat
-// filter, the summed-area table. PCF and the hard test have no prefilter, cascades have several
-// maps: they are refused.
+// filter, the summed-area table. The camera pass stands beside the least lookup of the technique
+// and, for ESM with the threshold classifier, also beside a lookup that classifies and falls
+// back as the pass does: two "camera" rows, told apart by their baselines. PCF and the hard test
+// have no prefilter, cascades and point lights have several maps, and soft lights a blocker
+// search the minimal lookup lacks: they are refused.
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats);
 

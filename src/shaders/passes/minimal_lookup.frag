@@ -7,9 +7,9 @@
 // footprint) from the table, as it reads the table; the technique's own reconstruction
 // (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
 // normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
-// production pass (camera.frag) adds to this is its cost over the yardstick. With ESM_FALLBACK,
-// ESM's classification and fallback as well (on a receiver plane of its own): what the pass adds
-// besides its fallback.
+// production pass (camera.frag) adds to this is its cost over the yardstick. With
+// WITH_ESM_FALLBACK, ESM's classification and fallback as well: what the pass adds besides its
+// fallback.
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -27,8 +27,8 @@
 #endif
 // 1: ESM's classification and fallback too (bench --passes' second yardstick of ESM's camera
 // pass, beside the first, which has neither).
-#ifndef ESM_FALLBACK
-#define ESM_FALLBACK 0
+#ifndef WITH_ESM_FALLBACK
+#define WITH_ESM_FALLBACK 0
 #endif
 
 in vec3 worldPosition;
@@ -89,16 +89,17 @@ void main() {
 #endif
   float visibility =
       clamp(reconstructVisibility(penumbraTechnique, channels, receiver, params), 0.0f, 1.0f);
-#if ESM_FALLBACK
+#if WITH_ESM_FALLBACK
   // ESM's threshold classification (ESM paper §3.3) and, where it finds the planar-receiver
   // assumption failed, the fallback in place of the exponential test, both compiled in as the
   // production pass's: the paper's 2x2 test, or penumbra's PCF of the light's depth under the
-  // blur's kernel (the production fallback's own loop, its fastest form here: with the radius
-  // compiled in, the unrolled taps ran for every pixel, 5.5-6.2 ms a frame against the loop's
-  // 4.9) on the receiver plane solved from the screen derivatives, the least that keeps curved
-  // faces from shading themselves (the production pass takes it from the triangle's plane: the
-  // derivatives' solve is ill-conditioned where the camera grazes a surface). The Z-max
-  // classifier reads a pyramid the yardstick does not: no classification there.
+  // blur's kernel (the production fallback's own loop: with the radius compiled in, the unrolled
+  // taps ran for every pixel, 5.5-6.2 ms a frame in three runs against the loop's 4.9 in the
+  // three before, both without a receiver plane) on the receiver plane solved from the screen
+  // derivatives, the least that keeps curved faces from shading themselves (the production pass
+  // takes it from the triangle's plane: the derivatives' solve is ill-conditioned where the
+  // camera grazes a surface). The Z-max classifier reads a pyramid the yardstick does not: no
+  // classification there.
   vec2 texelPosition = uv * float(penumbraLookup.shadowMapSize);
   vec2 depthPerTexel = solveDepthGradient(vec3(dFdx(texelPosition), dFdx(receiver)),
                                           vec3(dFdy(texelPosition), dFdy(receiver)));

@@ -25,9 +25,9 @@ struct SummedAreaQuantisation {
 // (R = 0) takes its magnitude's step, so its units stay within 2^32 and its box means are its
 // value exactly (for |value| >= 2^-104). An R under 2^-95 takes the step 2^-127 (the scale
 // 2^127, fp32's largest power of two), coarser than R * 2^-31 there but of no consequence at
-// values under 2^-70 (a range of distinct fp32 values spans at least 2^-25 of their magnitude).
+// values under 2^-70 (a range of distinct fp32 values spans at least 2^-24 of their magnitude).
 // Only the extremes enter, so a GPU reduction in any order reaches the same bits as the CPU
-// (fp32 denormals aside, which a GPU may flush: values under 2^-126, in ranges under 2^-94).
+// (fp32 denormals aside, which a GPU may flush: values under 2^-126, in ranges under 2^-93).
 PENUMBRA_INLINE SummedAreaQuantisation summedAreaQuantisationFor(float lo, float hi) {
   SummedAreaQuantisation q;
   const double midpoint = (double(lo) + double(hi)) * double(0.5f);
