@@ -192,6 +192,18 @@ std::string passTimingDescription(const Renderer& renderer) {
                                                  : "wall clock (glFinish around each pass)";
 }
 
+void checkPassBenchable(const Scene& scene, const RenderSettings& settings) {
+  if (settings.cascades.count != 1 || scene.light.kind == LightKind::Point) {
+    throw Error(
+        "bench --passes measures one map (--cascades 1, a directional or spot light): the "
+        "minimal kernels run on one, where cascades and a point light's six faces are several");
+  }
+  if (scene.light.size > 0.0f) {
+    throw Error("bench --passes measures hard lights (--light-size 0): the minimal lookup has no "
+                "blocker search or widened filter to stand beside a soft light's");
+  }
+}
+
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats) {
   if (repeats < 1 || repeats > 100) {
@@ -201,15 +213,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     throw Error(std::string(techniqueId(settings.technique)) +
                 " has no prefilter passes to measure (it filters after the test)");
   }
-  if (settings.cascades.count != 1 || scene.light.kind == LightKind::Point) {
-    throw Error(
-        "bench --passes measures one map (--cascades 1, a directional or spot light): the "
-        "minimal kernels run on one, where cascades and a point light's six faces are several");
-  }
-  if (scene.light.size > 0.0f) {
-    throw Error("bench --passes measures hard lights (light size 0): the minimal lookup has no "
-                "blocker search or widened filter to stand beside a soft light's");
-  }
+  checkPassBenchable(scene, settings);
   const bool summedArea = settings.filter == FilterMode::SummedArea;
   const bool blurs = settings.blur.radius > 0 && !summedArea;
   const bool gpuTime = renderer.timerQueriesMeasureExecution();

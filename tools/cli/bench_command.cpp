@@ -154,6 +154,7 @@ void runBench(const BenchOptions& o) {
                 "techniques that prefilter, or all");
   }
   const Scene scene = benchScene(o, aspect);
+  gl::checkPassBenchable(scene, settings);  // before a GL context or the output exist
   CommandOutput output(o.output);
   InterruptCleanup interrupt;  // before the GL context: its driver threads inherit the mask
   gl::HeadlessContext context;

@@ -68,4 +68,10 @@ std::string passTimingDescription(const Renderer& renderer);
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                             int repeats);
 
+// Throws Error with the reason where bench --passes cannot measure `settings` on `scene`: the
+// minimal kernels run on one map (no cascades, no point light's six faces), and the minimal
+// lookup has no blocker search to stand beside a soft light's. benchPasses checks it too; a
+// front end calls it before it creates a GL context or its output.
+void checkPassBenchable(const Scene& scene, const RenderSettings& settings);
+
 }  // namespace penumbra::gl
