@@ -159,16 +159,23 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
-// What the camera pass's yardstick does (passes/minimal_lookup.frag). ESM with the threshold
-// classifier has two: without (esmFallback false) and with its classification and fallback.
+// ESM with the classifier the minimal lookup can run (the threshold test): its camera pass also
+// stands beside a lookup that falls back where the pass does, so that the pass's cost besides
+// its fallback shows too.
+bool hasFallbackYardstick(const RenderSettings& settings) {
+  return settings.technique == Technique::Esm &&
+         settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
+}
+
+// What the camera pass's yardstick does (passes/minimal_lookup.frag): without (esmFallback
+// false) or with ESM's classification and fallback.
 std::string minimalLookupDescription(const RenderSettings& settings, bool summedArea,
                                      bool esmFallback) {
   if (summedArea) {
     return "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
            "Lambert, RGBA8";
   }
-  const bool classified = settings.technique == Technique::Esm &&
-                          settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
+  const bool classified = hasFallbackYardstick(settings);
   std::string reconstruct = "reconstruct";
   if (classified && !esmFallback) reconstruct += " (no classification or fallback)";
   if (classified && esmFallback) {
@@ -300,10 +307,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   // After each frame, the same view drawn with the least lookup of the technique.
   MinimalKernel minimalLookup{
       std::function<double()>([&] { return renderer.timeMinimalLookup(false); })};
-  // ESM with a classifier the yardstick can run: a second lookup that falls back where the pass
-  // does, so that the pass's cost besides its fallback shows too.
-  const bool esmFallback = settings.technique == Technique::Esm &&
-                           settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
+  const bool esmFallback = hasFallbackYardstick(settings);
   MinimalKernel minimalLookupWithFallback{
       std::function<double()>([&] { return renderer.timeMinimalLookup(true); })};
 
