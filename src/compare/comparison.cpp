@@ -267,7 +267,9 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       // The first frame is measured and shown; every frame's visibility and lit surfaces feed
       // the flicker; only the last frame is timed (warm), the others run without waits.
       namespace fi = gl::frame_image;
-      settings.readBack = fi::kVisibility | fi::kLookup | (frame == 0 ? fi::kColor : fi::kNone);
+      // The first frame's diagnostic gives ESM's failure rate.
+      settings.readBack =
+          fi::kVisibility | fi::kLookup | (frame == 0 ? fi::kColor | fi::kDiagnostic : fi::kNone);
       settings.timing = frame + 1 == path.size();
       const gl::RenderResult r =
           renderer.render(settings, gl::FrameView{path[frame], result.scene.light});

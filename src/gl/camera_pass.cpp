@@ -58,19 +58,23 @@ CameraPass::~CameraPass() {
   if (minimalFramebuffer_ != 0) glDeleteFramebuffers(1, &minimalFramebuffer_);
 }
 
-void CameraPass::prepare(int width, int height, bool lookupInputs) {
-  if (framebuffer_ != 0 && width == width_ && height == height_ && lookupInputs == lookupInputs_) {
+void CameraPass::prepare(int width, int height, bool diagnostics, bool lookupInputs) {
+  diagnostics = diagnostics || lookupInputs;
+  if (framebuffer_ != 0 && width == width_ && height == height_ &&
+      diagnostics == diagnostics_ && lookupInputs == lookupInputs_) {
     return;
   }
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
   width_ = width;
   height_ = height;
+  diagnostics_ = diagnostics;
   lookupInputs_ = lookupInputs;
   struct Target {
     Texture* texture;
     GLenum format;
   };
-  // Colour, visibility and diagnostic, then the lookup's inputs (locations 3-6 in camera.frag).
+  // Colour, then visibility and diagnostic, then the lookup's inputs (locations 1-2 and 3-6 in
+  // camera.frag), as many as colorTargetCount().
   const Target targets[] = {{&color_, GL_RGBA16F},       {&visibility_, GL_R32F},
                             {&diagnostic_, GL_R32F},     {&lookup_, GL_RGBA32F},
                             {&receiverPlane_, GL_RG32F}, {&derivatives_, GL_RGBA32F},
@@ -109,6 +113,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   defines.push_back({"POINT_LIGHT", frame.pointLight ? "1" : "0"});
   defines.push_back({"CASCADED", frame.cascaded ? "1" : "0"});
   defines.push_back({"SOFT_LIGHT", frame.light.size > 0.0f ? "1" : "0"});
+  defines.push_back({"DIAGNOSTICS", diagnostics_ ? "1" : "0"});
   defines.push_back({"LOOKUP_INPUTS", lookupInputs_ ? "1" : "0"});
   const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
                                   "passes/camera.frag", defines);
@@ -138,8 +143,10 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   // Every target, every frame: they live across frames, and pixels nothing covers this frame
   // must not keep the last frame's lookup.
   glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 0, sky);
-  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, lit);
-  glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 2, nothing);
+  if (diagnostics_) {
+    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 1, lit);
+    glClearNamedFramebufferfv(framebuffer_, GL_COLOR, 2, nothing);
+  }
   if (lookupInputs_) {
     for (int target = 3; target <= 5; ++target) {
       glClearNamedFramebufferfv(framebuffer_, GL_COLOR, target, zero);
@@ -224,10 +231,19 @@ Image CameraPass::readColor() const {
   return readTexture(color_.id(), 0, width_, height_, 1, 4, GL_RGBA, true);
 }
 Image CameraPass::readVisibility() const {
+  requireDiagnostics();
   return readTexture(visibility_.id(), 0, width_, height_, 1, 1, GL_RED, true);
 }
 Image CameraPass::readDiagnostic() const {
+  requireDiagnostics();
   return readTexture(diagnostic_.id(), 0, width_, height_, 1, 1, GL_RED, true);
+}
+void CameraPass::requireDiagnostics() const {
+  if (!diagnostics_) {
+    throw Error(
+        "the camera pass did not write its visibility and diagnostic: ask for either in "
+        "RenderSettings::readBack");
+  }
 }
 void CameraPass::requireLookupInputs() const {
   if (!lookupInputs_) {
@@ -258,7 +274,7 @@ Image CameraPass::readCascades() const {
 }
 
 uint64_t CameraPass::bytes() const {
-  return frameBytes(width_, height_, lookupInputs_);
+  return frameBytes(width_, height_, diagnostics_, lookupInputs_);
 }
 
 }  // namespace penumbra::gl

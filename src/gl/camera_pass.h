@@ -39,15 +39,17 @@ class CameraPass {
   CameraPass(const CameraPass&) = delete;
   CameraPass& operator=(const CameraPass&) = delete;
 
-  // lookupInputs: also the four targets of the lookup's inputs (RenderSettings::lookupInputs),
-  // which render() then writes.
-  void prepare(int width, int height, bool lookupInputs);
+  // diagnostics: also the visibility and diagnostic targets (writesDiagnostics); lookupInputs:
+  // also the four targets of the lookup's inputs (RenderSettings::lookupInputs), and the
+  // diagnostics' (their locations come first). render() writes the targets prepared.
+  void prepare(int width, int height, bool diagnostics, bool lookupInputs);
   // The shadow maps are the filter's last filter() (or prepareRawDepth() for the reference).
   void render(ProgramCache& programs, const GpuScene& scene, const RenderSettings& settings,
               const FrameGeometry& frame, const ShadowFilter& shadows, bool reference);
 
   // Row 0 at the top.
   Image readColor() const;
+  // Only after prepare(..., diagnostics or lookupInputs = true).
   Image readVisibility() const;
   Image readDiagnostic() const;
   // The lookup's inputs: only after prepare(..., lookupInputs = true).
@@ -72,11 +74,12 @@ class CameraPass {
   GpuTimer minimalTimer;
 
  private:
-  int colorTargetCount() const { return lookupInputs_ ? 7 : 3; }
+  int colorTargetCount() const { return lookupInputs_ ? 7 : diagnostics_ ? 3 : 1; }
+  void requireDiagnostics() const;
   void requireLookupInputs() const;
 
   int width_ = 0, height_ = 0;
-  bool lookupInputs_ = false;
+  bool diagnostics_ = false, lookupInputs_ = false;
   Texture color_, visibility_, diagnostic_, lookup_, receiverPlane_, derivatives_, cascade_, depth_;
   unsigned framebuffer_ = 0;
   // The yardstick's RGBA8 colour and depth, made on its first use.

@@ -16,22 +16,32 @@ namespace penumbra::gl {
 namespace {
 
 // The camera pass's render targets (camera_pass.cpp, CameraPass::prepare).
+enum class FrameTargetUse { Always, Diagnostics, LookupInputs };
 struct FrameTarget {
   std::string_view what;
   GLenum format;
   int bytesPerPixel;
-  bool lookupInput;  // allocated only when the frame writes the lookup's inputs
+  FrameTargetUse use;  // allocated always, or only when the frame writes them
 };
 constexpr FrameTarget kFrameTargets[] = {
-    {"frame lookup target", GL_RGBA32F, 16, true},
-    {"frame receiver-plane target", GL_RG32F, 8, true},
-    {"frame colour target", GL_RGBA16F, 8, false},
-    {"frame visibility target", GL_R32F, 4, false},
-    {"frame diagnostic target", GL_R32F, 4, false},
-    {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4, false},
-    {"frame uv-derivatives target", GL_RGBA32F, 16, true},
-    {"frame cascade target", GL_RG32F, 8, true},
+    {"frame lookup target", GL_RGBA32F, 16, FrameTargetUse::LookupInputs},
+    {"frame receiver-plane target", GL_RG32F, 8, FrameTargetUse::LookupInputs},
+    {"frame colour target", GL_RGBA16F, 8, FrameTargetUse::Always},
+    {"frame visibility target", GL_R32F, 4, FrameTargetUse::Diagnostics},
+    {"frame diagnostic target", GL_R32F, 4, FrameTargetUse::Diagnostics},
+    {"frame depth buffer", GL_DEPTH_COMPONENT32F, 4, FrameTargetUse::Always},
+    {"frame uv-derivatives target", GL_RGBA32F, 16, FrameTargetUse::LookupInputs},
+    {"frame cascade target", GL_RG32F, 8, FrameTargetUse::LookupInputs},
 };
+
+bool allocates(const FrameTarget& target, bool diagnostics, bool lookupInputs) {
+  switch (target.use) {
+    case FrameTargetUse::Always: return true;
+    case FrameTargetUse::Diagnostics: return diagnostics || lookupInputs;
+    case FrameTargetUse::LookupInputs: return lookupInputs;
+  }
+  return true;
+}
 
 }  // namespace
 
@@ -91,10 +101,15 @@ uint64_t depthBoundsBytes(int width, int height) {
   return uint64_t(width) * uint64_t(height) * 4 + 8;  // D32F target and two uint bounds
 }
 
-uint64_t frameBytes(int width, int height, bool lookupInputs) {
+bool writesDiagnostics(const RenderSettings& s) {
+  return s.lookupInputs ||
+         (s.readBack & (frame_image::kVisibility | frame_image::kDiagnostic)) != 0;
+}
+
+uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs) {
   uint64_t perPixel = 0;
   for (const FrameTarget& target : kFrameTargets) {
-    if (lookupInputs || !target.lookupInput) perPixel += target.bytesPerPixel;
+    if (allocates(target, diagnostics, lookupInputs)) perPixel += target.bytesPerPixel;
   }
   return uint64_t(width) * uint64_t(height) * perPixel;
 }
@@ -138,7 +153,7 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   if (placesLayersByLloyd(s)) {
     m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, layers);
   }
-  m.frame = frameBytes(s.width, s.height, s.lookupInputs);
+  m.frame = frameBytes(s.width, s.height, writesDiagnostics(s), s.lookupInputs);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);
   return m;
 }
@@ -173,7 +188,7 @@ std::vector<PlannedTexture> plannedTextures(const RenderSettings& s, LightKind k
   }
   const uint64_t pixels = uint64_t(s.width) * uint64_t(s.height);
   for (const FrameTarget& target : kFrameTargets) {
-    if (target.lookupInput && !s.lookupInputs) continue;
+    if (!allocates(target, writesDiagnostics(s), s.lookupInputs)) continue;
     t.push_back({target.what, GL_PROXY_TEXTURE_2D, target.format, 1, s.width, s.height, 1, 1,
                  pixels * uint64_t(target.bytesPerPixel)});
   }

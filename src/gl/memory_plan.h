@@ -22,15 +22,20 @@ bool buildsSummedAreaTable(const RenderSettings& settings);
 bool buildsZmaxPyramid(const RenderSettings& settings);
 bool placesLayersByLloyd(const RenderSettings& settings);
 bool fitsDepthBounds(const RenderSettings& settings);  // cascades split the visible depth range
+// Whether the camera pass writes its visibility and diagnostic targets: when the frame reads
+// either back, or writes the lookup's inputs (what reads those reads these too). Otherwise they
+// are compiled out (camera.frag's DIAGNOSTICS) and not allocated.
+bool writesDiagnostics(const RenderSettings& settings);
 
 // Shadow-map layers: six faces for a point light, else one per cascade.
 int shadowMapLayers(const RenderSettings& settings, LightKind light);
 
 // Bytes of the allocations that are not channel textures (channel_layout.h has those).
 uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sample
-// The camera pass's targets: colour, visibility, diagnostic and depth, and the lookup's four
-// inputs when it writes them (RenderSettings::lookupInputs).
-uint64_t frameBytes(int width, int height, bool lookupInputs);
+// The camera pass's targets: colour and depth; visibility and diagnostic when it writes them
+// (writesDiagnostics, implied by lookupInputs); the lookup's four inputs when it writes them
+// (RenderSettings::lookupInputs).
+uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs);
 uint64_t depthBoundsBytes(int width, int height);         // the depth-bounds pass
 struct SummedAreaSizes {
   size_t extremes, stats, sums;  // two keys, {centre, step} and the 64-bit sums per channel

@@ -51,13 +51,11 @@ FilterSettings filterSettingsFor(const RenderSettings& s) {
   return f;
 }
 
-// ESM with a classifier reports its failure rate, counted on the diagnostic image.
+// ESM with a classifier reports its failure rate, counted on the diagnostic image: in a frame
+// that reads the diagnostic back, so that one that reads nothing has nothing to wait for.
 bool reportsFailureRate(const RenderSettings& s) {
-  return s.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone;
-}
-
-unsigned diagnosticReadFor(const RenderSettings& s) {
-  return reportsFailureRate(s) ? frame_image::kDiagnostic : frame_image::kNone;
+  return s.technique == Technique::Esm && s.params.esm.classifier != shaders::kEsmClassifyNone &&
+         (s.readBack & frame_image::kDiagnostic) != 0;
 }
 
 double failureRatePercent(const Image& diagnostic) {
@@ -328,15 +326,14 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   const bool fused = s.shadows.state().fused;
 
   const bool lookupInputs = reference || settings.lookupInputs;
-  s.camera.prepare(settings.width, settings.height, lookupInputs);
+  s.camera.prepare(settings.width, settings.height, writesDiagnostics(settings), lookupInputs);
   s.camera.render(s.programs, *s.scene, settings, frame, s.shadows, reference);
 
   RenderResult result;
   namespace fi = frame_image;
   // A reference frame's visibility marks the pixels the CPU completes (completeReferenceOnCpu
   // reads the colour and diagnostic it shades them from where they were not asked for).
-  const unsigned reads =
-      settings.readBack | (reference ? fi::kVisibility : diagnosticReadFor(settings));
+  const unsigned reads = settings.readBack | (reference ? fi::kVisibility : fi::kNone);
   if (reads & fi::kColor) result.color = s.camera.readColor();
   if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
   if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();

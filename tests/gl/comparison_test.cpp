@@ -59,6 +59,15 @@ TEST_F(ComparisonTest, VsmMatchesTheFilteredReferenceOnThePlanarScene) {
   EXPECT_GT(find(r, Technique::Vsm).filtered.pixels, 10000);
 }
 
+// compare's first frame reads ESM's diagnostic back, where its failure rate is counted (a frame
+// that reads no diagnostic counts none): the backyard's curved casters fail the threshold test
+// on a few percent of the pixels (EsmFailureRateGrowsWithTheBlurAsInTheEsmPapersTable3).
+TEST_F(ComparisonTest, EsmsFailureRateIsReported) {
+  const compare::ComparisonResult r =
+      compare::runComparison(request("backyard", {Technique::Esm}), *renderer);
+  EXPECT_GT(find(r, Technique::Esm).failureRatePercent, 0.1);
+}
+
 TEST_F(ComparisonTest, BenchLeakOrderingFollowsThePapers) {
   const compare::ComparisonResult r = compare::runComparison(
       request("bench", {Technique::Vsm, Technique::Evsm4, Technique::Lvsm, Technique::PowerCdf}),

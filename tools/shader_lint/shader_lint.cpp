@@ -120,12 +120,14 @@ std::vector<Defines> variants(const std::string& source) {
   }
   expand("PENUMBRA_FILTER_MODE", {"2"});  // compiled in by lookupVariantDefines
   // Beside the first variant: a mesh pass's opaque variant (gl/material_programs.h), the camera
-  // pass without the lookup's inputs (RenderSettings::lookupInputs), and lookupParameterDefines'
+  // pass without the lookup's inputs (RenderSettings::lookupInputs) and without them and the
+  // diagnostics (its colour alone: writesDiagnostics), and lookupParameterDefines'
   // compiled-in sizes and paths: one texel layer of channels, ESM's Z-max classifier, the paper's
   // fallback and log-space filtering (the first variant has their run-time switches).
   const std::vector<std::pair<const char*, Defines>> beside{
       {"ALPHA_TEST", {{"ALPHA_TEST", "0"}}},
       {"LOOKUP_INPUTS", {{"LOOKUP_INPUTS", "0"}}},
+      {"DIAGNOSTICS", {{"LOOKUP_INPUTS", "0"}, {"DIAGNOSTICS", "0"}}},
       {"PENUMBRA_CHANNEL_CAPACITY", {{"PENUMBRA_CHANNEL_CAPACITY", "4"}}},
       {"PENUMBRA_ESM_CLASSIFIER",
        {{"PENUMBRA_ESM_CLASSIFIER", "2"},

@@ -1,9 +1,9 @@
 // Camera pass: the pixel's cascade (shared/cascade_selection.h) or a point light's face
 // (shared/point_light_faces.h: the cascades' layers are then the six faces), receiver depth in light space
 // (with normal offset), the technique's visibility (blended with the next cascade in the blend
-// band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour,
-// the float visibility, the diagnostic and, when asked (LOOKUP_INPUTS), the lookup's inputs for
-// the CPU twin. Alpha-masked surfaces are cut
+// band), and Lambert + ambient shading of the base colour (factor x sRGB texture). Writes colour
+// and, when asked, the float visibility and the diagnostic (DIAGNOSTICS) and the lookup's inputs
+// for the CPU twin (LOOKUP_INPUTS). Alpha-masked surfaces are cut
 // out by the same test as in the light pass, in a variant of their own (ALPHA_TEST,
 // lib/material.glsl).
 #if SUMMED_AREA
@@ -18,10 +18,19 @@
 #ifndef MSAA
 #define MSAA 0
 #endif
+// 1: write the visibility and the diagnostic (targets 1-2: the frame reads either back, or the
+// lookup's inputs follow them); 0: compiled out, so that a frame nobody reads them from (a timed
+// one, a host's) writes its colour alone.
+#ifndef DIAGNOSTICS
+#define DIAGNOSTICS 1
+#endif
 // 1: write the lookup's inputs (targets 3-6, RenderSettings::lookupInputs); 0: compiled out, so
 // the pass neither computes what only they need nor stores 48 bytes more per pixel.
 #ifndef LOOKUP_INPUTS
 #define LOOKUP_INPUTS 1
+#endif
+#if LOOKUP_INPUTS && !DIAGNOSTICS
+#error "the lookup's inputs (locations 3-6) come with the diagnostics (locations 1-2)"
 #endif
 // The light's kind and softness are compiled in (CameraPass::render: one program each), so that
 // a pixel does not carry the other kinds' paths: a GPU sizes its registers for the largest path
@@ -82,8 +91,10 @@ uniform int cascadeOverlay;  // 1: tint each pixel by its cascade
 uniform float ambient;
 
 layout(location = 0) out vec4 color;
+#if DIAGNOSTICS
 layout(location = 1) out float visibilityOut;
 layout(location = 2) out float diagnosticOut;  // ShadowSample's; -1 where nothing is drawn
+#endif
 #if LOOKUP_INPUTS
 layout(location = 3) out vec4 lookupOut;       // shadow-map uv, receiver depth, where (see main)
 layout(location = 4) out vec2 depthPerTexelOut;  // the receiver plane's depth gradient per texel
@@ -262,8 +273,10 @@ void main() {
     diagnostic = lightAmount;
   }
 #endif
+#if DIAGNOSTICS
   visibilityOut = visibility;
   diagnosticOut = diagnostic;
+#endif
 #if LOOKUP_INPUTS
   // w: 1 inside the shadow map on a surface facing the light beyond grazing (where the shadow
   // test decides the shading), 0.5 inside but facing away or grazing, 0 outside.
