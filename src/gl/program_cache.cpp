@@ -17,14 +17,28 @@ std::string variantKey(std::string key, const std::vector<ShaderDefine>& defines
 
 }  // namespace
 
-std::vector<ShaderDefine> ProgramCache::withTechnique(std::vector<ShaderDefine> defines) const {
-  defines.push_back({"TECHNIQUE_ID", std::to_string(int(technique_))});
+bool ProgramCache::readsTechnique(std::string_view path) {
+  auto found = readsTechnique_.find(path);
+  if (found == readsTechnique_.end()) {
+    const bool reads = library_.amalgamate(path).find("TECHNIQUE_ID") != std::string::npos;
+    found = readsTechnique_.emplace(std::string(path), reads).first;
+  }
+  return found->second;
+}
+
+std::vector<ShaderDefine> ProgramCache::withTechnique(
+    std::vector<ShaderDefine> defines, std::initializer_list<std::string_view> stages) {
+  for (std::string_view stage : stages) {
+    if (!readsTechnique(stage)) continue;
+    defines.push_back({"TECHNIQUE_ID", std::to_string(int(technique_))});
+    break;
+  }
   return defines;
 }
 
 const Program& ProgramCache::graphics(const std::string& vertex, const std::string& fragment,
                                       const std::vector<ShaderDefine>& defines) {
-  const std::vector<ShaderDefine> all = withTechnique(defines);
+  const std::vector<ShaderDefine> all = withTechnique(defines, {vertex, fragment});
   const std::string key = variantKey(vertex + "|" + fragment, all);
   auto found = programs_.find(key);
   if (found == programs_.end()) {
@@ -35,7 +49,7 @@ const Program& ProgramCache::graphics(const std::string& vertex, const std::stri
 
 const Program& ProgramCache::compute(const std::string& path,
                                      const std::vector<ShaderDefine>& defines) {
-  const std::vector<ShaderDefine> all = withTechnique(defines);
+  const std::vector<ShaderDefine> all = withTechnique(defines, {path});
   const std::string key = variantKey(path, all);
   auto found = programs_.find(key);
   if (found == programs_.end()) {

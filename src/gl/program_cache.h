@@ -1,10 +1,13 @@
-// Compiled shader variants, built on first use and kept for the renderer's life. Every variant
-// is specialised to the frame's technique (#define TECHNIQUE_ID) so its dispatcher folds to one
-// branch (20x faster encode on llvmpipe than a run-time switch).
+// Compiled shader variants, built on first use and kept for the renderer's life. A variant whose
+// source reads the technique (lib/technique_block.glsl) is specialised to the frame's technique
+// (#define TECHNIQUE_ID) so its dispatcher folds to one branch (20x faster encode on llvmpipe
+// than a run-time switch); one that does not (the light pass) is compiled once for all of them.
 #pragma once
 
+#include <initializer_list>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "penumbra/gl/program.h"
@@ -21,10 +24,14 @@ class ProgramCache {
   const Program& compute(const std::string& path, const std::vector<ShaderDefine>& defines);
 
  private:
-  std::vector<ShaderDefine> withTechnique(std::vector<ShaderDefine> defines) const;
+  // The defines, with TECHNIQUE_ID where one of the stages reads it.
+  std::vector<ShaderDefine> withTechnique(std::vector<ShaderDefine> defines,
+                                          std::initializer_list<std::string_view> stages);
+  bool readsTechnique(std::string_view path);
 
   ShaderLibrary library_;
   std::map<std::string, Program> programs_;
+  std::map<std::string, bool, std::less<>> readsTechnique_;  // per stage's path
   Technique technique_ = Technique::Vsm;
 };
 

@@ -1,0 +1,36 @@
+// ProgramCache specialises a variant to the frame's technique only where its source reads it
+// (TECHNIQUE_ID): the light pass compiles once for every technique, the encode once for each.
+// On llvmpipe, a compare run with an empty shader cache compiled ten identical light passes.
+#include "program_cache.h"
+
+#include <gtest/gtest.h>
+
+#include "gl_test_context.h"
+
+namespace penumbra {
+namespace {
+
+class ProgramCacheTest : public testing::GlTest {};
+
+TEST_F(ProgramCacheTest, OnlyVariantsThatReadTheTechniqueAreCompiledPerTechnique) {
+  gl::ProgramCache programs;
+  const std::vector<ShaderDefine> opaque{{"ALPHA_TEST", "0"}};
+  const std::vector<ShaderDefine> encode{
+      {"CHANNEL_FORMAT", "rg32f"}, {"LAYER_COUNT", "1"}, {"MSAA", "0"}};
+  programs.setTechnique(Technique::Vsm);
+  const gl::Program& lightVsm =
+      programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", opaque);
+  const gl::Program& encodeVsm = programs.compute("passes/encode.comp", encode);
+  programs.setTechnique(Technique::Evsm2);
+  const gl::Program& lightEvsm =
+      programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", opaque);
+  const gl::Program& encodeEvsm = programs.compute("passes/encode.comp", encode);
+  EXPECT_EQ(lightVsm.id(), lightEvsm.id()) << "the light pass reads no technique";
+  EXPECT_NE(encodeVsm.id(), encodeEvsm.id()) << "the encode is the technique's";
+  // Back to the first technique: its encode, not a third compile.
+  programs.setTechnique(Technique::Vsm);
+  EXPECT_EQ(programs.compute("passes/encode.comp", encode).id(), encodeVsm.id());
+}
+
+}  // namespace
+}  // namespace penumbra
