@@ -82,8 +82,9 @@ struct RenderSettings {
   bool lookupInputs = false;
   // Which images the frame reads back (frame_image bits). A frame that reads neither the
   // visibility nor the diagnostic, and writes no lookup inputs, draws its colour alone: the
-  // camera pass compiles the other targets out (on llvmpipe its time over the minimal lookup's
-  // went from 1.22-1.27x to 1.08-1.12x for EVSM2). A frame that reads none and is not
+  // camera pass compiles the other targets out (on llvmpipe EVSM4's pass went from 1.26-1.30x
+  // its minimal lookup to 1.16-1.18x, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
+  // A frame that reads none and is not
   // timed has no glFinish and no image read-back (the cascaded depth-bounds fit and LVSM's
   // Lloyd placement still read their small buffers back). Reference frames also read their
   // visibility, and where the CPU completes pixels the colour, diagnostic and lookup's inputs
