@@ -273,6 +273,26 @@ Image CameraPass::readCascades() const {
   return readTexture(cascade_.id(), 0, width_, height_, 1, 2, GL_RG, true);
 }
 
+uint64_t CameraPass::measuredBytes() const {
+  uint64_t bytes = 0;
+  for (const Texture* t : {&color_, &visibility_, &diagnostic_, &lookup_, &receiverPlane_,
+                           &derivatives_, &cascade_, &depth_}) {
+    if (t->id() == 0) continue;  // not allocated for this frame's outputs
+    GLint width = 0, height = 0, bits = 0;
+    glGetTextureLevelParameteriv(t->id(), 0, GL_TEXTURE_WIDTH, &width);
+    glGetTextureLevelParameteriv(t->id(), 0, GL_TEXTURE_HEIGHT, &height);
+    for (GLenum component : {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE, GL_TEXTURE_BLUE_SIZE,
+                             GL_TEXTURE_ALPHA_SIZE, GL_TEXTURE_DEPTH_SIZE}) {
+      GLint size = 0;
+      glGetTextureLevelParameteriv(t->id(), 0, component, &size);
+      bits += size;
+    }
+    bytes += uint64_t(width) * uint64_t(height) * uint64_t(bits / 8);
+  }
+  checkErrors("measuring the camera pass's targets");
+  return bytes;
+}
+
 uint64_t CameraPass::bytes() const {
   return frameBytes(width_, height_, diagnostics_, lookupInputs_);
 }

@@ -58,7 +58,9 @@ class CameraPass {
   Image readUvDerivatives() const;
   Image readCascades() const;
   Image readDepth() const;  // window depth in [0,1], 1 where nothing is drawn
-  uint64_t bytes() const;
+  uint64_t bytes() const;  // frameBytes of the targets prepared: what the estimate counts
+  // The targets' bytes as the GL reports their sizes and component bits: what is allocated.
+  uint64_t measuredBytes() const;
 
   // bench --passes' yardstick for this pass: the same geometry drawn with the least lookup of the
   // technique (passes/minimal_lookup.frag) into a target of its own, one map only; `layers` is

@@ -486,6 +486,10 @@ uint64_t Renderer::measuredChannelTextureBytes() const {
   return bytes;
 }
 
+uint64_t Renderer::measuredFrameBytes() const {
+  return state_->camera.measuredBytes();
+}
+
 Image Renderer::readChannels(int level, int cascade) const {
   const State& s = *state_;
   const ChannelShape& shape = s.shadows.state().maps.shape();

@@ -23,7 +23,7 @@ constexpr double kMiB = 1024.0 * 1024.0;
 // Warm frames timed per setting: none more during the search, whose time is the path's last
 // frame (the frames before it warmed the passes: resources allocated, shaders compiled); three
 // when the user's and the returned setting are measured at the user's size (their median,
-// against the shared machine's noise).
+// against the shared machine's noise), after an untimed one that warms the variant they draw.
 constexpr int kSearchTimedFrames = 0;
 constexpr int kConfirmTimedFrames = 3;
 // How many of the best search points are measured at the user's size before giving up, when
@@ -259,6 +259,14 @@ class SceneTuner {
     std::vector<double> times;
     if (timedFrames == 0) times.push_back(lastFrameMs);
     frameSettings.readBack = fi::kNone;  // timed only: nothing to wait for but the passes
+    if (timedFrames > 0) {
+      // Untimed first: a frame that reads nothing back draws the camera pass's colour alone, a
+      // variant of its own (gl::writesDiagnostics), compiled at its first draw, with targets of
+      // its own.
+      gl::RenderSettings warmUp = frameSettings;
+      warmUp.timing = false;
+      renderer_.render(warmUp, gl::FrameView{path_[0], scene_.light});
+    }
     for (int k = 0; k < timedFrames; ++k) {
       const gl::RenderResult r =
           renderer_.render(frameSettings, gl::FrameView{path_[0], scene_.light});

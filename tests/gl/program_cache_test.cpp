@@ -27,9 +27,6 @@ TEST_F(ProgramCacheTest, OnlyVariantsThatReadTheTechniqueAreCompiledPerTechnique
   const gl::Program& encodeEvsm = programs.compute("passes/encode.comp", encode);
   EXPECT_EQ(lightVsm.id(), lightEvsm.id()) << "the light pass reads no technique";
   EXPECT_NE(encodeVsm.id(), encodeEvsm.id()) << "the encode is the technique's";
-  // Back to the first technique: its encode, not a third compile.
-  programs.setTechnique(Technique::Vsm);
-  EXPECT_EQ(programs.compute("passes/encode.comp", encode).id(), encodeVsm.id());
 }
 
 }  // namespace

@@ -556,6 +556,9 @@ TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
   s = small(Technique::Vsm);
   s.blur.radius = 0;
   cases.push_back(s);
+  s.lookupInputs = false;  // the colour alone (writesDiagnostics)
+  s.readBack = gl::frame_image::kColor;
+  cases.push_back(s);
   int rendered = 0;
   for (const gl::RenderSettings& c : cases) {
     const std::string where = std::string(techniqueId(c.technique)) + " " +
@@ -569,8 +572,10 @@ TEST_F(RendererTest, EstimatedMemoryEqualsWhatEveryRenderAllocates) {
     const gl::MemoryReport estimated = gl::estimateMemory(c);
     expectSameMemory(estimated, renderer->render(scene, c).memory, where);
     // The report is computed by the same formulas as the estimate; the channel texture, the
-    // largest allocation, is also measured on the GL object the render left.
+    // largest allocation, and the camera pass's targets are also measured on the GL objects
+    // the render left.
     EXPECT_EQ(renderer->measuredChannelTextureBytes(), estimated.technique) << where;
+    EXPECT_EQ(renderer->measuredFrameBytes(), estimated.frame) << where;
     ++rendered;
   }
   EXPECT_GT(rendered, 50);
@@ -660,10 +665,13 @@ TEST_F(RendererTest, AFrameThatReadsNoDiagnosticsDrawsTheSameColourAlone) {
     gl::RenderSettings colourAlone = withDiagnostics;
     colourAlone.readBack = fi::kColor;
     const gl::RenderResult full = renderer->render(scene, withDiagnostics);
+    const uint64_t fullTargets = renderer->measuredFrameBytes();
     const gl::RenderResult r = renderer->render(scene, colourAlone);
     // Only stores were removed: the bits agree.
     EXPECT_TRUE(std::ranges::equal(r.color.data(), full.color.data())) << where;
-    EXPECT_EQ(full.memory.frame - r.memory.frame, uint64_t(160 * 90 * 8)) << where;
+    // What the GL holds, measured on the targets, and what the report and the estimate say.
+    EXPECT_EQ(fullTargets - renderer->measuredFrameBytes(), uint64_t(160 * 90 * 8)) << where;
+    EXPECT_EQ(renderer->measuredFrameBytes(), gl::estimateMemory(colourAlone).frame) << where;
     EXPECT_EQ(r.memory.frame, gl::estimateMemory(colourAlone).frame) << where;
     EXPECT_EQ(full.memory.frame, gl::estimateMemory(withDiagnostics).frame) << where;
   }

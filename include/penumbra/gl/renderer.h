@@ -271,6 +271,9 @@ class Renderer {
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
   uint64_t measuredChannelTextureBytes() const;
+  // The camera pass's render targets of the last frame, measured on the GL objects the same way
+  // (RenderResult::memory.frame is computed from the settings, as estimateMemory's).
+  uint64_t measuredFrameBytes() const;
   // The Z-max pyramid level of the last ESM render with the zmax classifier, row 0 at the bottom.
   Image readZmaxLevel(int level) const;
   // The Lloyd samples (second-occluder depth, weight) of the last LVSM render with Lloyd placement.

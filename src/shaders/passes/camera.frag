@@ -19,8 +19,9 @@
 #define MSAA 0
 #endif
 // 1: write the visibility and the diagnostic (targets 1-2: the frame reads either back, or the
-// lookup's inputs follow them); 0: compiled out, so that a frame nobody reads them from (a timed
-// one, a host's) writes its colour alone.
+// lookup's inputs follow them); 0: compiled out, so that a frame nobody reads them from
+// (RenderSettings::readBack of the colour alone or nothing: bench's and tune's timed frames)
+// writes its colour alone.
 #ifndef DIAGNOSTICS
 #define DIAGNOSTICS 1
 #endif
