@@ -125,6 +125,18 @@ vec4 lightPlaneAndDepth(vec3 world) {
   return vec4(clip.xy / clip.w * 0.5f + 0.5f, linearDepth(view.xyz), clip.w);
 }
 
+// How lightPlaneAndDepth(world).xyz changes along `direction` (world units) for a directional
+// light, whose maps are affine (an orthographic projection: clip w is 1): their linear parts
+// applied to the direction. The differences of two full evaluations give the same up to
+// rounding, but lose digits to cancellation and cost two more projections a pixel (ESM's camera
+// pass, which needs the plane for its fallback, went from 1.29-1.36x its yardstick to 1.15-1.30x
+// on llvmpipe, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
+vec3 lightPlaneAndDepthAlong(vec3 direction) {
+  vec3 view = mat3(lightViewFromWorld) * direction;
+  vec2 plane = cascaded != 0 ? view.xy : (lightClipFromView * vec4(view, 0.0f)).xy * 0.5f;
+  return vec3(plane, -view.z / (lightFar - lightNear));
+}
+
 // The receiver plane's depth gradient per unit of the light's plane, from the rasterised
 // triangle's own plane (normal n) at `world`: two steps of about a texel along the plane mapped
 // onto the light's plane, then solved for g in g . (plane step) = depth step. Solving the screen
@@ -134,6 +146,11 @@ vec2 receiverPlaneGradient(vec3 world, vec3 n, float step) {
   vec3 axis = abs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
   vec3 tangent = normalize(cross(n, axis));
   vec3 bitangent = cross(n, tangent);
+  if (lightPerspective == 0 && pointLight == 0) {
+    vec3 a = lightPlaneAndDepthAlong(step * tangent);
+    vec3 b = lightPlaneAndDepthAlong(step * bitangent);
+    return solveDepthGradient(a, b);
+  }
   vec3 centre = lightPlaneAndDepth(world).xyz;
   vec3 a = lightPlaneAndDepth(world + step * tangent).xyz - centre;
   vec3 b = lightPlaneAndDepth(world + step * bitangent).xyz - centre;
