@@ -127,10 +127,9 @@ vec4 lightPlaneAndDepth(vec3 world) {
 
 // How lightPlaneAndDepth(world).xyz changes along `direction` (world units) for a directional
 // light, whose maps are affine (an orthographic projection: clip w is 1): their linear parts
-// applied to the direction. The differences of two full evaluations give the same up to
-// rounding, but lose digits to cancellation and cost two more projections a pixel (ESM's camera
-// pass, which needs the plane for its fallback, went from 1.29-1.36x its yardstick to 1.15-1.30x
-// on llvmpipe, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
+// applied to the direction. The differences of full evaluations give the same up to rounding,
+// but lose digits to cancellation and cost the centre's evaluation, the translations and the
+// divisions (docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
 vec3 lightPlaneAndDepthAlong(vec3 direction) {
   vec3 view = mat3(lightViewFromWorld) * direction;
   vec2 plane = cascaded != 0 ? view.xy : (lightClipFromView * vec4(view, 0.0f)).xy * 0.5f;
