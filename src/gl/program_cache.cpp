@@ -3,6 +3,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstring>
 
 #include "penumbra/shared/technique_dispatch.h"
@@ -28,10 +29,8 @@ bool ProgramCache::readsTechnique(std::string_view path) {
 
 std::vector<ShaderDefine> ProgramCache::withTechnique(
     std::vector<ShaderDefine> defines, std::initializer_list<std::string_view> stages) {
-  for (std::string_view stage : stages) {
-    if (!readsTechnique(stage)) continue;
+  if (std::ranges::any_of(stages, [&](std::string_view s) { return readsTechnique(s); })) {
     defines.push_back({"TECHNIQUE_ID", std::to_string(int(technique_))});
-    break;
   }
   return defines;
 }

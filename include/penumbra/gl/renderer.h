@@ -84,9 +84,8 @@ struct RenderSettings {
   // visibility nor the diagnostic, and writes no lookup inputs, draws its colour alone: the
   // camera pass compiles the other targets out (on llvmpipe EVSM4's pass went from 1.26-1.30x
   // its minimal lookup to 1.16-1.18x, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
-  // A frame that reads none and is not
-  // timed has no glFinish and no image read-back (the cascaded depth-bounds fit and LVSM's
-  // Lloyd placement still read their small buffers back). Reference frames also read their
+  // A frame that reads none and is not timed has no glFinish and no image read-back (the
+  // cascaded depth-bounds fit and LVSM's Lloyd placement still read their small buffers back). Reference frames also read their
   // visibility, and where the CPU completes pixels the colour, diagnostic and lookup's inputs
   // it completes them from (a supersampled reference returns only the colour, visibility and
   // diagnostic asked for, averaged).
