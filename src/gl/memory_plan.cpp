@@ -34,10 +34,11 @@ constexpr FrameTarget kFrameTargets[] = {
     {"frame cascade target", GL_RG32F, 8, FrameTargetUse::LookupInputs},
 };
 
+// `diagnostics` as writesDiagnostics gives it: true wherever lookupInputs is.
 bool allocates(const FrameTarget& target, bool diagnostics, bool lookupInputs) {
   switch (target.use) {
     case FrameTargetUse::Always: return true;
-    case FrameTargetUse::Diagnostics: return diagnostics || lookupInputs;
+    case FrameTargetUse::Diagnostics: return diagnostics;
     case FrameTargetUse::LookupInputs: return lookupInputs;
   }
   return true;
