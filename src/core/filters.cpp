@@ -30,19 +30,24 @@ shaders::ChannelAccumulator startReduction(ChannelReduction reduction, float log
   return shaders::startReduction(int(reduction), logExponent);
 }
 
-// One 1D pass along x (horizontal) or y with edge clamping.
-Image filterPass(const Image& in, std::span<const float> weights, bool horizontal,
+// One 1D pass of `spec` along x (horizontal) or y with edge clamping. The box's taps weigh alike:
+// summed at unit weight and scaled once, as the GPU's blur does (shared/channel_reduction.h
+// scaleTapWeights).
+Image filterPass(const Image& in, const BlurSpec& spec, bool horizontal,
                  std::span<const ChannelReduction> reductions, float logExponent) {
+  const std::vector<float> weights = blurWeights(spec);
+  const bool alike = spec.kernel == BlurKernel::Box;
   Image out(in.width(), in.height(), in.channels());
-  const int radius = int(weights.size() / 2);
+  const int radius = spec.radius;
   detail::parallelForRows(in.height(), [&](int y) {
     for (int x = 0; x < in.width(); ++x) {
       for (int c = 0; c < in.channels(); ++c) {
         auto acc = startReduction(reductionOf(reductions, c), logExponent);
         for (int i = -radius; i <= radius; ++i) {
           float v = horizontal ? in.clamped(x + i, y, c) : in.clamped(x, y + i, c);
-          acc = shaders::accumulateTap(acc, v, weights[size_t(i + radius)]);
+          acc = shaders::accumulateTap(acc, v, alike ? 1.0f : weights[size_t(i + radius)]);
         }
+        if (alike) acc = shaders::scaleTapWeights(acc, weights[0]);
         out.at(x, y, c) = shaders::reductionResult(acc);
       }
     }
@@ -81,15 +86,14 @@ std::vector<float> cumulativeBlurWeights(const BlurSpec& spec) {
 Image separableFilter(const Image& image, const BlurSpec& spec,
                       std::span<const ChannelReduction> reductions, float logExponent) {
   checkReductions(image, reductions);
-  const std::vector<float> weights = blurWeights(spec);
-  Image horizontal = filterPass(image, weights, true, reductions, logExponent);
-  return filterPass(horizontal, weights, false, reductions, logExponent);
+  Image horizontal = filterPass(image, spec, true, reductions, logExponent);
+  return filterPass(horizontal, spec, false, reductions, logExponent);
 }
 
 Image separableFilterPass(const Image& image, const BlurSpec& spec, bool horizontal,
                           std::span<const ChannelReduction> reductions, float logExponent) {
   checkReductions(image, reductions);
-  return filterPass(image, blurWeights(spec), horizontal, reductions, logExponent);
+  return filterPass(image, spec, horizontal, reductions, logExponent);
 }
 
 Image boxBlur(const Image& image, int radius) {

@@ -72,6 +72,10 @@ ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
   return {"RADIUS", std::to_string(spec.radius)};
 }
 
+ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec) {
+  return {"TAPS_ALIKE", spec.kernel == BlurKernel::Box ? "1" : "0"};
+}
+
 void setBlurWeights(const Program& p, const BlurSpec& spec) {
   const std::vector<float> w = blurWeights(spec);
   glProgramUniform1fv(p.id(), glGetUniformLocation(p.id(), "weights"), GLsizei(w.size()), w.data());
@@ -204,6 +208,7 @@ void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBloc
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     // One map: its radius compiled in. Cascades' radii follow the view: a uniform (blur.comp).
     std::vector<ShaderDefine> kernelDefines = defines;
+    kernelDefines.push_back(blurTapsAlikeDefine(spec));
     if (shape_.cascades == 1) kernelDefines.push_back(blurRadiusDefine(spec));
     const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
     if (shape_.cascades > 1) blur.set("radius", spec.radius);
@@ -237,6 +242,7 @@ void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const Parameter
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     std::vector<ShaderDefine> fusedDefines = defines;
     fusedDefines.push_back(blurRadiusDefine(spec));
+    fusedDefines.push_back(blurTapsAlikeDefine(spec));
     for (ShaderDefine& d : fusedTileDefines(shape_.layout)) fusedDefines.push_back(std::move(d));
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
     setBlurWeights(fused, spec);

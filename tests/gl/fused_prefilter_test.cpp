@@ -45,7 +45,11 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
                         {Technique::Lvsm, "storage=float32"}};
   for (const Case& k : cases) {
     for (const int size : {96, 100}) {
-      for (const int radius : {1, 10}) {  // 10: kMaxFusedBlurRadius
+      // 10: kMaxFusedBlurRadius. A Gaussian weighs each tap, a box sums its taps and scales
+      // once (shared/channel_reduction.h scaleTapWeights).
+      for (const BlurSpec blur :
+           {BlurSpec{BlurKernel::Gaussian, 1, 0.5f}, BlurSpec{BlurKernel::Gaussian, 10, 5.0f},
+            BlurSpec{BlurKernel::Box, 1, 1.0f}, BlurSpec{BlurKernel::Box, 10, 1.0f}}) {
         gl::RenderSettings s;
         s.technique = k.technique;
         if (k.param != nullptr) {
@@ -56,11 +60,12 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
         s.width = 32;
         s.height = 18;
         s.filter = gl::FilterMode::Bilinear;
-        s.blur = {BlurKernel::Gaussian, radius, 0.5f * float(radius)};
+        s.blur = blur;
         s.fusePrefilter = true;  // the path under test, off by default
         const std::string what = std::string(techniqueId(k.technique)) + " " +
-                                 (k.param ? k.param : "") + " " + std::to_string(size) +
-                                 "^2 radius " + std::to_string(radius);
+                                 (k.param ? k.param : "") + " " + std::to_string(size) + "^2 " +
+                                 (blur.kernel == BlurKernel::Box ? "box" : "gaussian") +
+                                 " radius " + std::to_string(blur.radius);
         const gl::RenderResult fused = renderer.render(scene, s);
         ASSERT_TRUE(fused.fusedPrefilter) << what;
         ASSERT_EQ(fused.memory.scratch, 0u) << what;  // one map fused needs no scratch texture
@@ -106,9 +111,9 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannelsInEveryCascade) {
   s.fusePrefilter = true;
   const gl::RenderResult fused = renderer.render(scene, s);
   ASSERT_EQ(fused.cascadeBlurs.size(), 3u);
-  ASSERT_TRUE(fused.fusedPrefilter) << fused.cascadeBlurs[0].radius << " "
-                                    << fused.cascadeBlurs[1].radius << " "
-                                    << fused.cascadeBlurs[2].radius;
+  ASSERT_TRUE(fused.fusedPrefilter)
+      << fused.cascadeBlurs[0].radius << " " << fused.cascadeBlurs[1].radius << " "
+      << fused.cascadeBlurs[2].radius;
   std::vector<Image> fusedChannels;
   for (int c = 0; c < 3; ++c) fusedChannels.push_back(renderer.readChannels(0, c));
   s.fusePrefilter = false;

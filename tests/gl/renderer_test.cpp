@@ -108,40 +108,46 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
       Technique technique;
       const char* param;  // NAME=VALUE applied on top of the defaults, or nullptr
     };
-    for (const Case& k :
-         {Case{Technique::Vsm, nullptr}, Case{Technique::Vsm, "storage=unorm16"},
-          Case{Technique::Evsm4, nullptr}, Case{Technique::Evsm4, "storage=float16"},
-          Case{Technique::Esm, nullptr}, Case{Technique::Esm, "filtering=log"},
-          Case{Technique::Msm, nullptr}, Case{Technique::PowerCdf, nullptr},
-          Case{Technique::PowerCdf, "layers=3"}, Case{Technique::Csm, nullptr},
-          Case{Technique::Csm, "storage=float32"}, Case{Technique::Lvsm, nullptr}}) {
-      gl::RenderSettings s = small(k.technique);
-      s.filter = gl::FilterMode::Trilinear;
-      s.blur = {BlurKernel::Gaussian, 2, 1.0f};
-      if (k.param != nullptr) {
-        const std::vector<Technique> one{k.technique};
-        applyParamAssignment(one, s.params, k.param);
-      }
-      renderer->filterDepthMap(depth, s);
-      const std::vector<Image> reference = referenceChain(depth, s);
-      const StorageFormat storage = techniqueStorage(k.technique, s.params);
-      ASSERT_EQ(renderer->channelMipLevels(), int(reference.size()));
-      for (int level : {0, 1, int(reference.size()) - 1}) {
-        const Image gpu = renderer->readChannels(level);
-        const Image& cpu = reference[size_t(level)];
-        ASSERT_EQ(gpu.channels(), cpu.channels());
-        int bad = 0;
-        for (size_t i = 0; i < gpu.data().size(); ++i) {
-          const float expected = cpu.data()[i];
-          if (std::abs(gpu.data()[i] - expected) > tolerance(storage, expected) && ++bad <= 3) {
-            ADD_FAILURE() << depth.width() << "^2 " << techniqueId(k.technique)
-                          << (k.param ? k.param : "") << " level " << level << " value " << i
-                          << ": gpu " << gpu.data()[i] << " cpu " << expected;
-          }
+    // Both kernels: a Gaussian weighs each tap, a box sums its taps and scales once
+    // (shared/channel_reduction.h scaleTapWeights).
+    for (const BlurSpec& blur :
+         {BlurSpec{BlurKernel::Gaussian, 2, 1.0f}, BlurSpec{BlurKernel::Box, 2, 1.0f}})
+      for (const Case& k :
+           {Case{Technique::Vsm, nullptr}, Case{Technique::Vsm, "storage=unorm16"},
+            Case{Technique::Evsm4, nullptr}, Case{Technique::Evsm4, "storage=float16"},
+            Case{Technique::Esm, nullptr}, Case{Technique::Esm, "filtering=log"},
+            Case{Technique::Msm, nullptr}, Case{Technique::PowerCdf, nullptr},
+            Case{Technique::PowerCdf, "layers=3"}, Case{Technique::Csm, nullptr},
+            Case{Technique::Csm, "storage=float32"}, Case{Technique::Lvsm, nullptr}}) {
+        gl::RenderSettings s = small(k.technique);
+        s.filter = gl::FilterMode::Trilinear;
+        s.blur = blur;
+        if (k.param != nullptr) {
+          const std::vector<Technique> one{k.technique};
+          applyParamAssignment(one, s.params, k.param);
         }
-        EXPECT_EQ(bad, 0) << depth.width();
+        renderer->filterDepthMap(depth, s);
+        const std::vector<Image> reference = referenceChain(depth, s);
+        const StorageFormat storage = techniqueStorage(k.technique, s.params);
+        ASSERT_EQ(renderer->channelMipLevels(), int(reference.size()));
+        for (int level : {0, 1, int(reference.size()) - 1}) {
+          const Image gpu = renderer->readChannels(level);
+          const Image& cpu = reference[size_t(level)];
+          ASSERT_EQ(gpu.channels(), cpu.channels());
+          int bad = 0;
+          for (size_t i = 0; i < gpu.data().size(); ++i) {
+            const float expected = cpu.data()[i];
+            if (std::abs(gpu.data()[i] - expected) > tolerance(storage, expected) && ++bad <= 3) {
+              ADD_FAILURE() << depth.width() << "^2 " << techniqueId(k.technique)
+                            << (k.param ? k.param : "")
+                            << (blur.kernel == BlurKernel::Box ? " box" : " gaussian") << " level "
+                            << level << " value " << i << ": gpu " << gpu.data()[i] << " cpu "
+                            << expected;
+            }
+          }
+          EXPECT_EQ(bad, 0) << depth.width();
+        }
       }
-    }
   }
 }
 
@@ -637,7 +643,8 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
     one.timing = false;
     const gl::RenderResult r = renderer->render(scene, one);
     for (const auto& [otherBit, other] : images) {
-      EXPECT_EQ((r.*other).empty(), otherBit != bit) << "asked for " << bit << ", image " << otherBit;
+      EXPECT_EQ((r.*other).empty(), otherBit != bit)
+          << "asked for " << bit << ", image " << otherBit;
     }
     EXPECT_TRUE(std::ranges::equal((r.*image).data(), (full.*image).data())) << bit;
     EXPECT_EQ(r.failureRatePercent, bit == fi::kDiagnostic ? full.failureRatePercent : 0.0) << bit;

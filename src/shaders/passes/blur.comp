@@ -7,9 +7,9 @@
 // count (docs/results/passes-llvmpipe-2026-12-04.md). So one map compiles its radius in (RADIUS:
 // the user's kernel, one variant); cascades, whose kernels follow the view, take it as a uniform
 // rather than compiling a variant for every radius the camera passes through.
-// The weights stay uniforms, which costs nothing measurable: as constants the compiler may
-// regroup the sum (a box's equal weights factored out), and MSM's ill-conditioned moments then
-// part from the CPU twin's.
+// The weights stay uniforms: as constants the compiler may regroup the sum, and MSM's
+// ill-conditioned moments then part from the CPU twin's. A box (TAPS_ALIKE) sums its taps and
+// scales once instead, as the CPU twin does.
 #include "../lib/layer_reduction.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -25,6 +25,13 @@ uniform int radius;
 uniform float weights[2 * kMaxBlurRadius + 1];
 #define BLUR_RADIUS radius
 #endif
+// A box's taps weigh alike: each is added at unit weight and the total scaled once by the common
+// weight (shared/channel_reduction.h scaleTapWeights), a multiply per texel instead of per tap.
+#if TAPS_ALIKE
+#define TAP_WEIGHT(i) 1.0f
+#else
+#define TAP_WEIGHT(i) weights[i]
+#endif
 uniform ivec2 direction;
 uniform ivec2 size;
 uniform int layer;  // the channel layer within its cascade: its channels' reductions
@@ -34,11 +41,14 @@ void main() {
   if (p.x >= size.x || p.y >= size.y) return;
   // Each tap's texel is loaded once for all four channels.
 #if ALL_MEAN
-  vec4 sum = vec4(0.0f);
+  PENUMBRA_PRECISE vec4 sum = vec4(0.0f);
   for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
-    sum = accumulateMeanTexel(sum, imageLoad(source, q), weights[i + BLUR_RADIUS]);
+    sum = accumulateMeanTexel(sum, imageLoad(source, q), TAP_WEIGHT(i + BLUR_RADIUS));
   }
+#if TAPS_ALIKE
+  sum = scaleMeanTexel(sum, weights[0]);
+#endif
   imageStore(target, p, sum);
 #else
   ChannelAccumulator acc[4];
@@ -48,9 +58,12 @@ void main() {
   for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
     vec4 texel = imageLoad(source, q);
-    float weight = weights[i + BLUR_RADIUS];
+    float weight = TAP_WEIGHT(i + BLUR_RADIUS);
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
   }
+#if TAPS_ALIKE
+  for (int c = 0; c < 4; ++c) acc[c] = scaleTapWeights(acc[c], weights[0]);
+#endif
   imageStore(target, p,
              vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),
                   reductionResult(acc[3])));

@@ -16,6 +16,12 @@
 const int kRadius = RADIUS;
 uniform float weights[2 * kRadius + 1];
 const int kSpan = TILE + 2 * kRadius;
+// A box's taps weigh alike: summed at unit weight, scaled once (as blur.comp).
+#if TAPS_ALIKE
+#define TAP_WEIGHT(i) 1.0f
+#else
+#define TAP_WEIGHT(i) weights[i]
+#endif
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(binding = 0) uniform sampler2DArray depthMap;  // one layer per cascade
@@ -36,8 +42,11 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   Texel sum = Texel(0.0f);
   for (int i = 0; i <= 2 * kRadius; ++i) {
     Texel texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
-    sum = accumulateMeanTexel(sum, texel, weights[i]);
+    sum = accumulateMeanTexel(sum, texel, TAP_WEIGHT(i));
   }
+#if TAPS_ALIKE
+  sum = scaleMeanTexel(sum, weights[0]);
+#endif
   return sum;
 #else
   ChannelAccumulator acc[TEXEL_COMPONENTS];
@@ -47,11 +56,16 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   for (int i = 0; i <= 2 * kRadius; ++i) {
     vec4 texel = widenTexel(fromEncoded ? encoded[first + i * stride] : rows[first + i * stride]);
     for (int c = 0; c < TEXEL_COMPONENTS; ++c) {
-      acc[c] = accumulateTap(acc[c], texel[c], weights[i]);
+      acc[c] = accumulateTap(acc[c], texel[c], TAP_WEIGHT(i));
     }
   }
   vec4 result = vec4(0.0f);
-  for (int c = 0; c < TEXEL_COMPONENTS; ++c) result[c] = reductionResult(acc[c]);
+  for (int c = 0; c < TEXEL_COMPONENTS; ++c) {
+#if TAPS_ALIKE
+    acc[c] = scaleTapWeights(acc[c], weights[0]);
+#endif
+    result[c] = reductionResult(acc[c]);
+  }
   return result.TEXEL_SWIZZLE;
 #endif
 }

@@ -62,6 +62,28 @@ PENUMBRA_INLINE float accumulateMeanTexel(float sum, float texel, float weight) 
   return sum + weight * texel;
 }
 
+// A kernel whose taps all weigh alike (the box): the passes add every tap at unit weight and
+// scale the total once, (sum of t) w rather than the sum of w t: one multiply per texel where
+// weighting each tap costs one per tap, the arithmetic of the plainest box blur (weighting each
+// tap made the blur 1.26x it on llvmpipe; docs/results/passes-llvmpipe-2026-12-07.md). Scaling
+// every weight by w scales a mean's sum and the log-space sum's scale alike (esmLogSumAdd is
+// linear in the weights); min and max take no weights. The CPU reference filters do the same.
+PENUMBRA_INLINE ChannelAccumulator scaleTapWeights(ChannelAccumulator a, float weight) {
+  if (a.reduction == kReduceMean) a.value = a.value * weight;
+  if (a.reduction == kReduceLogMeanExp) a.logSum.y = a.logSum.y * weight;
+  return a;
+}
+// The same for a texel layer of means (accumulateMeanTexel).
+PENUMBRA_INLINE vec4 scaleMeanTexel(vec4 sum, float weight) {
+  return sum * weight;
+}
+PENUMBRA_INLINE vec2 scaleMeanTexel(vec2 sum, float weight) {
+  return sum * weight;
+}
+PENUMBRA_INLINE float scaleMeanTexel(float sum, float weight) {
+  return sum * weight;
+}
+
 // The reduced value of the taps so far (0 before any tap).
 PENUMBRA_INLINE float reductionResult(ChannelAccumulator a) {
   if (a.reduction == kReduceLogMeanExp) {
