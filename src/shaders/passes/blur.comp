@@ -41,7 +41,7 @@ void main() {
   if (p.x >= size.x || p.y >= size.y) return;
   // Each tap's texel is loaded once for all four channels.
 #if ALL_MEAN
-  PENUMBRA_PRECISE vec4 sum = vec4(0.0f);
+  vec4 sum = vec4(0.0f);
   for (int i = -BLUR_RADIUS; i <= BLUR_RADIUS; ++i) {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
     sum = accumulateMeanTexel(sum, imageLoad(source, q), TAP_WEIGHT(i + BLUR_RADIUS));

@@ -65,7 +65,7 @@ PENUMBRA_INLINE float accumulateMeanTexel(float sum, float texel, float weight) 
 // A kernel whose taps all weigh alike (the box): the passes add every tap at unit weight and
 // scale the total once, (sum of t) w rather than the sum of w t: one multiply per texel where
 // weighting each tap costs one per tap, the arithmetic of the plainest box blur (weighting each
-// tap made the blur 1.26x it on llvmpipe; docs/results/passes-llvmpipe-2026-12-07.md). Scaling
+// tap made the blur 1.26x it on llvmpipe; docs/results/passes-llvmpipe-2026-12-06-box.md). Scaling
 // every weight by w scales a mean's sum and the log-space sum's scale alike (esmLogSumAdd is
 // linear in the weights); min and max take no weights. The CPU reference filters do the same.
 PENUMBRA_INLINE ChannelAccumulator scaleTapWeights(ChannelAccumulator a, float weight) {
