@@ -535,18 +535,22 @@ std::vector<SplitSample> Renderer::readSplitSamples() const {
   return state_->shadows.state().lloyd.readSamples();
 }
 
-double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
+Renderer::SummedAreaQuantisation Renderer::summedAreaQuantisation(int channel) const {
   const State& s = *state_;
   if (!s.shadows.state().maps.hasSummedAreaTable()) {
     throw Error("no summed-area table: render with the 'sat' filter first");
   }
-  const int size = s.shadows.state().maps.shape().size;
-  struct Stats {
-    double centre, step;
-  };
-  std::vector<Stats> stats(size_t(s.shadows.state().maps.shape().layout.channels *
-                                  s.shadows.state().maps.shape().cascades));
+  const ChannelShape& shape = s.shadows.state().maps.shape();
+  // The stats buffer holds SatChannelStats (lib/summed_area.glsl), {centre, step}, per channel.
+  std::vector<SummedAreaQuantisation> stats(size_t(shape.layout.channels * shape.cascades));
   s.shadows.state().maps.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
+  return stats.at(size_t(channel));
+}
+
+double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
+  const SummedAreaQuantisation q = summedAreaQuantisation(channel);
+  const State& s = *state_;
+  const int size = s.shadows.state().maps.shape().size;
   auto prefix = [&](int x, int y) -> uint64_t {
     if (x < 0 || y < 0) return 0;
     uint64_t v = 0;
@@ -558,8 +562,7 @@ double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) 
   const uint64_t wrapped =
       prefix(x1, y1) - prefix(x0 - 1, y1) - prefix(x1, y0 - 1) + prefix(x0 - 1, y0 - 1);
   const double area = double(x1 - x0 + 1) * double(y1 - y0 + 1);
-  return shaders::summedAreaMean(double(int64_t(wrapped)), area, stats[size_t(channel)].step,
-                                 stats[size_t(channel)].centre);
+  return shaders::summedAreaMean(double(int64_t(wrapped)), area, q.step, q.centre);
 }
 
 }  // namespace penumbra::gl

@@ -326,6 +326,38 @@ TEST_F(RendererTest, SummedAreaTableHoldsTheCpuTablesBits) {
   }
 }
 
+// The extremes pass reads every row, four at a time and then the rows left over
+// (passes/sat_stats.comp): the GPU derives the CPU table's quantisation of each channel (centre
+// and step, shared/summed_area.h) from a map whose only lowest or highest depth lies in the
+// fourth row of a group of four or in a leftover row (130 = 4 * 32 + 2). The other depths lie
+// within [0.40, 0.45], so the planted one alone sets that end of the range.
+TEST_F(RendererTest, SummedAreaTableFindsAnExtremeInAnyRow) {
+  constexpr int kSize = 130;
+  struct Planted {
+    int x, y;
+    float depth;
+  };
+  for (const Planted planted : {Planted{3, 7, 0.9f}, Planted{77, 7, 0.1f},
+                                Planted{5, kSize - 1, 0.9f}, Planted{64, kSize - 2, 0.1f}}) {
+    Image depth(kSize, kSize, 1);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> band(0.40f, 0.45f);
+    for (float& z : depth.data()) z = band(rng);
+    depth.at(planted.x, planted.y, 0) = planted.depth;
+    gl::RenderSettings s = small(Technique::Vsm);
+    s.filter = gl::FilterMode::SummedArea;
+    renderer->filterDepthMap(depth, s);
+    const SummedAreaTable cpu(renderer->readChannels(0));
+    for (int c = 0; c < 2; ++c) {
+      const gl::Renderer::SummedAreaQuantisation gpu = renderer->summedAreaQuantisation(c);
+      EXPECT_EQ(gpu.centre, cpu.centre(c)) << planted.depth << " at row " << planted.y << ", "
+                                           << "channel " << c;
+      EXPECT_EQ(gpu.step, cpu.step(c)) << planted.depth << " at row " << planted.y << ", "
+                                       << "channel " << c;
+    }
+  }
+}
+
 TEST_F(RendererTest, EverySceneRendersWithEveryTechniqueWithoutNanOrGlErrors) {
   for (std::string_view name : builtinSceneNames()) {
     const Scene scene = makeBuiltinScene(name);

@@ -85,10 +85,10 @@ struct RenderSettings {
   // camera pass compiles the other targets out (on llvmpipe EVSM4's pass went from 1.26-1.30x
   // its minimal lookup to 1.16-1.18x, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
   // A frame that reads none and is not timed has no glFinish and no image read-back (the
-  // cascaded depth-bounds fit and LVSM's Lloyd placement still read their small buffers back). Reference frames also read their
-  // visibility, and where the CPU completes pixels the colour, diagnostic and lookup's inputs
-  // it completes them from (a supersampled reference returns only the colour, visibility and
-  // diagnostic asked for, averaged).
+  // cascaded depth-bounds fit and LVSM's Lloyd placement still read their small buffers back).
+  // Reference frames also read their visibility, and where the CPU completes pixels the colour,
+  // diagnostic and lookup's inputs it completes them from (a supersampled reference returns only
+  // the colour, visibility and diagnostic asked for, averaged).
   unsigned readBack = frame_image::kAll;
   // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
   // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,
@@ -283,6 +283,12 @@ class Renderer {
   void filterDepthMap(const Image& depth, const RenderSettings& settings);
   // The summed-area box mean the camera pass would compute, for parity tests.
   double summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const;
+  // The quantisation the GPU derived for a channel of the summed-area table from its extremes
+  // (shared/summed_area.h), for parity tests.
+  struct SummedAreaQuantisation {
+    double centre, step;
+  };
+  SummedAreaQuantisation summedAreaQuantisation(int channel) const;
 
   std::string deviceDescription() const;
   // False on software rasterisers (llvmpipe, softpipe), whose GL_TIME_ELAPSED queries see only
