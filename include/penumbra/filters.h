@@ -28,17 +28,29 @@ std::vector<float> blurWeights(const BlurSpec& spec);
 // reference's blur, summed over a mip texel's block in closed form (shared/filtered_reference.h).
 std::vector<float> cumulativeBlurWeights(const BlurSpec& spec);
 
+// How a kernel whose taps all weigh alike (the box) sums them. SummedThenScaled adds every tap
+// at unit weight and multiplies the total once by the common weight, as the GPU's prefilter does
+// (shared/channel_reduction.h scaleTapWeights): one multiply per texel instead of one per tap.
+// Weighted weighs each tap: for channels of exponentials (ESM filtering linearly, the EVSMs),
+// whose unit-weight sum of up to 129 taps could pass fp32's largest value (3 exp(88) does).
+enum class AlikeTaps { SummedThenScaled, Weighted };
+AlikeTaps alikeTapsFor(Technique technique, const TechniqueParams& params);
+// Whether the kernel's taps weigh alike (shared/filter_weights.h kernelTapsAlike) and are summed
+// at unit weight under `alike`.
+bool sumsTapsAtUnitWeight(const BlurSpec& spec, AlikeTaps alike);
+
 // Separable filter over every channel. `reductions` gives one entry per channel (empty: all
 // Mean). Min and Max channels take the extreme over the kernel's support; LogMeanExp channels
 // (ESM log space) take the weighted log-mean-exp with exponent `logExponent`.
 Image separableFilter(const Image& image, const BlurSpec& spec,
-                      std::span<const ChannelReduction> reductions = {}, float logExponent = 80.0f);
+                      std::span<const ChannelReduction> reductions = {}, float logExponent = 80.0f,
+                      AlikeTaps alike = AlikeTaps::SummedThenScaled);
 
 // One axis of separableFilter (horizontal: along x), as the GPU's blur runs it: the renderer
 // stores the intermediate in the channels' format, so its CPU twin rounds between the axes.
 Image separableFilterPass(const Image& image, const BlurSpec& spec, bool horizontal,
                           std::span<const ChannelReduction> reductions = {},
-                          float logExponent = 80.0f);
+                          float logExponent = 80.0f, AlikeTaps alike = AlikeTaps::SummedThenScaled);
 
 Image boxBlur(const Image& image, int radius);
 Image gaussianBlur(const Image& image, int radius, float sigma);

@@ -8,6 +8,7 @@
 #include "parallel.h"
 #include "penumbra/error.h"
 #include "penumbra/shared/channel_reduction.h"
+#include "penumbra/shared/esm.h"
 #include "penumbra/shared/filter_weights.h"
 #include "penumbra/shared/mip_span.h"
 
@@ -30,13 +31,14 @@ shaders::ChannelAccumulator startReduction(ChannelReduction reduction, float log
   return shaders::startReduction(int(reduction), logExponent);
 }
 
-// One 1D pass of `spec` along x (horizontal) or y with edge clamping. The box's taps weigh alike:
-// summed at unit weight and scaled once, as the GPU's blur does (shared/channel_reduction.h
-// scaleTapWeights).
+// One 1D pass of `spec` along x (horizontal) or y with edge clamping. Taps that weigh alike are
+// summed at unit weight and scaled once where `alike` says so, as the GPU's blur does
+// (shared/channel_reduction.h scaleTapWeights).
 Image filterPass(const Image& in, const BlurSpec& spec, bool horizontal,
-                 std::span<const ChannelReduction> reductions, float logExponent) {
+                 std::span<const ChannelReduction> reductions, float logExponent,
+                 AlikeTaps alikeTaps) {
   const std::vector<float> weights = blurWeights(spec);
-  const bool alike = spec.kernel == BlurKernel::Box;
+  const bool alike = sumsTapsAtUnitWeight(spec, alikeTaps);
   Image out(in.width(), in.height(), in.channels());
   const int radius = spec.radius;
   detail::parallelForRows(in.height(), [&](int y) {
@@ -56,6 +58,18 @@ Image filterPass(const Image& in, const BlurSpec& spec, bool horizontal,
 }
 
 }  // namespace
+
+AlikeTaps alikeTapsFor(Technique technique, const TechniqueParams& params) {
+  const bool exponentials =
+      technique == Technique::Evsm2 || technique == Technique::Evsm4 ||
+      (technique == Technique::Esm && params.esm.filterSpace == shaders::kEsmFilterLinear);
+  return exponentials ? AlikeTaps::Weighted : AlikeTaps::SummedThenScaled;
+}
+
+bool sumsTapsAtUnitWeight(const BlurSpec& spec, AlikeTaps alike) {
+  return shaders::kernelTapsAlike(blurKernelId(spec.kernel)) &&
+         alike == AlikeTaps::SummedThenScaled;
+}
 
 int blurKernelId(BlurKernel kernel) {
   return kernel == BlurKernel::Box ? shaders::kKernelBox : shaders::kKernelGaussian;
@@ -84,16 +98,18 @@ std::vector<float> cumulativeBlurWeights(const BlurSpec& spec) {
 }
 
 Image separableFilter(const Image& image, const BlurSpec& spec,
-                      std::span<const ChannelReduction> reductions, float logExponent) {
+                      std::span<const ChannelReduction> reductions, float logExponent,
+                      AlikeTaps alike) {
   checkReductions(image, reductions);
-  Image horizontal = filterPass(image, spec, true, reductions, logExponent);
-  return filterPass(horizontal, spec, false, reductions, logExponent);
+  Image horizontal = filterPass(image, spec, true, reductions, logExponent, alike);
+  return filterPass(horizontal, spec, false, reductions, logExponent, alike);
 }
 
 Image separableFilterPass(const Image& image, const BlurSpec& spec, bool horizontal,
-                          std::span<const ChannelReduction> reductions, float logExponent) {
+                          std::span<const ChannelReduction> reductions, float logExponent,
+                          AlikeTaps alike) {
   checkReductions(image, reductions);
-  return filterPass(image, spec, horizontal, reductions, logExponent);
+  return filterPass(image, spec, horizontal, reductions, logExponent, alike);
 }
 
 Image boxBlur(const Image& image, int radius) {

@@ -152,10 +152,12 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   const bool prefiltered = prefiltersChannels(technique);
   const float logExponent = params.esm.exponent;
   if (prefiltered && config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
-    channels = quantized(separableFilterPass(channels, config.blur, true, reductions, logExponent),
-                         storage, rounding);
-    channels = quantized(separableFilterPass(channels, config.blur, false, reductions, logExponent),
-                         storage, rounding);
+    const AlikeTaps alike = alikeTapsFor(technique, params);
+    for (const bool horizontal : {true, false}) {
+      channels = quantized(
+          separableFilterPass(channels, config.blur, horizontal, reductions, logExponent, alike),
+          storage, rounding);
+    }
   }
   t.channels.push_back(channels);
   if (prefiltered && usesMips(config.filter)) {

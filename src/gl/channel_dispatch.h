@@ -34,9 +34,9 @@ void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout
 // their weights as the uniform array `weights` (setBlurWeights): see blur.comp for why.
 std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
 ShaderDefine blurRadiusDefine(const BlurSpec& spec);
-// TAPS_ALIKE: 1 for a box, whose taps the prefilter passes sum at unit weight and scale once by
-// weights[0] (shared/channel_reduction.h scaleTapWeights), else 0.
-ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec);
+// TAPS_ALIKE: 1 where the prefilter passes sum the kernel's taps at unit weight and scale the
+// total once by weights[0] (sumsTapsAtUnitWeight, penumbra/filters.h), else 0.
+ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike);
 void setBlurWeights(const Program& p, const BlurSpec& spec);
 // The fused prefilter's work group, TILE x TILE texels (passes/prefilter_fused.comp, and its
 // minimal kernel passes/baseline_fused.comp), and its shared arrays' components: TILE and

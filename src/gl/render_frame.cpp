@@ -535,20 +535,20 @@ std::vector<SplitSample> Renderer::readSplitSamples() const {
   return state_->shadows.state().lloyd.readSamples();
 }
 
-Renderer::SummedAreaQuantisation Renderer::summedAreaQuantisation(int channel) const {
+Renderer::SummedAreaChannelStats Renderer::summedAreaQuantisation(int channel) const {
   const State& s = *state_;
   if (!s.shadows.state().maps.hasSummedAreaTable()) {
     throw Error("no summed-area table: render with the 'sat' filter first");
   }
   const ChannelShape& shape = s.shadows.state().maps.shape();
   // The stats buffer holds SatChannelStats (lib/summed_area.glsl), {centre, step}, per channel.
-  std::vector<SummedAreaQuantisation> stats(size_t(shape.layout.channels * shape.cascades));
+  std::vector<SummedAreaChannelStats> stats(size_t(shape.layout.channels * shape.cascades));
   s.shadows.state().maps.summedAreaStats().read(std::as_writable_bytes(std::span(stats)));
   return stats.at(size_t(channel));
 }
 
 double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const {
-  const SummedAreaQuantisation q = summedAreaQuantisation(channel);
+  const SummedAreaChannelStats q = summedAreaQuantisation(channel);
   const State& s = *state_;
   const int size = s.shadows.state().maps.shape().size;
   auto prefix = [&](int x, int y) -> uint64_t {

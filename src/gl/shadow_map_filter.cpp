@@ -72,8 +72,8 @@ ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
   return {"RADIUS", std::to_string(spec.radius)};
 }
 
-ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec) {
-  return {"TAPS_ALIKE", spec.kernel == BlurKernel::Box ? "1" : "0"};
+ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike) {
+  return {"TAPS_ALIKE", sumsTapsAtUnitWeight(spec, alike) ? "1" : "0"};
 }
 
 void setBlurWeights(const Program& p, const BlurSpec& spec) {
@@ -163,6 +163,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   if (!fused) encode(programs, parameters, depthTexture, samples);
   encodeTimer.end();
   prefilterTimer.begin();
+  const AlikeTaps alike = alikeTapsFor(technique, params);
   const bool blurs = prefilters && !shape_.summedArea &&
                      std::any_of(cascadeBlurs.begin(), cascadeBlurs.end(),
                                  [](const BlurSpec& b) { return b.radius > 0; });
@@ -170,9 +171,9 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   // from this frame's kernels (fusesPrefilter): a blur that is not fused needs the scratch.
   assert(fused || !blurs || shape_.scratch);
   if (fused) {
-    encodeAndBlurFused(programs, parameters, depthTexture, defines, cascadeBlurs);
+    encodeAndBlurFused(programs, parameters, depthTexture, defines, cascadeBlurs, alike);
   } else if (blurs) {
-    blurSeparately(programs, parameters, defines, cascadeBlurs);
+    blurSeparately(programs, parameters, defines, cascadeBlurs, alike);
   }
   prefilterTimer.end();
   mipsTimer.begin();
@@ -202,13 +203,13 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
 
 void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,
                                      const std::vector<ShaderDefine>& defines,
-                                     std::span<const BlurSpec> cascadeBlurs) {
+                                     std::span<const BlurSpec> cascadeBlurs, AlikeTaps alike) {
   const int layers = shape_.layout.layers;
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     // One map: its radius compiled in. Cascades' radii follow the view: a uniform (blur.comp).
     std::vector<ShaderDefine> kernelDefines = defines;
-    kernelDefines.push_back(blurTapsAlikeDefine(spec));
+    kernelDefines.push_back(blurTapsAlikeDefine(spec, alike));
     if (shape_.cascades == 1) kernelDefines.push_back(blurRadiusDefine(spec));
     const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
     if (shape_.cascades > 1) blur.set("radius", spec.radius);
@@ -235,14 +236,14 @@ void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBloc
 void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const ParameterBlock& parameters,
                                          unsigned depthTexture,
                                          const std::vector<ShaderDefine>& defines,
-                                         std::span<const BlurSpec> cascadeBlurs) {
+                                         std::span<const BlurSpec> cascadeBlurs, AlikeTaps alike) {
   glBindTextureUnit(0, depthTexture);
   bindChannelImage(channels_, shape_.layout, 0);
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     std::vector<ShaderDefine> fusedDefines = defines;
     fusedDefines.push_back(blurRadiusDefine(spec));
-    fusedDefines.push_back(blurTapsAlikeDefine(spec));
+    fusedDefines.push_back(blurTapsAlikeDefine(spec, alike));
     for (ShaderDefine& d : fusedTileDefines(shape_.layout)) fusedDefines.push_back(std::move(d));
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
     setBlurWeights(fused, spec);

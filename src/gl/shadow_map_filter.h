@@ -57,10 +57,10 @@ class ShadowMapFilter {
               int samples);
   void blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,
                       const std::vector<ShaderDefine>& defines,
-                      std::span<const BlurSpec> cascadeBlurs);
+                      std::span<const BlurSpec> cascadeBlurs, AlikeTaps alike);
   void encodeAndBlurFused(ProgramCache& programs, const ParameterBlock& parameters,
                           unsigned depthTexture, const std::vector<ShaderDefine>& defines,
-                          std::span<const BlurSpec> cascadeBlurs);
+                          std::span<const BlurSpec> cascadeBlurs, AlikeTaps alike);
   void buildSummedAreaTable(ProgramCache& programs);
 
   ChannelShape shape_;

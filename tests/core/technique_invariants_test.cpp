@@ -8,11 +8,13 @@
 
 #include "penumbra/depth_distribution.h"
 #include "penumbra/error.h"
+#include "penumbra/filters.h"
 #include "penumbra/params.h"
-#include "penumbra/storage_format.h"
-#include "region_helpers.h"
+#include "penumbra/shared/filter_weights.h"
 #include "penumbra/shared/layers.h"
 #include "penumbra/shared/technique_dispatch.h"
+#include "penumbra/storage_format.h"
+#include "region_helpers.h"
 
 namespace penumbra {
 namespace {
@@ -239,6 +241,23 @@ TEST_P(TechniqueInvariants, StaysFiniteAtExtremeInputs) {
       encodeDepth(t, p, depth, channels);
       for (int c = 0; c < channelCount(t, p); ++c) {
         EXPECT_TRUE(std::isfinite(channels[c])) << "depth " << depth << " channel " << c;
+      }
+      // The widest box over channels all at their largest, filtered as the prefilter sums them
+      // (alikeTapsFor): 129 taps of exp(88) summed at unit weight would pass fp32's range.
+      const int count = channelCount(t, p);
+      Image encoded(shaders::kMaxBlurRadius * 2 + 1, 3, count);
+      for (int y = 0; y < encoded.height(); ++y) {
+        for (int x = 0; x < encoded.width(); ++x) {
+          for (int c = 0; c < count; ++c) encoded.at(x, y, c) = channels[c];
+        }
+      }
+      std::vector<ChannelReduction> reductions;
+      for (int c = 0; c < count; ++c) reductions.push_back(channelReduction(t, p, c));
+      const Image filtered =
+          separableFilter(encoded, {BlurKernel::Box, shaders::kMaxBlurRadius, 1.0f}, reductions,
+                          p.esm.exponent, alikeTapsFor(t, p));
+      for (float v : filtered.data()) {
+        ASSERT_TRUE(std::isfinite(v)) << "a box of depth " << depth << " filtered";
       }
     }
     for (float occluder : {0.0f, 1.0f}) {

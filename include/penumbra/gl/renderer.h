@@ -285,10 +285,11 @@ class Renderer {
   double summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) const;
   // The quantisation the GPU derived for a channel of the summed-area table from its extremes
   // (shared/summed_area.h), for parity tests.
-  struct SummedAreaQuantisation {
+  struct SummedAreaChannelStats {  // lib/summed_area.glsl SatChannelStats, as the GPU stores it
     double centre, step;
   };
-  SummedAreaQuantisation summedAreaQuantisation(int channel) const;
+  static_assert(sizeof(SummedAreaChannelStats) == 16, "std430 SatChannelStats: two doubles");
+  SummedAreaChannelStats summedAreaQuantisation(int channel) const;
 
   std::string deviceDescription() const;
   // False on software rasterisers (llvmpipe, softpipe), whose GL_TIME_ELAPSED queries see only

@@ -1,6 +1,6 @@
 // Summed-area table, step 1: each channel's lowest and highest value, all its quantisation needs
 // (shared/summed_area.h). One invocation per column and channel layer walks the column with
-// whole-texel fetches (the 64 invocations of a group read one row segment at each step) and
+// whole-texel fetches (the 64 invocations of a group read four rows' segments at each step) and
 // leaves its extremes with one atomicMin per channel and end: the result does not depend on the
 // order, so it is the CPU's exactly.
 #include "../lib/summed_area.glsl"

@@ -67,10 +67,16 @@ PENUMBRA_INLINE float accumulateMeanTexel(float sum, float texel, float weight) 
 // weighting each tap costs one per tap, the arithmetic of the plainest box blur (weighting each
 // tap made the blur 1.26x it on llvmpipe; docs/results/passes-llvmpipe-2026-12-06-box.md). Scaling
 // every weight by w scales a mean's sum and the log-space sum's scale alike (esmLogSumAdd is
-// linear in the weights); min and max take no weights. The CPU reference filters do the same.
+// linear in the weights); min and max take no weights. The CPU reference filters do the same
+// where the taps are summed so (sumsTapsAtUnitWeight, penumbra/filters.h): not for channels of
+// exponentials, whose unit-weight sums could pass fp32's range.
 PENUMBRA_INLINE ChannelAccumulator scaleTapWeights(ChannelAccumulator a, float weight) {
-  if (a.reduction == kReduceMean) a.value = a.value * weight;
-  if (a.reduction == kReduceLogMeanExp) a.logSum.y = a.logSum.y * weight;
+  if (a.reduction == kReduceMin || a.reduction == kReduceMax) return a;
+  if (a.reduction == kReduceLogMeanExp) {
+    a.logSum.y = a.logSum.y * weight;
+  } else {
+    a.value = a.value * weight;
+  }
   return a;
 }
 // The same for a texel layer of means (accumulateMeanTexel).

@@ -17,6 +17,11 @@ PENUMBRA_INLINE bool kernelHasBilinearTent(int kernel) {
   return kernel == kKernelBilinear || kernel == kKernelGaussianBilinear;
 }
 
+// Whether every tap of the kernel weighs the same (the box: 1 / (2r + 1) each).
+PENUMBRA_INLINE bool kernelTapsAlike(int kernel) {
+  return kernel == kKernelBox;
+}
+
 // Unnormalised Gaussian weight of a tap `offset` texels from the centre.
 PENUMBRA_INLINE float gaussianTapWeight(int offset, float sigma) {
   float x = float(offset);
