@@ -2,6 +2,8 @@
 // filters, mip levels equal block averages.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <random>
 
 #include "penumbra/error.h"
@@ -110,6 +112,34 @@ TEST(Filters, PerChannelReductionsMixMinMaxAndMean) {
       EXPECT_EQ(mixed.at(x, y, 0), lo.at(x, y, 0));
       EXPECT_EQ(mixed.at(x, y, 1), hi.at(x, y, 1));
       EXPECT_FLOAT_EQ(mixed.at(x, y, 2), mean.at(x, y, 2));
+    }
+  }
+}
+
+// ESM's log-space channel (Salvi) under both kernels, against ln(sum of w exp(c v)) / c in double
+// over the clamped taps, one axis at a time: the box sums its taps at unit weight and scales the
+// log-space sum once (shared/channel_reduction.h scaleTapWeights), the Gaussian weighs each tap.
+// Values spread over 0.1 at c = 80 put the sum's terms across 8 orders of magnitude.
+TEST(Filters, LogMeanExpEqualsTheLogOfTheWeightedMeanOfExponentials) {
+  const Image image = randomImage(24, 1, 1, 9);
+  const float c = 80.0f;
+  const std::vector<ChannelReduction> logSpace{ChannelReduction::LogMeanExp};
+  for (const BlurSpec spec :
+       {BlurSpec{BlurKernel::Box, 3, 1.0f}, BlurSpec{BlurKernel::Gaussian, 3, 1.5f}}) {
+    const std::vector<float> w = blurWeights(spec);
+    Image spread = image;
+    for (float& v : spread.data()) v = 0.5f + 0.1f * v;
+    const Image filtered = separableFilterPass(spread, spec, true, logSpace, c);
+    for (int x = 0; x < spread.width(); ++x) {
+      double sum = 0.0;
+      for (int i = -spec.radius; i <= spec.radius; ++i) {
+        const int tap = std::clamp(x + i, 0, spread.width() - 1);
+        sum += double(w[size_t(i + spec.radius)]) * std::exp(double(c) * spread.at(tap, 0));
+      }
+      // fp32 throughout: exp of a difference of at most 8 and the log of a sum of 7 terms in
+      // [w, 1], each within a few ulps, then divided by c = 80: under 1e-6 of values near 0.5.
+      EXPECT_NEAR(filtered.at(x, 0), std::log(sum) / c, 1e-6)
+          << (spec.kernel == BlurKernel::Box ? "box" : "gaussian") << " texel " << x;
     }
   }
 }
