@@ -25,13 +25,7 @@ uniform int radius;
 uniform float weights[2 * kMaxBlurRadius + 1];
 #define BLUR_RADIUS radius
 #endif
-// A box's taps weigh alike: each is added at unit weight and the total scaled once by the common
-// weight (shared/channel_reduction.h scaleTapWeights), a multiply per texel instead of per tap.
-#if TAPS_ALIKE
-#define TAP_WEIGHT(i) 1.0f
-#else
-#define TAP_WEIGHT(i) weights[i]
-#endif
+#include "../lib/blur_taps.glsl"
 uniform ivec2 direction;
 uniform ivec2 size;
 uniform int layer;  // the channel layer within its cascade: its channels' reductions
@@ -47,7 +41,7 @@ void main() {
     sum = accumulateMeanTexel(sum, imageLoad(source, q), TAP_WEIGHT(i + BLUR_RADIUS));
   }
 #if TAPS_ALIKE
-  sum = scaleMeanTexel(sum, weights[0]);
+  sum = scaleMeanTexel(sum, ALIKE_TAPS_WEIGHT);
 #endif
   imageStore(target, p, sum);
 #else
@@ -62,7 +56,7 @@ void main() {
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
   }
 #if TAPS_ALIKE
-  for (int c = 0; c < 4; ++c) acc[c] = scaleTapWeights(acc[c], weights[0]);
+  for (int c = 0; c < 4; ++c) acc[c] = scaleTapWeights(acc[c], ALIKE_TAPS_WEIGHT);
 #endif
   imageStore(target, p,
              vec4(reductionResult(acc[0]), reductionResult(acc[1]), reductionResult(acc[2]),

@@ -16,12 +16,7 @@
 const int kRadius = RADIUS;
 uniform float weights[2 * kRadius + 1];
 const int kSpan = TILE + 2 * kRadius;
-// A box's taps weigh alike: summed at unit weight, scaled once (as blur.comp).
-#if TAPS_ALIKE
-#define TAP_WEIGHT(i) 1.0f
-#else
-#define TAP_WEIGHT(i) weights[i]
-#endif
+#include "../lib/blur_taps.glsl"
 
 layout(local_size_x = TILE, local_size_y = TILE) in;
 layout(binding = 0) uniform sampler2DArray depthMap;  // one layer per cascade
@@ -45,7 +40,7 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
     sum = accumulateMeanTexel(sum, texel, TAP_WEIGHT(i));
   }
 #if TAPS_ALIKE
-  sum = scaleMeanTexel(sum, weights[0]);
+  sum = scaleMeanTexel(sum, ALIKE_TAPS_WEIGHT);
 #endif
   return sum;
 #else
@@ -62,7 +57,7 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   vec4 result = vec4(0.0f);
   for (int c = 0; c < TEXEL_COMPONENTS; ++c) {
 #if TAPS_ALIKE
-    acc[c] = scaleTapWeights(acc[c], weights[0]);
+    acc[c] = scaleTapWeights(acc[c], ALIKE_TAPS_WEIGHT);
 #endif
     result[c] = reductionResult(acc[c]);
   }
