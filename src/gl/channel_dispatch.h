@@ -17,6 +17,16 @@ inline unsigned groups(int n, unsigned size) {
   return (unsigned(n) + size - 1) / size;
 }
 
+// The encode and its minimal kernel (passes/encode.comp, passes/baseline_copy.comp) encode
+// several texels of a column per invocation, a group's height apart (ROWS_PER_INVOCATION): on
+// llvmpipe each invocation pays for every uniform it reads, and four rows an invocation took
+// LVSM's encode at 2048² from 32.1-33.1 ms to 24.8-26.6. Four rows where a texel's layers take at
+// most 8 bytes, else two: EVSM4 and the power CDF (16 bytes) and CSM (32) ran 1.12-1.21x slower
+// with four than with two (docs/results/passes-llvmpipe-2026-12-06-rows.md). A group covers
+// kChannelGroup x kChannelGroup * rows texels.
+int encodeRowsPerInvocation(const ChannelLayout& layout);
+ShaderDefine encodeRowsDefine(const ChannelLayout& layout);
+
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout);
 // How the blur and mip passes reduce the channels, resolved at compile time where possible
 // (src/shaders/lib/layer_reduction.glsl): ALL_MEAN, or a one-layer LAYER_REDUCTIONS table.

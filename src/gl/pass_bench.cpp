@@ -245,12 +245,14 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
 
   std::vector<ShaderDefine> copyDefines = defines;
   copyDefines.push_back({"LAYER_COUNT", std::to_string(layout.layers)});
+  copyDefines.push_back(encodeRowsDefine(layout));
   const Program& copyProgram = programs.compute("passes/baseline_copy.comp", copyDefines);
   setSize(copyProgram, "size", size);
+  const unsigned copyRows = unsigned(encodeRowsPerInvocation(layout));
   MinimalKernel copy{[&] {
     glBindTextureUnit(0, depth.id());
     bindChannelImage(channels, layout, 0);
-    copyProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup));
+    copyProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup * copyRows));
   }};
 
   std::vector<ShaderDefine> blurDefines = defines;

@@ -68,6 +68,14 @@ std::vector<ShaderDefine> fusedTileDefines(const ChannelLayout& layout) {
           {"TEXEL_COMPONENTS", std::to_string(layout.componentsPerTexel)}};
 }
 
+int encodeRowsPerInvocation(const ChannelLayout& layout) {
+  return layout.bytesPerTexel() * layout.layers <= 8 ? 4 : 2;
+}
+
+ShaderDefine encodeRowsDefine(const ChannelLayout& layout) {
+  return {"ROWS_PER_INVOCATION", std::to_string(encodeRowsPerInvocation(layout))};
+}
+
 ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
   return {"RADIUS", std::to_string(spec.radius)};
 }
@@ -191,13 +199,15 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
   std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
   defines.push_back({"MSAA", samples > 1 ? "1" : "0"});
   defines.push_back({"LAYER_COUNT", std::to_string(shape_.layout.layers)});
+  defines.push_back(encodeRowsDefine(shape_.layout));
   const Program& encode = programs.compute("passes/encode.comp", defines);
   parameters.bind();
   setSize(encode, "size", shape_.size);
   encode.set("sampleCount", samples);
   glBindTextureUnit(0, depthTexture);
   bindChannelImage(channels_, shape_.layout, 0);
-  encode.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup),
+  const int rows = encodeRowsPerInvocation(shape_.layout);
+  encode.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup * unsigned(rows)),
                   unsigned(shape_.cascades));
 }
 

@@ -15,8 +15,10 @@ class ProgramCacheTest : public testing::GlTest {};
 TEST_F(ProgramCacheTest, OnlyVariantsThatReadTheTechniqueAreCompiledPerTechnique) {
   gl::ProgramCache programs;
   const std::vector<ShaderDefine> opaque{{"ALPHA_TEST", "0"}};
-  const std::vector<ShaderDefine> encode{
-      {"CHANNEL_FORMAT", "rg32f"}, {"LAYER_COUNT", "1"}, {"MSAA", "0"}};
+  const std::vector<ShaderDefine> encode{{"CHANNEL_FORMAT", "rg32f"},
+                                         {"LAYER_COUNT", "1"},
+                                         {"MSAA", "0"},
+                                         {"ROWS_PER_INVOCATION", "4"}};
   programs.setTechnique(Technique::Vsm);
   const gl::Program& lightVsm =
       programs.graphics("passes/light_depth.vert", "passes/light_depth.frag", opaque);

@@ -64,8 +64,8 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 // camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, the
 // lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the
 // blur kernels' radius and weights), TAPS_ALIKE (a box's taps summed and scaled once), LAYER_COUNT
-// (the encode's fewest and most texel layers), and the fused tile's TILE and TEXEL_COMPONENTS (the
-// format's).
+// (the encode's fewest and most texel layers), ROWS_PER_INVOCATION (the encode's), and the fused
+// tile's TILE and TEXEL_COMPONENTS (the format's).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -101,6 +101,8 @@ std::vector<Defines> variants(const std::string& source) {
     }
   }
   expand("TILE", {"16"});  // the fused prefilter's work group (kFusedTile)
+  // The encode's texels per invocation (encodeRowsPerInvocation).
+  expand("ROWS_PER_INVOCATION", {"2", "4"});
   expand("MSAA", {"0", "1"});
   expand("SUMMED_AREA", {"0", "1"});
   expand("ZMAX", {"0", "1"});

@@ -3,20 +3,32 @@
 // channel gets its own value, as an encode's do: storing one value in all four lets the compiler
 // convert it to the storage format once: on llvmpipe such a copy of CSM's eight RGBA8 layers took
 // 41-46 ms where four distinct values per texel took 55-56 (passes-llvmpipe-2026-12-02.md in
-// docs/results). The layer count is a compile-time constant (LAYER_COUNT), as the encode's.
+// docs/results). The layer count is a compile-time constant (LAYER_COUNT), as the encode's, and
+// each invocation copies the encode's rows (ROWS_PER_INVOCATION).
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(binding = 0) uniform sampler2DArray depth;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
 
 uniform ivec2 size;
 const int kLayerCount = LAYER_COUNT;
+// The encode's texels per invocation, a group's height apart (passes/encode.comp).
+const int kRows = ROWS_PER_INVOCATION;
 
 void main() {
-  ivec2 p = ivec2(gl_GlobalInvocationID.xy);
-  if (p.x >= size.x || p.y >= size.y) return;
-  float z = texelFetch(depth, ivec3(p, 0), 0).x;
+  int x = int(gl_GlobalInvocationID.x);
+  int firstRow = int(gl_WorkGroupID.y * gl_WorkGroupSize.y) * kRows + int(gl_LocalInvocationID.y);
+  if (x >= size.x || firstRow >= size.y) return;
   const vec4 channelScale = vec4(1.0, 0.75, 0.5, 0.25);
+  float z[kRows];
+  for (int k = 0; k < kRows; ++k) {
+    int y = min(firstRow + k * int(gl_WorkGroupSize.y), size.y - 1);
+    z[k] = texelFetch(depth, ivec3(x, y, 0), 0).x;
+  }
+  // Stores past the edge have no effect (GL 4.5 §8.26), as the encode's.
   for (int layer = 0; layer < kLayerCount; ++layer) {
-    imageStore(target, ivec3(p, layer), z * channelScale + float(layer) / 16.0);
+    for (int k = 0; k < kRows; ++k) {
+      imageStore(target, ivec3(x, firstRow + k * int(gl_WorkGroupSize.y), layer),
+                 z[k] * channelScale + float(layer) / 16.0);
+    }
   }
 }

@@ -46,21 +46,46 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
 }
 #endif
 
+// Each invocation encodes ROWS_PER_INVOCATION texels of one column, a group's height apart, so a
+// group's lanes still cover rows of 8 adjacent texels, and reads the parameter and range blocks
+// once per texel layer for all of them: llvmpipe pays for each such read in every invocation.
+// LVSM's encode at 2048² took 26.6 ms with its four range reads per texel layer replaced by
+// constants, 30.6 with them, and 25 with four rows an invocation
+// (docs/results/passes-llvmpipe-2026-12-06-rows.md; gl/channel_dispatch.h encodeRowsPerInvocation).
+const int kRows = ROWS_PER_INVOCATION;
+
 void main() {
-  ivec3 p = ivec3(gl_GlobalInvocationID);  // z: the cascade, its depth layer
-  if (p.x >= size.x || p.y >= size.y) return;
+  int x = int(gl_GlobalInvocationID.x);
+  int firstRow = int(gl_WorkGroupID.y * gl_WorkGroupSize.y) * kRows + int(gl_LocalInvocationID.y);
+  int cascade = int(gl_GlobalInvocationID.z);  // its depth layer
+  if (x >= size.x || firstRow >= size.y) return;
+  // Rows past the map's edge fetch its last row; their stores are invalid, which GL defines as
+  // having no effect (GL 4.5 §8.26).
+  ivec3 texels[kRows];
+  for (int k = 0; k < kRows; ++k) {
+    texels[k] = ivec3(x, firstRow + k * int(gl_WorkGroupSize.y), cascade);
+  }
 #if MSAA
-  for (int layer = 0; layer < layerCount; ++layer) {
-    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer), encodeSamples(p, layer));
+  for (int k = 0; k < kRows; ++k) {
+    ivec3 fetched = ivec3(x, min(texels[k].y, size.y - 1), cascade);
+    for (int layer = 0; layer < layerCount; ++layer) {
+      imageStore(channelImage, ivec3(texels[k].xy, cascade * layerCount + layer),
+                 encodeSamples(fetched, layer));
+    }
   }
 #else
-  TexelEncoding e =
-      startTexelEncoding(penumbraTechnique, texelFetch(depthMap, p, 0).x, penumbraParams);
+  TexelEncoding encodings[kRows];
+  for (int k = 0; k < kRows; ++k) {
+    float depth = texelFetch(depthMap, ivec3(x, min(texels[k].y, size.y - 1), cascade), 0).x;
+    encodings[k] = startTexelEncoding(penumbraTechnique, depth, penumbraParams);
+  }
   for (int layer = 0; layer < layerCount; ++layer) {
-    imageStore(channelImage, ivec3(p.xy, p.z * layerCount + layer),
-               encodeCurrentTexelLayer(penumbraTechnique, e, penumbraRangeTable.texelLayer[layer],
-                                       penumbraParams));
-    e = nextTexelLayer(penumbraTechnique, e);
+    vec4 ranges = penumbraRangeTable.texelLayer[layer];
+    for (int k = 0; k < kRows; ++k) {
+      imageStore(channelImage, ivec3(texels[k].xy, cascade * layerCount + layer),
+                 encodeCurrentTexelLayer(penumbraTechnique, encodings[k], ranges, penumbraParams));
+      encodings[k] = nextTexelLayer(penumbraTechnique, encodings[k]);
+    }
   }
 #endif
 }
