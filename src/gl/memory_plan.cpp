@@ -11,6 +11,7 @@
 #include "penumbra/point_light.h"
 #include "penumbra/scene.h"
 #include "penumbra/shared/constants.h"
+#include "penumbra/shared/summed_area.h"
 
 namespace penumbra::gl {
 namespace {
@@ -45,7 +46,6 @@ bool allocates(const FrameTarget& target, bool diagnostics, bool lookupInputs) {
 }
 
 }  // namespace
-
 
 int channelLevelsFor(const RenderSettings& s) {
   return prefiltersChannels(s.technique) && usesMips(s.filter)
@@ -117,7 +117,8 @@ uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs) 
 
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
   const size_t c = size_t(channels), n = size_t(shadowMapSize);
-  return {c * 2 * sizeof(uint32_t), c * 16, c * n * n * 8};
+  return {c * 2 * sizeof(uint32_t), c * 16,
+          c * n * size_t(shaders::summedAreaRowPitch(shadowMapSize)) * 8};
 }
 
 size_t lloydRowSumBytes(int shadowMapSize, int cascades) {

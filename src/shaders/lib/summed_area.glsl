@@ -2,9 +2,10 @@
 // channel is quantised with a power-of-two step of at most R * 2^-31 and centred on the step's
 // grid at or below the midpoint of its range (shared/summed_area.h); prefix sums wrap modulo
 // 2^64, leaving box sums exact.
-// Sums are indexed (channel, y, x).
+// Sums are indexed (channel, y, x), rows padded (summedAreaRowPitch).
 #ifndef PENUMBRA_LIB_SUMMED_AREA_GLSL
 #define PENUMBRA_LIB_SUMMED_AREA_GLSL
+#include "../shared/summed_area.h"
 
 struct SatChannelStats {
   double centre;
@@ -20,7 +21,7 @@ float satChannelValue(sampler2DArray penumbraChannelMap, int channel, int x, int
 }
 
 uint satIndex(int channel, int x, int y, ivec2 size) {
-  return (uint(channel) * uint(size.y) + uint(y)) * uint(size.x) + uint(x);
+  return (uint(channel) * uint(size.y) + uint(y)) * uint(summedAreaRowPitch(size.x)) + uint(x);
 }
 
 // The channels' extremes as order-preserving keys (unsigned order = float order, -0 below +0),

@@ -57,5 +57,15 @@ PENUMBRA_INLINE double summedAreaMean(double fixedSum, double area, double step,
   return fixedSum * step / area + centre;
 }
 
+// The GPU table's 64-bit sums are indexed (channel, y, x), each row padded by one 64-byte line:
+// the rows pass's lanes walk eight adjacent rows, and rows a power of two of bytes apart share
+// one cache set, with each other and with the channel texture's rows. VSM's table at 1024² on
+// llvmpipe took 15.8-19.9 ms unpadded, bimodal by process, and 14.5-16.3 padded
+// (docs/results/passes-llvmpipe-2026-12-06-rows.md).
+const int kSummedAreaRowPadding = 8;
+PENUMBRA_INLINE int summedAreaRowPitch(int width) {
+  return width + kSummedAreaRowPadding;
+}
+
 PENUMBRA_END_SHARED
 #endif
