@@ -45,7 +45,8 @@ void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout
 std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
 ShaderDefine blurRadiusDefine(const BlurSpec& spec);
 // TAPS_ALIKE: 1 where the prefilter passes sum the kernel's taps at unit weight and scale the
-// total once by weights[0] (sumsTapsAtUnitWeight, penumbra/filters.h), else 0.
+// total once by weights[0] (sumsTapsAtUnitWeight, penumbra/filters.h); 2 where the taps weigh
+// alike but each is weighted (channels of exponentials), by weights[0]; 0 for a Gaussian.
 ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike);
 void setBlurWeights(const Program& p, const BlurSpec& spec);
 // The fused prefilter's work group, TILE x TILE texels (passes/prefilter_fused.comp, and its

@@ -13,6 +13,7 @@
 #include "gl_formats.h"
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra::gl {
 
@@ -81,7 +82,8 @@ ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
 }
 
 ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike) {
-  return {"TAPS_ALIKE", sumsTapsAtUnitWeight(spec, alike) ? "1" : "0"};
+  if (sumsTapsAtUnitWeight(spec, alike)) return {"TAPS_ALIKE", "1"};
+  return {"TAPS_ALIKE", shaders::kernelTapsAlike(blurKernelId(spec.kernel)) ? "2" : "0"};
 }
 
 void setBlurWeights(const Program& p, const BlurSpec& spec) {
