@@ -13,7 +13,6 @@
 #include "gl_formats.h"
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
-#include "penumbra/shared/filter_weights.h"
 
 namespace penumbra::gl {
 
@@ -82,8 +81,7 @@ ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
 }
 
 ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike) {
-  if (sumsTapsAtUnitWeight(spec, alike)) return {"TAPS_ALIKE", "1"};
-  return {"TAPS_ALIKE", shaders::kernelTapsAlike(blurKernelId(spec.kernel)) ? "2" : "0"};
+  return {"TAPS_ALIKE", sumsTapsAtUnitWeight(spec, alike) ? "1" : "0"};
 }
 
 void setBlurWeights(const Program& p, const BlurSpec& spec) {

@@ -63,10 +63,9 @@ std::string validate(const penumbra::ExpandedShader& shader, const std::string& 
 // CHANNEL_FORMAT (each storage format and width), MSAA, SUMMED_AREA, ZMAX, REFERENCE, the
 // camera pass's light kind and softness, PENUMBRA_FILTER_MODE, ALPHA_TEST, LOOKUP_INPUTS, the
 // lookup's compiled-in paths, AXIS and the reduction switches (0 and 1), RADIUS and WEIGHTS (the
-// blur kernels' radius and weights), TAPS_ALIKE (a Gaussian; a box's taps summed and scaled once,
-// or each weighted by the common weight), LAYER_COUNT (the encode's fewest and most texel
-// layers), ROWS_PER_INVOCATION (the encode's), and the fused tile's TILE and TEXEL_COMPONENTS
-// (the format's).
+// blur kernels' radius and weights), TAPS_ALIKE (a box's taps summed and scaled once), LAYER_COUNT
+// (the encode's fewest and most texel layers), ROWS_PER_INVOCATION (the encode's and its minimal
+// copy's), and the fused tile's TILE and TEXEL_COMPONENTS (the format's).
 using Defines = std::vector<penumbra::ShaderDefine>;
 
 std::vector<Defines> variants(const std::string& source) {
@@ -172,7 +171,7 @@ std::vector<Defines> variants(const std::string& source) {
   expand("AXIS", {"0", "1"});
   expand("LAYER_COUNT", {"1", "12"});  // the encode's texel layers: 1..kMaxTexelLayers
   expand("ALL_MEAN", {"0", "1"});
-  expand("TAPS_ALIKE", {"0", "1", "2"});
+  expand("TAPS_ALIKE", {"0", "1"});
   expand("SOURCE_FORMAT", formats);
   expand("HALVING", {"0", "1"});
   // A pass over lib/layer_reduction.glsl resolves its reductions by one of three routes: at

@@ -40,7 +40,7 @@ void main() {
     ivec2 q = clamp(p + i * direction, ivec2(0), size - 1);
     sum = accumulateMeanTexel(sum, imageLoad(source, q), TAP_WEIGHT(i + BLUR_RADIUS));
   }
-#if TAPS_ALIKE == 1
+#if TAPS_ALIKE
   sum = scaleMeanTexel(sum, ALIKE_TAPS_WEIGHT);
 #endif
   imageStore(target, p, sum);
@@ -55,7 +55,7 @@ void main() {
     float weight = TAP_WEIGHT(i + BLUR_RADIUS);
     for (int c = 0; c < 4; ++c) acc[c] = accumulateTap(acc[c], texel[c], weight);
   }
-#if TAPS_ALIKE == 1
+#if TAPS_ALIKE
   for (int c = 0; c < 4; ++c) acc[c] = scaleTapWeights(acc[c], ALIKE_TAPS_WEIGHT);
 #endif
   imageStore(target, p,

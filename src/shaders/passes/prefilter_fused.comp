@@ -39,7 +39,7 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
     Texel texel = fromEncoded ? encoded[first + i * stride] : rows[first + i * stride];
     sum = accumulateMeanTexel(sum, texel, TAP_WEIGHT(i));
   }
-#if TAPS_ALIKE == 1
+#if TAPS_ALIKE
   sum = scaleMeanTexel(sum, ALIKE_TAPS_WEIGHT);
 #endif
   return sum;
@@ -56,7 +56,7 @@ Texel reduceTaps(int first, int stride, bool fromEncoded, int layer) {
   }
   vec4 result = vec4(0.0f);
   for (int c = 0; c < TEXEL_COMPONENTS; ++c) {
-#if TAPS_ALIKE == 1
+#if TAPS_ALIKE
     acc[c] = scaleTapWeights(acc[c], ALIKE_TAPS_WEIGHT);
 #endif
     result[c] = reductionResult(acc[c]);
