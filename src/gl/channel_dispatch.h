@@ -19,11 +19,12 @@ inline unsigned groups(int n, unsigned size) {
 
 // The encode and its minimal kernel (passes/encode.comp, passes/baseline_copy.comp) encode
 // several texels of a column per invocation, a group's height apart (ROWS_PER_INVOCATION): on
-// llvmpipe each invocation pays for every uniform it reads, and four rows an invocation took
-// LVSM's encode at 2048² from 32.1-33.1 ms to 24.8-26.6. Four rows where a texel's layers take at
-// most 8 bytes, else two: EVSM4 and the power CDF (16 bytes) and CSM (32) ran 1.12-1.21x slower
-// with four than with two (docs/results/passes-llvmpipe-2026-12-06-rows.md). A group covers
-// kChannelGroup x kChannelGroup * rows texels.
+// llvmpipe an invocation pays for every uniform it reads, and the encode reads the parameter and
+// range blocks once for all its rows. Four rows where a texel's layers take at most 8 bytes, else
+// two: the encodes of EVSM4 and the power CDF (16 bytes) and CSM (32) ran slower with four than
+// with two, where VSM's, ESM's and MSM's ran faster
+// (docs/results/passes-llvmpipe-2026-12-06-rows.md). A group covers kChannelGroup x
+// kChannelGroup * rows texels.
 int encodeRowsPerInvocation(const ChannelLayout& layout);
 ShaderDefine encodeRowsDefine(const ChannelLayout& layout);
 
@@ -45,8 +46,7 @@ void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout
 std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
 ShaderDefine blurRadiusDefine(const BlurSpec& spec);
 // TAPS_ALIKE: 1 where the prefilter passes sum the kernel's taps at unit weight and scale the
-// total once by weights[0] (sumsTapsAtUnitWeight, penumbra/filters.h); 2 where the taps weigh
-// alike but each is weighted (channels of exponentials), by weights[0]; 0 for a Gaussian.
+// total once by weights[0] (sumsTapsAtUnitWeight, penumbra/filters.h), else 0.
 ShaderDefine blurTapsAlikeDefine(const BlurSpec& spec, AlikeTaps alike);
 void setBlurWeights(const Program& p, const BlurSpec& spec);
 // The fused prefilter's work group, TILE x TILE texels (passes/prefilter_fused.comp, and its

@@ -554,10 +554,7 @@ double Renderer::summedAreaBoxMean(int x0, int y0, int x1, int y1, int channel) 
   auto prefix = [&](int x, int y) -> uint64_t {
     if (x < 0 || y < 0) return 0;
     uint64_t v = 0;
-    // The GPU's layout (lib/summed_area.glsl satIndex).
-    const size_t index =
-        (size_t(channel) * size_t(size) + size_t(y)) * size_t(shaders::summedAreaRowPitch(size)) +
-        size_t(x);
+    const size_t index = shaders::summedAreaIndex(channel, x, y, size, size);
     glGetNamedBufferSubData(s.shadows.state().maps.summedAreaSums().id(), GLintptr(index * 8), 8,
                             &v);
     return v;

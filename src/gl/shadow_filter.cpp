@@ -223,9 +223,9 @@ void ShadowFilter::State::checkFilter(const RenderSettings& r, int layers) const
           "GL_ARB_gpu_shader_fp64, which this GL (" +
           device + ") lacks: use --filter trilinear or anisotropic");
     }
-    // The table is one storage buffer of channels x size^2 64-bit sums, indexed in 32 bits.
-    const uint64_t entries = uint64_t(channelCount(r.technique, p)) * uint64_t(layers) *
-                             uint64_t(r.shadowMapSize) * uint64_t(r.shadowMapSize);
+    // The table is one storage buffer of 64-bit sums, indexed in 32 bits.
+    const uint64_t entries =
+        uint64_t(summedAreaSizes(channelCount(r.technique, p) * layers, r.shadowMapSize).sums) / 8;
     if (entries >= (uint64_t(1) << 32) || entries * 8 > uint64_t(maxStorageBlock)) {
       throw Error("the summed-area table of " + std::string(techniqueId(r.technique)) + " at " +
                   std::to_string(r.shadowMapSize) + "^2 (" + std::to_string(layers) +

@@ -100,6 +100,52 @@ Image cropped(const Image& depth, int size) {
   return c;
 }
 
+TEST_F(RendererTest, BoxOverExponentialChannelsStaysFiniteAtTheLargestExponents) {
+  // ESM filtering linearly stores exp(c z) up to exp(88) = 1.65e38 and EVSM's second moment
+  // exp(2 * 42) = 3.0e36: a box over them must weigh each tap before adding it (alikeTapsFor),
+  // since 3 taps of exp(88) or 129 of exp(84) summed first pass fp32's largest value, 3.4e38, and
+  // a compiler that sees one weight on every tap may regroup w*a + w*b into w*(a+b): reading
+  // weights[0] for every tap overflowed here (docs/results/passes-llvmpipe-2026-12-06-rows.md). Over a
+  // map at the far plane every box mean is the stored value itself; the tolerance is 129 roundings
+  // of 2^-24 each, the most the taps' products and sums can take.
+  Image depth(64, 64, 1);
+  for (float& v : depth.data()) v = 1.0f;
+  struct Case {
+    Technique technique;
+    const char* param;
+    int radius;
+    bool fused;
+  };
+  for (const Case& k :
+       {Case{Technique::Esm, "c=88", 1, false}, Case{Technique::Esm, "c=88", 1, true},
+        Case{Technique::Esm, "c=88", 64, false}, Case{Technique::Evsm4, "cPositive=42", 64, false},
+        Case{Technique::Evsm4, "cPositive=42", 10, true},
+        Case{Technique::Evsm2, "cPositive=42", 64, false}}) {
+    gl::RenderSettings s = small(k.technique);
+    const std::vector<Technique> one{k.technique};
+    applyParamAssignment(one, s.params, k.param);
+    s.filter = gl::FilterMode::Bilinear;
+    s.blur = BlurSpec{BlurKernel::Box, k.radius, 1.0f};
+    s.fusePrefilter = k.fused;
+    renderer->filterDepthMap(depth, s);
+    const Image gpu = renderer->readChannels(0);
+    const float stored = k.technique == Technique::Esm ? std::exp(88.0f) : std::exp(84.0f);
+    int bad = 0;
+    for (size_t i = 0; i < gpu.data().size(); ++i) {
+      const float v = gpu.data()[i];
+      // ESM's one channel and EVSM's second moment hold exp(88) and exp(84).
+      const bool largest = k.technique == Technique::Esm || i % size_t(gpu.channels()) == 1;
+      if (!std::isfinite(v) || (largest && std::abs(v - stored) > 129.0f * 0x1p-24f * stored)) {
+        if (++bad <= 3) {
+          ADD_FAILURE() << techniqueId(k.technique) << " " << k.param << " radius " << k.radius
+                        << (k.fused ? " fused" : "") << " value " << i << ": " << v;
+        }
+      }
+    }
+    EXPECT_EQ(bad, 0);
+  }
+}
+
 TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
   const Image scene = sceneDepth();
   // A power of two (every level halves) and 100 (levels of 25 and 3 texels fold their odd
@@ -900,7 +946,9 @@ TEST_F(RendererTest, MsaaEncodeOfEveryTechniqueReducesItsEncodedSamplesLikeTheCp
                         Case{Technique::Csm, nullptr}, Case{Technique::Csm, "storage=float32"},
                         Case{Technique::PowerCdf, nullptr}, Case{Technique::Msm, nullptr}}) {
     gl::RenderSettings s = small(k.technique);
-    s.shadowMapSize = 128;
+    // Not a multiple of the 16 or 32 rows an encode group covers (encodeRowsPerInvocation): the
+    // last groups' rows past the edge fetch the last row and store nothing.
+    s.shadowMapSize = 120;
     s.blur.radius = 0;
     s.filter = gl::FilterMode::Point;
     s.msaaSamples = 4;
@@ -1172,7 +1220,8 @@ namespace penumbra {
 namespace {
 
 TEST_F(RendererTest, SummedAreaTablesBeyondOneStorageBufferAreRefusedUpFront) {
-  // CSM's 32 channels at 4096^2 need 4 GiB of 64-bit sums in one buffer: beyond any GL's
+  // CSM's 32 channels at 4096^2 need 4 GiB of 64-bit sums in one buffer, 32 x 4096 rows of
+  // 4096 + 8 sums (each row padded by one 64-byte line, shared/summed_area.h): beyond any GL's
   // storage-block limit and, at 8192^2 with 16 LVSM layers, beyond 32-bit indexing.
   gl::RenderSettings s = small(Technique::Csm);
   s.filter = gl::FilterMode::SummedArea;
@@ -1181,7 +1230,7 @@ TEST_F(RendererTest, SummedAreaTablesBeyondOneStorageBufferAreRefusedUpFront) {
     renderer->validate(s);
     FAIL() << "a 4 GiB summed-area table must be refused";
   } catch (const Error& e) {
-    EXPECT_NE(std::string(e.what()).find("needs 4294967296 bytes in one storage buffer"),
+    EXPECT_NE(std::string(e.what()).find("needs 4303355904 bytes in one storage buffer"),
               std::string::npos)
         << e.what();
   }

@@ -21,7 +21,7 @@ float satChannelValue(sampler2DArray penumbraChannelMap, int channel, int x, int
 }
 
 uint satIndex(int channel, int x, int y, ivec2 size) {
-  return (uint(channel) * uint(size.y) + uint(y)) * uint(summedAreaRowPitch(size.x)) + uint(x);
+  return summedAreaIndex(channel, x, y, size.x, size.y);
 }
 
 // The channels' extremes as order-preserving keys (unsigned order = float order, -0 below +0),

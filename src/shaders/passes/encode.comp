@@ -47,11 +47,10 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
 #endif
 
 // Each invocation encodes ROWS_PER_INVOCATION texels of one column, a group's height apart, so a
-// group's lanes still cover rows of 8 adjacent texels, and reads the parameter and range blocks
-// once per texel layer for all of them: llvmpipe pays for each such read in every invocation.
-// LVSM's encode at 2048² took 26.6 ms with its four range reads per texel layer replaced by
-// constants, 30.6 with them, and 25 with four rows an invocation
-// (docs/results/passes-llvmpipe-2026-12-06-rows.md; gl/channel_dispatch.h encodeRowsPerInvocation).
+// group's lanes still cover rows of 8 adjacent texels. llvmpipe pays for every uniform element an
+// invocation reads, and without MSAA the parameter and range blocks are read once per texel layer
+// for all the rows (gl/channel_dispatch.h encodeRowsPerInvocation; measured in
+// docs/results/passes-llvmpipe-2026-12-06-rows.md).
 const int kRows = ROWS_PER_INVOCATION;
 
 void main() {

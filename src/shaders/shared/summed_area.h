@@ -57,14 +57,19 @@ PENUMBRA_INLINE double summedAreaMean(double fixedSum, double area, double step,
   return fixedSum * step / area + centre;
 }
 
-// The GPU table's 64-bit sums are indexed (channel, y, x), each row padded by one 64-byte line:
-// the rows pass's lanes walk eight adjacent rows, and rows a power of two of bytes apart share
-// one cache set, with each other and with the channel texture's rows. VSM's table at 1024² on
-// llvmpipe took 15.8-19.9 ms unpadded, bimodal by process, and 14.5-16.3 padded
+// The GPU table's 64-bit sums are indexed (channel, y, x), each row padded by one 64-byte line
+// (kSummedAreaRowPadding sums): the rows pass's lanes walk eight adjacent rows, and rows a power
+// of two of bytes apart share one cache set, with each other and with the channel texture's rows,
+// which made the table's time on llvmpipe bimodal by process
 // (docs/results/passes-llvmpipe-2026-12-06-rows.md).
 const int kSummedAreaRowPadding = 8;
 PENUMBRA_INLINE int summedAreaRowPitch(int width) {
   return width + kSummedAreaRowPadding;
+}
+// The index of channel `channel`'s sum at (x, y) in a width x height table. Its entries stay
+// below 2^32 (ShadowFilter refuses larger tables), so 32 bits hold it.
+PENUMBRA_INLINE uint summedAreaIndex(int channel, int x, int y, int width, int height) {
+  return (uint(channel) * uint(height) + uint(y)) * uint(summedAreaRowPitch(width)) + uint(x);
 }
 
 PENUMBRA_END_SHARED
