@@ -48,8 +48,8 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
 
 // Each invocation encodes ROWS_PER_INVOCATION texels of one column, a group's height apart, so a
 // group's lanes still cover rows of 8 adjacent texels. llvmpipe pays for every uniform element an
-// invocation reads, and without MSAA the parameter and range blocks are read once per texel layer
-// for all the rows (gl/channel_dispatch.h encodeRowsPerInvocation; measured in
+// invocation reads, and an invocation's reads serve all its rows: without MSAA the range block is
+// read once per texel layer (gl/channel_dispatch.h encodeRowsPerInvocation; measured in
 // docs/results/passes-llvmpipe-2026-12-06-rows.md).
 const int kRows = ROWS_PER_INVOCATION;
 

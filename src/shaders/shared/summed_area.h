@@ -58,10 +58,10 @@ PENUMBRA_INLINE double summedAreaMean(double fixedSum, double area, double step,
 }
 
 // The GPU table's 64-bit sums are indexed (channel, y, x), each row padded by one 64-byte line
-// (kSummedAreaRowPadding sums): the rows pass's lanes walk eight adjacent rows, and rows a power
-// of two of bytes apart share one cache set, with each other and with the channel texture's rows,
-// which made the table's time on llvmpipe bimodal by process
-// (docs/results/passes-llvmpipe-2026-12-06-rows.md).
+// (kSummedAreaRowPadding sums): the rows pass gives each invocation a row, so a CPU rasteriser's
+// SIMD lanes (llvmpipe's eight) store to adjacent rows at once, and at power-of-two sizes rows
+// a power of two of bytes apart share one cache set. Unpadded, VSM's table on llvmpipe was
+// bimodal by process (docs/results/passes-llvmpipe-2026-12-06-rows.md).
 const int kSummedAreaRowPadding = 8;
 PENUMBRA_INLINE int summedAreaRowPitch(int width) {
   return width + kSummedAreaRowPadding;
