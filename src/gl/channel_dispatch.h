@@ -19,10 +19,10 @@ inline unsigned groups(int n, unsigned size) {
 
 // The encode and its minimal kernel (passes/encode.comp, passes/baseline_copy.comp) encode
 // several texels of a column per invocation, a group's height apart (ROWS_PER_INVOCATION): on
-// llvmpipe an invocation pays for every uniform it reads, and the encode reads the parameter and
-// range blocks once for all its rows. Four rows where a texel's layers take at most 8 bytes, else
-// two: the encodes of EVSM4 and the power CDF (16 bytes) and CSM (32) ran slower with four than
-// with two, where VSM's, ESM's and MSM's ran faster
+// llvmpipe an invocation pays for every uniform it reads, and the encode reads the range block
+// once per texel layer for all its rows. Four rows where a texel's layers take at most 8 bytes,
+// else two: the encodes of EVSM4 and the power CDF (16 bytes) and CSM (32) ran slower with four
+// than with two, where VSM's, ESM's and MSM's ran faster
 // (docs/results/passes-llvmpipe-2026-12-06-rows.md). A group covers kChannelGroup x
 // kChannelGroup * rows texels.
 int encodeRowsPerInvocation(const ChannelLayout& layout);
