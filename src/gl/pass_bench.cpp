@@ -18,6 +18,7 @@
 #include "gl_formats.h"
 #include "gpu_timer.h"
 #include "memory_plan.h"
+#include "minimal_copy.h"
 #include "penumbra/error.h"
 #include "penumbra/filters.h"
 #include "penumbra/gl/context.h"
@@ -243,17 +244,8 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   Texture channels = arrayTexture(format, size, layout.layers, levels);
   Texture scratch = arrayTexture(format, size, layout.layers, 1);
 
-  std::vector<ShaderDefine> copyDefines = defines;
-  copyDefines.push_back({"LAYER_COUNT", std::to_string(layout.layers)});
-  copyDefines.push_back(encodeRowsDefine(layout));
-  const Program& copyProgram = programs.compute("passes/baseline_copy.comp", copyDefines);
-  setSize(copyProgram, "size", size);
-  const unsigned copyRows = unsigned(encodeRowsPerInvocation(layout));
-  MinimalKernel copy{[&] {
-    glBindTextureUnit(0, depth.id());
-    bindChannelImage(channels, layout, 0);
-    copyProgram.dispatch(groups(size, kChannelGroup), groups(size, kChannelGroup * copyRows));
-  }};
+  const MinimalCopy copyKernel(programs, layout, size);
+  MinimalKernel copy{[&] { copyKernel.run(depth, channels); }};
 
   std::vector<ShaderDefine> blurDefines = defines;
   for (ShaderDefine& d : blurKernelDefines(settings.blur)) blurDefines.push_back(std::move(d));

@@ -6,28 +6,27 @@
 // docs/results). The layer count is a compile-time constant (LAYER_COUNT), as the encode's, and
 // each invocation copies the encode's rows (ROWS_PER_INVOCATION).
 layout(local_size_x = 8, local_size_y = 8) in;
+// After the group's size, which it reads.
+#include "../lib/column_rows.glsl"
 layout(binding = 0) uniform sampler2DArray depth;
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray target;
 
 uniform ivec2 size;
 const int kLayerCount = LAYER_COUNT;
-// The encode's texels per invocation, a group's height apart (passes/encode.comp).
-const int kRows = ROWS_PER_INVOCATION;
 
 void main() {
   int x = int(gl_GlobalInvocationID.x);
-  int firstRow = int(gl_WorkGroupID.y * gl_WorkGroupSize.y) * kRows + int(gl_LocalInvocationID.y);
-  if (x >= size.x || firstRow >= size.y) return;
+  if (x >= size.x || invocationRow(0) >= size.y) return;
   const vec4 channelScale = vec4(1.0, 0.75, 0.5, 0.25);
   float z[kRows];
   for (int k = 0; k < kRows; ++k) {
-    int y = min(firstRow + k * int(gl_WorkGroupSize.y), size.y - 1);
+    int y = min(invocationRow(k), size.y - 1);
     z[k] = texelFetch(depth, ivec3(x, y, 0), 0).x;
   }
   // Stores past the edge have no effect (GL 4.5 §8.26), as the encode's.
   for (int layer = 0; layer < kLayerCount; ++layer) {
     for (int k = 0; k < kRows; ++k) {
-      imageStore(target, ivec3(x, firstRow + k * int(gl_WorkGroupSize.y), layer),
+      imageStore(target, ivec3(x, invocationRow(k), layer),
                  z[k] * channelScale + float(layer) / 16.0);
     }
   }

@@ -7,6 +7,8 @@
 #include "../shared/channel_reduction.h"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+// After the group's size, which it reads.
+#include "../lib/column_rows.glsl"
 layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2DArray channelImage;
 #if MSAA
 layout(binding = 0) uniform sampler2DMSArray depthMap;
@@ -46,23 +48,15 @@ vec4 encodeSamples(ivec3 p, int texelLayer) {
 }
 #endif
 
-// Each invocation encodes ROWS_PER_INVOCATION texels of one column, a group's height apart, so a
-// group's lanes still cover rows of 8 adjacent texels. llvmpipe pays for every uniform element an
-// invocation reads, and an invocation's reads serve all its rows: without MSAA the range block is
-// read once per texel layer (gl/channel_dispatch.h encodeRowsPerInvocation; measured in
-// docs/results/passes-llvmpipe-2026-12-06-rows.md).
-const int kRows = ROWS_PER_INVOCATION;
-
 void main() {
   int x = int(gl_GlobalInvocationID.x);
-  int firstRow = int(gl_WorkGroupID.y * gl_WorkGroupSize.y) * kRows + int(gl_LocalInvocationID.y);
   int cascade = int(gl_GlobalInvocationID.z);  // its depth layer
-  if (x >= size.x || firstRow >= size.y) return;
+  if (x >= size.x || invocationRow(0) >= size.y) return;
   // Rows past the map's edge fetch its last row; their stores are invalid, which GL defines as
   // having no effect (GL 4.5 §8.26).
   ivec3 texels[kRows];
   for (int k = 0; k < kRows; ++k) {
-    texels[k] = ivec3(x, firstRow + k * int(gl_WorkGroupSize.y), cascade);
+    texels[k] = ivec3(x, invocationRow(k), cascade);
   }
 #if MSAA
   for (int k = 0; k < kRows; ++k) {
