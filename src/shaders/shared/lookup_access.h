@@ -48,6 +48,19 @@ float blurCumulativeWeight(LookupSources s, int u);
 #define PENUMBRA_SUMMED_AREA 0
 #endif
 
+// The soft-shadow paths (soft_shadow.h: the blocker search and the penumbra's filter) exist in
+// C++ always and in GLSL unless a variant leaves them out: camera.frag's hard-light variants
+// (SOFT_LIGHT 0), which pass a light of size 0 to the lookup. Folded away after inlining, the
+// paths still cost the GLSL compiler: compare's eleven camera programs took 1.8 s to link on
+// llvmpipe with them, 1.1 s without (docs/renderer.md, the camera pass's variants).
+#ifdef __cplusplus
+#define PENUMBRA_SOFT_SHADOWS 1
+#elif defined(SOFT_LIGHT)
+#define PENUMBRA_SOFT_SHADOWS SOFT_LIGHT
+#else
+#define PENUMBRA_SOFT_SHADOWS 1
+#endif
+
 #if PENUMBRA_SUMMED_AREA
 // A summed-area table (penumbra/summed_area_table.h): a channel's wrapping fixed-point prefix sum
 // over [0,x] x [0,y] (0 when x or y < 0), and its centre and step.

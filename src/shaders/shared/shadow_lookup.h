@@ -348,10 +348,12 @@ PENUMBRA_INLINE float esmPcfFallback(LookupSources s, LookupSettings ls, vec2 uv
                                      float receiverDepth, vec2 depthPerTexel,
                                      float penumbraTexels) {
   PcfParams pcf = pcfMatchingPrefilter(ls);
+#if PENUMBRA_SOFT_SHADOWS
   if (penumbraTexels >= 0.0f) {
     return pcssVisibility(s, ls.shadowMapSize, uv, receiverDepth, depthPerTexel, pcf.receiverPlane,
                           pcf.bias, penumbraTexels);
   }
+#endif
   return pcfLookup(s, ls.shadowMapSize, true, uv, receiverDepth, depthPerTexel, pcf);
 }
 
@@ -376,6 +378,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
   bool softProbes = false;  // the penumbra, not the pixel's footprint, sets the filter width
   float softWidth = 0.0f;
   float penumbra = -1.0f;  // area lights: the penumbra's width in texels, blur included
+#if PENUMBRA_SOFT_SHADOWS
   if (light.size > 0.0f && technique != kTechniqueHard) {
     BlockerEstimate blockers = searchBlockers(s, ls.shadowMapSize, light, uv, d, depthPerTexel);
     if (blockers.share == 0.0f) {
@@ -398,6 +401,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     uvDx = footprint.uvDx;
     uvDy = footprint.uvDy;
   }
+#endif
   if (!techniquePrefiltersChannels(technique)) {
     PcfParams pcf = p.pcf;
     pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
@@ -411,8 +415,12 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
     return r;
   }
+#if PENUMBRA_SOFT_SHADOWS
   FilteredChannels f = softProbes ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
                                   : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+#else
+  FilteredChannels f = filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
+#endif
   if (technique == kTechniqueEsm &&
       esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
     r.diagnostic = 1.0f;
