@@ -1,6 +1,11 @@
 // The technique and its parameter block, as every pass that runs the shared math sees them.
 #ifndef PENUMBRA_LIB_TECHNIQUE_BLOCK_GLSL
 #define PENUMBRA_LIB_TECHNIQUE_BLOCK_GLSL
+#ifdef TECHNIQUE_ID
+// The other techniques' lookup paths leave the source (shared/constants.h), from here on.
+#undef PENUMBRA_COMPILES_TECHNIQUE
+#define PENUMBRA_COMPILES_TECHNIQUE(t) (TECHNIQUE_ID == (t))
+#endif
 #include "../shared/technique_dispatch.h"
 
 #ifndef PENUMBRA_PARAMETER_BLOCK

@@ -402,6 +402,8 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     uvDy = footprint.uvDy;
   }
 #endif
+#if PENUMBRA_COMPILES_TECHNIQUE(PENUMBRA_TECHNIQUE_HARD) || \
+    PENUMBRA_COMPILES_TECHNIQUE(PENUMBRA_TECHNIQUE_PCF)
   if (!techniquePrefiltersChannels(technique)) {
     PcfParams pcf = p.pcf;
     pcf.radius = worldConstantKernelRadius(pcf.radius, ls.kernelScale);
@@ -415,12 +417,14 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     r.visibility = pcfLookup(s, ls.shadowMapSize, false, uv, d, depthPerTexel, pcf);
     return r;
   }
+#endif
 #if PENUMBRA_SOFT_SHADOWS
   FilteredChannels f = softProbes ? softFilterChannels(s, ls, technique, p, uv, softWidth, d)
                                   : filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
 #else
   FilteredChannels f = filterChannels(s, ls, technique, p, uv, uvDx, uvDy, d);
 #endif
+#if PENUMBRA_COMPILES_TECHNIQUE(PENUMBRA_TECHNIQUE_ESM)
   if (technique == kTechniqueEsm &&
       esmFails(s, ls, p.esm, f.values[0], d, uv, uvDx, uvDy, depthPerTexel)) {
     r.diagnostic = 1.0f;
@@ -431,6 +435,7 @@ PENUMBRA_INLINE ShadowSample shadowLookup(LookupSources s, LookupSettings ls, in
     }
     return r;
   }
+#endif
   if (technique == kTechniqueLvsm) r.diagnostic = float(selectLayer(d, p.lvsm.splits));
   if (technique == kTechniquePowerCdf) r.diagnostic = float(powerCdfReceiverLayer(d, p.powerCdf));
   r.visibility = reconstructVisibility(technique, f.values, d, p);
