@@ -27,6 +27,11 @@ inline unsigned groups(int n, unsigned size) {
 // kChannelGroup * rows texels.
 int encodeRowsPerInvocation(const ChannelLayout& layout);
 ShaderDefine encodeRowsDefine(const ChannelLayout& layout);
+// The encode's (and its minimal copy's) work groups over a size x size map.
+struct GroupGrid {
+  unsigned x = 0, y = 0;
+};
+GroupGrid encodeGroups(const ChannelLayout& layout, int size);
 
 std::vector<ShaderDefine> formatDefines(const ChannelLayout& layout);
 // How the blur and mip passes reduce the channels, resolved at compile time where possible

@@ -22,8 +22,8 @@ MinimalCopy::MinimalCopy(ProgramCache& programs, const ChannelLayout& layout, in
 void MinimalCopy::run(const Texture& depth, const Texture& channels) const {
   glBindTextureUnit(0, depth.id());
   bindChannelImage(channels, layout_, 0);
-  const unsigned rows = unsigned(encodeRowsPerInvocation(layout_));
-  program_->dispatch(groups(size_, kChannelGroup), groups(size_, kChannelGroup * rows));
+  const GroupGrid grid = encodeGroups(layout_, size_);
+  program_->dispatch(grid.x, grid.y);
 }
 
 }  // namespace penumbra::gl

@@ -76,6 +76,11 @@ ShaderDefine encodeRowsDefine(const ChannelLayout& layout) {
   return {"ROWS_PER_INVOCATION", std::to_string(encodeRowsPerInvocation(layout))};
 }
 
+GroupGrid encodeGroups(const ChannelLayout& layout, int size) {
+  const unsigned rows = unsigned(encodeRowsPerInvocation(layout));
+  return {groups(size, kChannelGroup), groups(size, kChannelGroup * rows)};
+}
+
 ShaderDefine blurRadiusDefine(const BlurSpec& spec) {
   return {"RADIUS", std::to_string(spec.radius)};
 }
@@ -206,9 +211,8 @@ void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& param
   encode.set("sampleCount", samples);
   glBindTextureUnit(0, depthTexture);
   bindChannelImage(channels_, shape_.layout, 0);
-  const int rows = encodeRowsPerInvocation(shape_.layout);
-  encode.dispatch(groups(shape_.size, kGroup), groups(shape_.size, kGroup * unsigned(rows)),
-                  unsigned(shape_.cascades));
+  const GroupGrid grid = encodeGroups(shape_.layout, shape_.size);
+  encode.dispatch(grid.x, grid.y, unsigned(shape_.cascades));
 }
 
 void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBlock& parameters,

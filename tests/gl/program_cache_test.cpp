@@ -31,5 +31,17 @@ TEST_F(ProgramCacheTest, OnlyVariantsThatReadTheTechniqueAreCompiledPerTechnique
   EXPECT_NE(encodeVsm.id(), encodeEvsm.id()) << "the encode is the technique's";
 }
 
+// The shared constants (shared/constants.h) reach passes that read no technique, such as LVSM's
+// Lloyd sums: they must not name the technique's define (PENUMBRA_COMPILES_TECHNIQUE's fallback
+// lives there), or every such pass would compile once per technique.
+TEST_F(ProgramCacheTest, PassesReadingOnlyTheSharedConstantsAreCompiledOnce) {
+  gl::ProgramCache programs;
+  programs.setTechnique(Technique::Lvsm);
+  const gl::Program& lvsm = programs.compute("passes/lloyd_sums.comp", {});
+  programs.setTechnique(Technique::PowerCdf);
+  const gl::Program& powerCdf = programs.compute("passes/lloyd_sums.comp", {});
+  EXPECT_EQ(lvsm.id(), powerCdf.id());
+}
+
 }  // namespace
 }  // namespace penumbra

@@ -9,6 +9,10 @@
 // map. A hard light (no light size): soft shadows are the renderer's.
 #ifndef PENUMBRA_LIB_PENUMBRA_SHADOW_GLSL
 #define PENUMBRA_LIB_PENUMBRA_SHADOW_GLSL
+// penumbraShadow passes a hard light: the soft paths stay out of the lookup's source.
+#ifndef PENUMBRA_SOFT_SHADOWS
+#define PENUMBRA_SOFT_SHADOWS 0
+#endif
 #include "lookup_access.glsl"
 #include "../shared/receiver_plane.h"
 

@@ -20,8 +20,7 @@ void main() {
   const vec4 channelScale = vec4(1.0, 0.75, 0.5, 0.25);
   float z[kRows];
   for (int k = 0; k < kRows; ++k) {
-    int y = min(invocationRow(k), size.y - 1);
-    z[k] = texelFetch(depth, ivec3(x, y, 0), 0).x;
+    z[k] = texelFetch(depth, ivec3(x, invocationFetchRow(k, size.y), 0), 0).x;
   }
   // Stores past the edge have no effect (GL 4.5 §8.26), as the encode's.
   for (int layer = 0; layer < kLayerCount; ++layer) {

@@ -48,6 +48,8 @@
 #ifndef SOFT_LIGHT
 #define SOFT_LIGHT 0
 #endif
+// A hard light's variants leave the soft paths out of the shared lookup's source.
+#define PENUMBRA_SOFT_SHADOWS SOFT_LIGHT
 #include "../lib/lookup_access.glsl"
 #include "../lib/material.glsl"
 #include "../shared/point_light_faces.h"

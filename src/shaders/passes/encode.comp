@@ -52,15 +52,14 @@ void main() {
   int x = int(gl_GlobalInvocationID.x);
   int cascade = int(gl_GlobalInvocationID.z);  // its depth layer
   if (x >= size.x || invocationRow(0) >= size.y) return;
-  // Rows past the map's edge fetch its last row; their stores are invalid, which GL defines as
-  // having no effect (GL 4.5 §8.26).
+  // Rows past the map's edge fetch its last row and store nowhere (invocationFetchRow).
   ivec3 texels[kRows];
   for (int k = 0; k < kRows; ++k) {
     texels[k] = ivec3(x, invocationRow(k), cascade);
   }
 #if MSAA
   for (int k = 0; k < kRows; ++k) {
-    ivec3 fetched = ivec3(x, min(texels[k].y, size.y - 1), cascade);
+    ivec3 fetched = ivec3(x, invocationFetchRow(k, size.y), cascade);
     for (int layer = 0; layer < layerCount; ++layer) {
       imageStore(channelImage, ivec3(texels[k].xy, cascade * layerCount + layer),
                  encodeSamples(fetched, layer));
@@ -69,7 +68,7 @@ void main() {
 #else
   TexelEncoding encodings[kRows];
   for (int k = 0; k < kRows; ++k) {
-    float depth = texelFetch(depthMap, ivec3(x, min(texels[k].y, size.y - 1), cascade), 0).x;
+    float depth = texelFetch(depthMap, ivec3(x, invocationFetchRow(k, size.y), cascade), 0).x;
     encodings[k] = startTexelEncoding(penumbraTechnique, depth, penumbraParams);
   }
   for (int layer = 0; layer < layerCount; ++layer) {

@@ -33,10 +33,9 @@ const int kTechniqueCount = 10;
 // Whether a shader's source keeps technique t's own lookup paths: a shader compiled for one
 // technique (lib/technique_block.glsl defines this macro for the renderer's variants) leaves the
 // other techniques' out, where C++ and a shader compiled for every technique keep them all. The
-// paths left out were folded away after inlining, but the GLSL compiler paid for them: compare's
-// eleven camera programs linked in 1.1 s on llvmpipe with PCF's and ESM's paths in every
-// technique's, 0.7 s without (docs/renderer.md, the camera pass's variants). This header must not
-// name the define itself: ProgramCache specialises every shader whose source names it.
+// paths left out were folded away after inlining, but the GLSL compiler paid for them
+// (docs/renderer.md, the camera pass's variants). This header must not name the define itself:
+// ProgramCache specialises every shader whose source names it (ProgramCacheTest).
 #ifndef PENUMBRA_COMPILES_TECHNIQUE
 #define PENUMBRA_COMPILES_TECHNIQUE(t) 1
 #endif

@@ -49,15 +49,11 @@ float blurCumulativeWeight(LookupSources s, int u);
 #endif
 
 // The soft-shadow paths (soft_shadow.h: the blocker search and the penumbra's filter) exist in
-// C++ always and in GLSL unless a variant leaves them out: camera.frag's hard-light variants
-// (SOFT_LIGHT 0), which pass a light of size 0 to the lookup. Folded away after inlining, the
-// paths still cost the GLSL compiler: compare's eleven camera programs took 1.8 s to link on
-// llvmpipe with them, 1.1 s without (docs/renderer.md, the camera pass's variants).
-#ifdef __cplusplus
-#define PENUMBRA_SOFT_SHADOWS 1
-#elif defined(SOFT_LIGHT)
-#define PENUMBRA_SOFT_SHADOWS SOFT_LIGHT
-#else
+// C++ always and in GLSL unless a shader that only ever passes a light of size 0 leaves them out
+// by defining this 0 first: camera.frag's hard-light variants, penumbra_shadow.glsl. Folded away
+// after inlining, the paths still cost the GLSL compiler (docs/renderer.md, the camera pass's
+// variants).
+#ifndef PENUMBRA_SOFT_SHADOWS
 #define PENUMBRA_SOFT_SHADOWS 1
 #endif
 
