@@ -223,6 +223,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   State& s = *state_;
   if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
   s.settings = settings;
+  s.referenceFrame = reference;
   s.programs.setTechnique(settings.technique);
   for (GpuTimer* timer : {&s.light.timer, &s.camera.timer, &s.depthBoundsTimer}) {
     timer->setEnabled(settings.timing);
@@ -460,6 +461,24 @@ double Renderer::timeMinimalLookup(bool esmFallback) {
   return timerQueriesMeasureExecution() ? s.camera.minimalTimer.gpuMilliseconds()
                                         : s.camera.minimalTimer.wallMilliseconds();
 }
+
+double Renderer::timeCameraPass() {
+  State& s = *state_;
+  if (!s.scene || s.camera.bytes() == 0 || s.referenceFrame) {
+    throw Error("no technique's frame to draw the camera pass of again: call Renderer::render "
+                "first");
+  }
+  const bool timing = s.settings.timing;
+  s.camera.timer.setEnabled(true);
+  s.camera.timer.reset();  // the frame's own time is not this draw's
+  s.camera.render(s.programs, *s.scene, s.settings, s.frame, s.shadows, false);
+  const double ms = timerQueriesMeasureExecution() ? s.camera.timer.gpuMilliseconds()
+                                                   : s.camera.timer.wallMilliseconds();
+  s.camera.timer.setEnabled(timing);
+  return ms;
+}
+
+Image Renderer::readCameraColor() const { return state_->camera.readColor(); }
 
 Image Renderer::readMinimalLookupColor() const {
   return state_->camera.readMinimalLookupColor();

@@ -55,6 +55,7 @@ struct Renderer::State {
 
   RenderSettings settings;  // of the last frame
   FrameGeometry frame;      // of the last frame
+  bool referenceFrame = false;  // whether the last frame was a reference's
   std::vector<BlurSpec> cascadeBlurs;
 
   MemoryReport memory() const;

@@ -266,6 +266,11 @@ class Renderer {
   // ESM's threshold classification and its fallback as well, where the pass has them.
   // The draw's milliseconds: a GPU timer query where they measure execution, else wall clock.
   double timeMinimalLookup(bool esmFallback = false);
+  // bench --passes: the last frame's camera pass drawn again (the same program, inputs and
+  // targets), so that the pass and its minimal lookup can be timed alternately several times a
+  // frame. Its milliseconds, as timeMinimalLookup's; after render() of a technique's frame.
+  double timeCameraPass();
+  Image readCameraColor() const;  // the camera pass's colour target as its last draw left it
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
