@@ -127,13 +127,6 @@ struct Yardstick {
   const Program* copyProgram = nullptr;
 };
 
-// The camera pass's draws a frame, each followed by its minimal lookups: its first draw is the
-// frame's own, the others Renderer::timeCameraPass. A camera pass takes a few milliseconds where a
-// frame takes tens, so that one draw a frame left the pass and its yardstick a sample or two
-// outside llvmpipe's slow phases (both rasteriser threads on one core) and a ratio up to 1.47x
-// where the next run read 1.18x (docs/results/passes-llvmpipe-2026-12-06-night.md).
-constexpr int kCameraDrawsPerFrame = 4;
-
 // The renderer's own pass times over `repeats` frames after a warm-up frame (shader compilation,
 // resources), each frame followed by one timed run of every minimal kernel in `kernels`
 // (warmed up too), and its camera pass drawn kCameraDrawsPerFrame times in all, each draw
@@ -222,8 +215,9 @@ void checkPassBenchable(const Scene& scene, const RenderSettings& settings) {
         "minimal kernels run on one, where cascades and a point light's six faces are several");
   }
   if (scene.light.size > 0.0f) {
-    throw Error("bench --passes measures hard lights (--light-size 0): the minimal lookup has no "
-                "blocker search or widened filter to stand beside a soft light's");
+    throw Error(
+        "bench --passes measures hard lights (--light-size 0): the minimal lookup has no "
+        "blocker search or widened filter to stand beside a soft light's");
   }
 }
 
@@ -346,20 +340,33 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              yardstick.describe("blur, " + taps), frameTimes(yardstickBlur.times)});
   }
   if (summedArea) {
-    result.passes.push_back({"summed-area table", frameTimes(passes.mipsOrSat),
-                             "plain 64-bit row and column prefix sums", frameTimes(prefix.times),
-                             "", {}});
+    result.passes.push_back({"summed-area table",
+                             frameTimes(passes.mipsOrSat),
+                             "plain 64-bit row and column prefix sums",
+                             frameTimes(prefix.times),
+                             "",
+                             {}});
   } else if (levels > 1) {
-    result.passes.push_back({"mips", frameTimes(passes.mipsOrSat), "glGenerateTextureMipmap",
-                             frameTimes(generateMips.times), "", {}});
+    result.passes.push_back({"mips",
+                             frameTimes(passes.mipsOrSat),
+                             "glGenerateTextureMipmap",
+                             frameTimes(generateMips.times),
+                             "",
+                             {}});
   }
-  result.passes.push_back({"camera", frameTimes(passes.camera),
+  result.passes.push_back({"camera",
+                           frameTimes(passes.camera),
                            minimalLookupDescription(settings, summedArea, false),
-                           frameTimes(minimalLookup.times), "", {}});
+                           frameTimes(minimalLookup.times),
+                           "",
+                           {}});
   if (esmFallback) {
-    result.passes.push_back({"camera", frameTimes(passes.camera),
+    result.passes.push_back({"camera",
+                             frameTimes(passes.camera),
                              minimalLookupDescription(settings, summedArea, true),
-                             frameTimes(minimalLookupWithFallback.times), "", {}});
+                             frameTimes(minimalLookupWithFallback.times),
+                             "",
+                             {}});
   }
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;

@@ -465,8 +465,9 @@ double Renderer::timeMinimalLookup(bool esmFallback) {
 double Renderer::timeCameraPass() {
   State& s = *state_;
   if (!s.scene || s.camera.bytes() == 0 || s.referenceFrame) {
-    throw Error("no technique's frame to draw the camera pass of again: call Renderer::render "
-                "first");
+    throw Error(
+        "no technique's frame to draw the camera pass of again: call Renderer::render "
+        "first");
   }
   const bool timing = s.settings.timing;
   s.camera.timer.setEnabled(true);
@@ -478,7 +479,9 @@ double Renderer::timeCameraPass() {
   return ms;
 }
 
-Image Renderer::readCameraColor() const { return state_->camera.readColor(); }
+Image Renderer::readCameraColor() const {
+  return state_->camera.readColor();
+}
 
 Image Renderer::readMinimalLookupColor() const {
   return state_->camera.readMinimalLookupColor();

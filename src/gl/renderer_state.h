@@ -42,7 +42,7 @@ struct Renderer::State {
   uint64_t sceneFingerprint = 0;
   uint64_t sceneLayoutFingerprint = 0;  // sceneLayoutFingerprint: a new pose updates vertices
   ViewBounds viewBounds;  // the frame's depth ranges and the light's fit (Scene::viewBounds)
-  Scene sceneDefaults;  // name, camera and light of the uploaded scene (no meshes)
+  Scene sceneDefaults;    // name, camera and light of the uploaded scene (no meshes)
 
   DepthBoundsPass depthBounds;
   LightPass light;
@@ -53,8 +53,8 @@ struct Renderer::State {
   std::optional<Texture> uploadedDepth;  // filterDepthMap's input
   GpuTimer depthBoundsTimer;
 
-  RenderSettings settings;  // of the last frame
-  FrameGeometry frame;      // of the last frame
+  RenderSettings settings;      // of the last frame
+  FrameGeometry frame;          // of the last frame
   bool referenceFrame = false;  // whether the last frame was a reference's
   std::vector<BlurSpec> cascadeBlurs;
 

@@ -232,8 +232,8 @@ TEST_F(PassBench, TheCameraPassDrawnAgainIsTheFramesOwn) {
   s.readBack = gl::frame_image::kColor;
   renderer.render(scene, s);  // llvmpipe compiles the camera pass at its first draw
   const gl::RenderResult frame = renderer.render(scene, s);
-  const double frameMs = renderer.timerQueriesMeasureExecution() ? frame.gpuTimes.camera
-                                                                 : frame.wallTimes.camera;
+  const double frameMs =
+      renderer.timerQueriesMeasureExecution() ? frame.gpuTimes.camera : frame.wallTimes.camera;
   renderer.timeMinimalLookup(true);  // as the bench does between the draws: other targets
   double again = 1e30;
   for (int i = 0; i < 3; ++i) again = std::min(again, renderer.timeCameraPass());

@@ -169,7 +169,9 @@ void runBench(const BenchOptions& o) {
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio,yardstick,yardstick_ms,"
          "baseline_to_yardstick,pass_median_ms,baseline_median_ms,yardstick_median_ms\n";
   const std::string timing = gl::passTimingDescription(renderer);
-  std::cout << "The fastest of " << o.repeat << " warm frames, " << timing << ", on "
+  std::cout << "The fastest of " << o.repeat << " warm frames (the camera pass's: of "
+            << o.repeat * gl::kCameraDrawsPerFrame << " draws, " << gl::kCameraDrawsPerFrame
+            << " a frame, each before its minimal lookup), " << timing << ", on "
             << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
             << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
@@ -194,8 +196,8 @@ void runBench(const BenchOptions& o) {
       // A row without a yardstick (mips, summed-area table) leaves its cells empty (CSV) or
       // null (JSON): no time was measured, and 0 would read as one.
       csv << techniqueId(t) << "," << csvField(r.format) << "," << csvField(p.pass) << ","
-          << p.passMs() << "," << csvField(p.baseline) << "," << p.baselineMs() << ","
-          << p.ratio() << "," << csvField(p.yardstick) << ",";
+          << p.passMs() << "," << csvField(p.baseline) << "," << p.baselineMs() << "," << p.ratio()
+          << "," << csvField(p.yardstick) << ",";
       if (p.yardstick.empty()) {
         csv << ",,";
       } else {
@@ -225,7 +227,9 @@ void runBench(const BenchOptions& o) {
   const nlohmann::ordered_json record = {
       {"experiment", "passes"},
       {"device", renderer.deviceDescription()},
-      {"timing", "the fastest of the warm frames (medians beside), " + timing +
+      {"timing", "the fastest of the warm frames (the camera pass's: of its " +
+                     std::to_string(gl::kCameraDrawsPerFrame) +
+                     " draws a frame, each before its minimal lookup; medians beside), " + timing +
                      (renderer.timerQueriesMeasureExecution()
                           ? ""
                           : "; a software rasteriser's timer queries see only submission")},
@@ -261,8 +265,9 @@ void registerBenchCommand(CLI::App& app) {
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat,
                   "timed frames after one warm-up: --experiment takes their medians; --passes "
-                  "(15 frames unless given) the fastest frame's ratios, medians beside them in "
-                  "the CSV and JSON")
+                  "(15 frames unless given) the fastest frame's ratios (the camera pass drawn " +
+                      std::to_string(gl::kCameraDrawsPerFrame) +
+                      " times a frame), medians beside them in the CSV and JSON")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   addOutputOptions(*cmd, o->output, "the results");

@@ -19,6 +19,13 @@ struct FrameTimes {
   double medianMs = 0.0;
 };
 
+// The camera pass's draws a frame, each followed by its minimal lookups: its first draw is the
+// frame's own, the others Renderer::timeCameraPass. A camera pass takes a few milliseconds where a
+// frame takes tens, so that one draw a frame left the pass and its yardstick a sample or two
+// outside llvmpipe's slow phases (both rasteriser threads on one core) and a ratio up to 1.47x
+// where the next run read 1.18x (docs/results/passes-llvmpipe-2026-12-06-night.md).
+constexpr int kCameraDrawsPerFrame = 4;
+
 // The fastest and the median of a pass's frame times; zeros for none.
 FrameTimes frameTimes(const std::vector<double>& times);
 

@@ -270,7 +270,7 @@ class Renderer {
   // targets), so that the pass and its minimal lookup can be timed alternately several times a
   // frame. Its milliseconds, as timeMinimalLookup's; after render() of a technique's frame.
   double timeCameraPass();
-  Image readCameraColor() const;  // the camera pass's colour target as its last draw left it
+  Image readCameraColor() const;         // the camera pass's colour target as its last draw left it
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
