@@ -5,8 +5,8 @@
 
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
-#include "shadow_map_filter.h"
 #include "penumbra/shared/constants.h"
+#include "shadow_map_filter.h"
 
 namespace penumbra::gl {
 namespace {
@@ -53,13 +53,22 @@ uint64_t ZmaxPyramid::bytes() const {
 }
 
 std::vector<SplitSample> LloydPlacement::readSamples() const {
-  std::vector<SplitSample> samples(size_t(size_ - 1) * size_t(size_ - 1) * size_t(layers_));
-  samples_->read(std::as_writable_bytes(std::span(samples)));
-  return samples;
+  const size_t rowLength = size_t(size_ - 1);
+  std::vector<int> counts(rowLength * size_t(layers_));
+  rowCounts_->read(std::as_writable_bytes(std::span(counts)));
+  std::vector<SplitSample> rows(rowLength * counts.size());
+  samples_->read(std::as_writable_bytes(std::span(rows)));
+  std::vector<SplitSample> weighted;
+  for (size_t row = 0; row < counts.size(); ++row) {
+    const auto first = rows.begin() + std::ptrdiff_t(row * rowLength);
+    weighted.insert(weighted.end(), first, first + counts[row]);
+  }
+  return weighted;
 }
 
 void LloydPlacement::release() {
   samples_.reset();
+  rowCounts_.reset();
   rowSums_.reset();
 }
 
@@ -71,23 +80,28 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LinearD
     size_ = size;
     layers_ = layers;
     samples_.emplace(lloydSampleBytes(size) * size_t(layers));
+    rowCounts_.emplace(lloydRowCountBytes(size, layers));
     rowSums_.emplace(lloydRowSumBytes(size, layers));
   }
+  // Each row's weighted samples (every cascade's rows in turn), then each step's sums gathered on
+  // the GPU row by row; the CPU adds the rows and moves the splits, as the thesis reads back its
+  // reduction.
+  const int rows = (size - 1) * layers;
   const Program& samples =
       programs.compute("passes/split_samples.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
+  samples.set("rowCount", rows);
   glBindTextureUnit(0, depth.texture);
   samples_->bindStorage(1);
-  samples.dispatch(groups(size), groups(size), unsigned(layers));
-  // Each step's sums are gathered on the GPU, row by row (every cascade's rows in turn); the CPU
-  // adds the rows and moves the splits, as the thesis reads back its reduction.
-  const int rows = (size - 1) * layers;
+  rowCounts_->bindStorage(3);
+  samples.dispatch((unsigned(rows) + 63u) / 64u);
   const Buffer& rowSums = *rowSums_;
   const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);
   samples_->bindStorage(1);
   rowSums.bindStorage(2);
+  rowCounts_->bindStorage(3);
   std::vector<float> partial(size_t(rows) * 4 * shaders::kMaxLayers);
   auto accumulate = [&](const shaders::LayerSplits& splits) {
     glProgramUniform4fv(gather.id(), glGetUniformLocation(gather.id(), "splitInterior"), 4,

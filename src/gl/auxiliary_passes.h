@@ -39,11 +39,14 @@ class LloydPlacement {
   void release();
   bool placed() const { return samples_.has_value(); }
   std::vector<SplitSample> readSamples() const;
-  uint64_t bytes() const { return samples_ ? samples_->size() + rowSums_->size() : 0; }
+  uint64_t bytes() const {
+    return samples_ ? samples_->size() + rowCounts_->size() + rowSums_->size() : 0;
+  }
 
  private:
-  std::optional<Buffer> samples_;
-  std::optional<Buffer> rowSums_;  // each step's per-row sums, read back by the CPU
+  std::optional<Buffer> samples_;    // each row's weighted samples at the front of its slot
+  std::optional<Buffer> rowCounts_;  // how many each row holds
+  std::optional<Buffer> rowSums_;    // each step's per-row sums, read back by the CPU
   int size_ = 0, layers_ = 0;
 };
 

@@ -126,6 +126,10 @@ size_t lloydRowSumBytes(int shadowMapSize, int cascades) {
   return size_t(shadowMapSize - 1) * size_t(cascades) * 4 * shaders::kMaxLayers * sizeof(float);
 }
 
+size_t lloydRowCountBytes(int shadowMapSize, int cascades) {
+  return size_t(shadowMapSize - 1) * size_t(cascades) * sizeof(int32_t);
+}
+
 size_t lloydSampleBytes(int shadowMapSize) {
   const size_t inner = size_t(shadowMapSize - 1);
   return inner * inner * sizeof(SplitSample);
@@ -153,7 +157,8 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
     m.auxiliary += channelTextureBytes(r32f, size, size, true) * cascades;
   }
   if (placesLayersByLloyd(s)) {
-    m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowSumBytes(size, layers);
+    m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowCountBytes(size, layers) +
+                   lloydRowSumBytes(size, layers);
   }
   m.frame = frameBytes(s.width, s.height, writesDiagnostics(s), s.lookupInputs);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);

@@ -36,13 +36,14 @@ uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sam
 // (writesDiagnostics, implied by lookupInputs); the lookup's four inputs when it writes them
 // (RenderSettings::lookupInputs).
 uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs);
-uint64_t depthBoundsBytes(int width, int height);         // the depth-bounds pass
+uint64_t depthBoundsBytes(int width, int height);  // the depth-bounds pass
 struct SummedAreaSizes {
   size_t extremes, stats, sums;  // two keys, {centre, step} and the 64-bit sums per channel
 };
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize);
 size_t lloydSampleBytes(int shadowMapSize);
 size_t lloydRowSumBytes(int shadowMapSize, int cascades);
+size_t lloydRowCountBytes(int shadowMapSize, int cascades);
 
 // One texture a render creates, as the GL's proxy test takes it.
 struct PlannedTexture {

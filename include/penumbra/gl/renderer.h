@@ -280,7 +280,9 @@ class Renderer {
   uint64_t measuredFrameBytes() const;
   // The Z-max pyramid level of the last ESM render with the zmax classifier, row 0 at the bottom.
   Image readZmaxLevel(int level) const;
-  // The Lloyd samples (second-occluder depth, weight) of the last LVSM render with Lloyd placement.
+  // The Lloyd samples (second-occluder depth, weight) of the last LVSM render with Lloyd placement
+  // that weigh anything (weight > 0: the ones a Lloyd step reads), row by row as
+  // secondOccluderSamples lists them.
   std::vector<SplitSample> readSplitSamples() const;
 
   // Runs encode and prefilter on a given depth map (row 0 at the bottom) without a scene:

@@ -1,6 +1,8 @@
 // One Lloyd step's sums for layered VSM split placement (thesis §4.1.2), one invocation per row
 // of samples: for each split (cluster) and each layer, the total weight and weighted depth of
-// the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them.
+// the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them. A
+// row holds only its weighted samples (passes/split_samples.comp), in the order the CPU meets
+// them: the ones it skips added nothing.
 #include "../shared/layer_placement.h"
 
 layout(local_size_x = 64) in;
@@ -10,6 +12,9 @@ layout(std430, binding = 1) readonly buffer Samples {
 // Per row: cluster weights, cluster sums, layer weights, layer sums, kMaxLayers entries each.
 layout(std430, binding = 2) writeonly buffer Sums {
   float sums[];
+};
+layout(std430, binding = 3) readonly buffer RowCounts {
+  int rowCounts[];
 };
 
 uniform vec4 splitInterior[4];
@@ -36,11 +41,11 @@ void main() {
     layerWeight[i] = 0.0f;
     layerSum[i] = 0.0f;
   }
-  for (int x = 0; x < rowLength; ++x) {
+  int count = layerCount < 2 ? 0 : rowCounts[row];
+  for (int x = 0; x < count; ++x) {
     vec2 entry = samples[row * rowLength + x];
     float depth = entry.x;
     float weight = entry.y;
-    if (weight <= 0.0f || layerCount < 2) continue;
     int nearest = nearestSplit(splits, depth);
     clusterWeight[nearest] += weight;
     clusterSum[nearest] += weight * depth;
