@@ -125,6 +125,7 @@ void Renderer::setScene(const Scene& scene) {
     s.sceneDefaults.light = scene.light;
     return;
   }
+  s.techniqueFrame = false;  // the last frame's geometry is gone
   if (scene.meshes.empty() || scene.triangleCount() == 0) {
     throw Error("scene '" + scene.name + "' has no triangles to draw");
   }
@@ -168,6 +169,7 @@ RenderResult Renderer::render(const RenderSettings& settings, const FrameView& v
   validate(settings, view.light.kind);
   checkSoftShadows(settings, view.light);
   RenderResult result = renderFrame(settings, view, false);
+  state_->techniqueFrame = true;
   if (reportsFailureRate(settings)) {
     result.failureRatePercent = failureRatePercent(result.diagnostic);
   }
@@ -223,7 +225,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   State& s = *state_;
   if (!s.scene) throw Error("no scene to render: call Renderer::setScene first");
   s.settings = settings;
-  s.referenceFrame = reference;
+  s.techniqueFrame = false;  // Renderer::render sets it once the frame is done
   s.programs.setTechnique(settings.technique);
   for (GpuTimer* timer : {&s.light.timer, &s.camera.timer, &s.depthBoundsTimer}) {
     timer->setEnabled(settings.timing);
@@ -418,6 +420,7 @@ void Renderer::filterDepthMap(const Image& depth, const RenderSettings& settings
   validate(single);
   State& s = *state_;
   s.settings = single;
+  s.techniqueFrame = false;
   s.uploadedDepth.emplace(GL_TEXTURE_2D_ARRAY);
   glTextureStorage3D(s.uploadedDepth->id(), 1, GL_R32F, depth.width(), depth.height(), 1);
   glTextureSubImage3D(s.uploadedDepth->id(), 0, 0, 0, 0, depth.width(), depth.height(), 1, GL_RED,
@@ -464,7 +467,7 @@ double Renderer::timeMinimalLookup(bool esmFallback) {
 
 double Renderer::timeCameraPass() {
   State& s = *state_;
-  if (!s.scene || s.camera.bytes() == 0 || s.referenceFrame) {
+  if (!s.scene || s.camera.bytes() == 0 || !s.techniqueFrame) {
     throw Error(
         "no technique's frame to draw the camera pass of again: call Renderer::render "
         "first");

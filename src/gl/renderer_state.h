@@ -53,9 +53,11 @@ struct Renderer::State {
   std::optional<Texture> uploadedDepth;  // filterDepthMap's input
   GpuTimer depthBoundsTimer;
 
-  RenderSettings settings;      // of the last frame
-  FrameGeometry frame;          // of the last frame
-  bool referenceFrame = false;  // whether the last frame was a reference's
+  RenderSettings settings;  // of the last frame
+  FrameGeometry frame;      // of the last frame
+  // Whether the last frame was a technique's (Renderer::render): not a reference's, an area
+  // light's samples or filterDepthMap's, whose camera pass timeCameraPass must not draw again.
+  bool techniqueFrame = false;
   std::vector<BlurSpec> cascadeBlurs;
 
   MemoryReport memory() const;
