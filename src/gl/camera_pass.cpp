@@ -115,6 +115,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
   defines.push_back({"SOFT_LIGHT", frame.light.size > 0.0f ? "1" : "0"});
   defines.push_back({"DIAGNOSTICS", diagnostics_ ? "1" : "0"});
   defines.push_back({"LOOKUP_INPUTS", lookupInputs_ ? "1" : "0"});
+  defines.push_back({"CASCADE_OVERLAY", settings.overlay == Overlay::Cascades ? "1" : "0"});
   const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
                                   "passes/camera.frag", defines);
   const float aspect = float(width_) / float(height_);
@@ -128,7 +129,6 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
     program.set("spotCosine", std::cos(glm::radians(0.5f * frame.light.spotAngleDegrees)));
     program.set("normalOffsetTexels", settings.normalOffsetTexels);
     program.set("lightSize", frame.light.size);
-    program.set("cascadeOverlay", settings.overlay == Overlay::Cascades ? 1 : 0);
   });
   shadows.bind();
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);

@@ -48,6 +48,12 @@
 #ifndef SOFT_LIGHT
 #define SOFT_LIGHT 0
 #endif
+// 1: tint each pixel by its cascade (RenderSettings::overlay). Compiled in: as a uniform, llvmpipe
+// ran the tint (a palette indexed per pixel) for every pixel of every frame, 0.03-0.08 of the
+// pass's ratio to its minimal lookup (docs/results/passes-llvmpipe-2026-12-06-paired.md).
+#ifndef CASCADE_OVERLAY
+#define CASCADE_OVERLAY 0
+#endif
 // A hard light's variants leave the soft paths out of the shared lookup's source.
 #define PENUMBRA_SOFT_SHADOWS SOFT_LIGHT
 #include "../lib/lookup_access.glsl"
@@ -90,7 +96,6 @@ uniform float cascadeStart;
 uniform vec4 cascadeEnds0;
 uniform vec4 cascadeEnds1;
 uniform float cascadeBlendBand;
-uniform int cascadeOverlay;  // 1: tint each pixel by its cascade
 uniform float ambient;
 
 layout(location = 0) out vec4 color;
@@ -279,7 +284,7 @@ void main() {
   float lightAmount = cosine;
   if (lightPerspective != 0 && pointLight == 0) lightAmount *= spotConeFalloff(dot(-toLight, spotAxis), spotCosine);
   vec3 surface = baseColor.rgb;
-  if (cascadeOverlay != 0 && choice.index < FRAME_CASCADES) {
+  if (CASCADE_OVERLAY != 0 && choice.index < FRAME_CASCADES) {
     vec3 tint = cascadeTint(cascade);
     if (choice.blend > 0.0f) tint = mix(tint, cascadeTint(cascade + 1), choice.blend);
     surface *= tint;
