@@ -49,7 +49,7 @@
 #define SOFT_LIGHT 0
 #endif
 // 1: tint each pixel by its cascade (RenderSettings::overlay). Compiled in: as a uniform, llvmpipe
-// ran the tint (a palette indexed per pixel) for every pixel of every frame, 0.03-0.08 of the
+// ran the tint (a palette indexed per pixel) for every pixel of every frame, up to 0.08 of the
 // pass's ratio to its minimal lookup (docs/results/passes-llvmpipe-2026-12-06-paired.md).
 #ifndef CASCADE_OVERLAY
 #define CASCADE_OVERLAY 0
