@@ -478,11 +478,9 @@ TEST_F(RendererTest, GroundColourIsAlbedoTimesAmbientPlusLambertTimesVisibility)
   EXPECT_GT(penumbra, 50);
 }
 
-// The result's parameters are the ones used: fp16 storage clamps EVSM's exponents to what it
-// holds (5.54), and the report and render record must not show the 40 that was asked for.
 // --overlay cascades (compiled into the camera pass, CASCADE_OVERLAY): every pixel's albedo is
-// tinted by its cascade's colour, so that its shading is the plain frame's times the tint; the
-// blend band mixes two tints, the sky none.
+// tinted by its cascade's colour, mixed with the next cascade's in the blend band, so that its
+// shading is the plain frame's times the tint.
 TEST_F(RendererTest, CascadeOverlayTintsEachPixelByItsCascade) {
   const Scene scene = makeBuiltinScene("backyard");
   gl::RenderSettings s = small(Technique::Hard);
@@ -492,26 +490,37 @@ TEST_F(RendererTest, CascadeOverlayTintsEachPixelByItsCascade) {
   const gl::RenderResult plain = renderer->render(scene, s);
   s.overlay = gl::Overlay::Cascades;
   const gl::RenderResult tinted = renderer->render(scene, s);
-  const glm::vec3 tints[2] = {{1.0f, 0.45f, 0.45f}, {0.45f, 1.0f, 0.45f}};  // camera.frag's
+  const glm::vec3 tints[3] = {
+      {1.0f, 0.45f, 0.45f}, {0.45f, 1.0f, 0.45f}, {0.5f, 0.6f, 1.0f}};  // camera.frag's
   int seen[2] = {0, 0};
+  int blended = 0;
   int wrong = 0;
   for (int y = 0; y < s.height; ++y) {
     for (int x = 0; x < s.width; ++x) {
+      // -1: no lookup (the sky, or beyond the map): the read-back names no cascade there, though
+      // the shader tints by the depth range alone.
       const int cascade = int(plain.cascades.at(x, y, 0));
-      if (plain.cascades.at(x, y, 1) > 0.0f) continue;  // the blend band: two tints
+      if (cascade < 0) continue;
+      const float blend = plain.cascades.at(x, y, 1);
+      const glm::vec3 tint = glm::mix(tints[cascade], tints[cascade + 1], blend);
       for (int c = 0; c < 3; ++c) {
-        const float expected = plain.color.at(x, y, c) * (cascade >= 0 ? tints[cascade][c] : 1.0f);
-        // Both colours in RGBA16F: half a step each (2^-11 relative) and the product's rounding.
+        const float expected = plain.color.at(x, y, c) * tint[c];
+        // Both colours in RGBA16F: half a step each (2^-11 relative, rounding to nearest) and
+        // the product's and the mix's fp32 rounding.
         if (std::abs(tinted.color.at(x, y, c) - expected) > 0x1.0p-10f * expected + 1e-6f) ++wrong;
       }
-      if (cascade >= 0) ++seen[cascade];
+      ++seen[cascade];
+      if (blend > 0.0f) ++blended;
     }
   }
   EXPECT_EQ(wrong, 0);
   EXPECT_GT(seen[0], s.width * s.height / 20) << "the view must show the first cascade";
   EXPECT_GT(seen[1], s.width * s.height / 20) << "the view must show the second cascade";
+  EXPECT_GT(blended, s.width) << "the view must show the blend band";
 }
 
+// The result's parameters are the ones used: fp16 storage clamps EVSM's exponents to what it
+// holds (5.54), and the report and render record must not show the 40 that was asked for.
 TEST_F(RendererTest, ReportedEvsmExponentsAreTheClampedOnesTheShadersUse) {
   const Scene scene = makeBuiltinScene("planar");
   gl::RenderSettings s = small(Technique::Evsm4);
