@@ -1,33 +1,22 @@
 // Lloyd relaxation of layer splits.
 #include "penumbra/layer_placement.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include "penumbra/shared/layer_placement.h"
 
 namespace penumbra {
 namespace {
 
-std::vector<float> interior(const shaders::LayerSplits& splits) {
-  std::vector<float> s;
-  for (int i = 1; i < splits.layerCount; ++i) s.push_back(shaders::layerSplit(splits, i));
-  return s;
-}
-
-shaders::LayerSplits pack(std::vector<float> s, int layerCount, float minGap) {
-  std::sort(s.begin(), s.end());
-  // Keep the splits strictly inside (0,1) and apart, pushing forward then back.
-  for (size_t i = 0; i < s.size(); ++i) {
-    const float lowest = (i == 0 ? 0.0f : s[i - 1]) + minGap;
-    s[i] = std::max(s[i], lowest);
+// The sums as the shared update reads them: fp64 totals rounded once to fp32.
+shaders::LloydStepSums stepSums(const LloydSums& sums) {
+  shaders::LloydStepSums out{};
+  for (size_t k = 0; k < sums.clusterWeight.size(); ++k) {
+    out.clusterWeight[k] = float(sums.clusterWeight[k]);
+    out.clusterSum[k] = float(sums.clusterSum[k]);
   }
-  for (size_t i = s.size(); i-- > 0;) {
-    const float highest = (i + 1 == s.size() ? 1.0f : s[i + 1]) - minGap;
-    s[i] = std::min(s[i], highest);
+  for (size_t l = 0; l < sums.layerWeight.size(); ++l) {
+    out.layerWeight[l] = float(sums.layerWeight[l]);
+    out.layerSum[l] = float(sums.layerSum[l]);
   }
-  shaders::LayerSplits out = shaders::uniformLayerSplits(layerCount);
-  for (size_t k = 0; k < s.size(); ++k) out.interior[k / 4][k % 4] = s[k];
   return out;
 }
 
@@ -63,30 +52,7 @@ LloydSums accumulateLloyd(std::span<const SplitSample> samples,
 
 shaders::LayerSplits lloydUpdate(const LloydSums& sums, const shaders::LayerSplits& splits,
                                  float minGap) {
-  const std::vector<float> s = interior(splits);
-  if (s.empty()) return splits;
-  std::vector<double> layerWeight = sums.layerWeight;
-  std::vector<float> next;
-  int empty = 0;
-  for (size_t k = 0; k < s.size(); ++k) {
-    if (sums.clusterWeight[k] > 0.0) {
-      next.push_back(float(sums.clusterSum[k] / sums.clusterWeight[k]));
-    } else {
-      ++empty;
-    }
-  }
-  // Teleportation: each empty cluster's split reappears inside the heaviest remaining layer.
-  for (int i = 0; i < empty; ++i) {
-    const size_t heaviest =
-        size_t(std::max_element(layerWeight.begin(), layerWeight.end()) - layerWeight.begin());
-    if (layerWeight[heaviest] > 0.0) {
-      next.push_back(float(sums.layerSum[heaviest] / layerWeight[heaviest]));
-      layerWeight[heaviest] = 0.0;  // the next teleport goes elsewhere
-    } else {
-      next.push_back(s[size_t(i) % s.size()]);  // no weight anywhere: keep the split
-    }
-  }
-  return pack(next, splits.layerCount, minGap);
+  return shaders::lloydUpdate(stepSums(sums), splits, minGap);
 }
 
 shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
@@ -99,17 +65,11 @@ shaders::LayerSplits lloydRelaxation(int layerCount, int iterations, float minGa
   shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
   for (int i = 0; i < iterations; ++i) {
     const shaders::LayerSplits next = lloydUpdate(accumulate(splits), splits, minGap);
-    float moved = 0.0f;
-    for (int k = 1; k < layerCount; ++k) {
-      moved =
-          std::max(moved, std::abs(shaders::layerSplit(next, k) - shaders::layerSplit(splits, k)));
-    }
+    const float moved = shaders::largestSplitMove(next, splits);
     splits = next;
-    if (moved < 1e-6f) break;
+    if (moved < shaders::kLloydSettled) break;
   }
-  std::vector<float> placed = interior(splits);
-  for (float& s : placed) s -= frontMargin;
-  return pack(placed, layerCount, minGap);
+  return shaders::lloydPlacedSplits(splits, frontMargin, minGap);
 }
 
 shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,

@@ -66,14 +66,21 @@ std::vector<SplitSample> LloydPlacement::readSamples() const {
   return weighted;
 }
 
+shaders::LayerSplits LloydPlacement::readPlacedSplits() const {
+  shaders::LayerSplits splits;
+  state_->read(std::as_writable_bytes(std::span(&splits, 1)));
+  return splits;
+}
+
 void LloydPlacement::release() {
   samples_.reset();
   rowCounts_.reset();
   rowSums_.reset();
+  state_.reset();
 }
 
-shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LinearDepthMaps& depth,
-                                           const shaders::LvsmParams& lvsm) {
+void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
+                           const LinearDepthMaps& depth, const shaders::LvsmParams& lvsm) {
   const int size = depth.size;
   const int layers = depth.layers;
   if (!samples_ || size_ != size || layers_ != layers) {
@@ -82,10 +89,15 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LinearD
     samples_.emplace(lloydSampleBytes(size) * size_t(layers));
     rowCounts_.emplace(lloydRowCountBytes(size, layers));
     rowSums_.emplace(lloydRowSumBytes(size, layers));
+    state_.emplace(sizeof(shaders::LloydState));
   }
-  // Each row's weighted samples (every cascade's rows in turn), then each step's sums gathered on
-  // the GPU row by row; the CPU adds the rows and moves the splits, as the thesis reads back its
-  // reduction.
+  shaders::LloydState start{};
+  start.splits = shaders::uniformLayerSplits(lvsm.splits.layerCount);
+  glNamedBufferSubData(state_->id(), 0, sizeof start, &start);
+  // Each row's weighted samples (every cascade's rows in turn); then each step's sums, row by
+  // row, and the step itself, which adds the rows and moves the splits. The thesis reads its
+  // reduction back each step; here the splits stay on the GPU and go from the state straight
+  // into the parameter blocks.
   const int rows = (size - 1) * layers;
   const Program& samples =
       programs.compute("passes/split_samples.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
@@ -95,39 +107,21 @@ shaders::LayerSplits LloydPlacement::place(ProgramCache& programs, const LinearD
   samples_->bindStorage(1);
   rowCounts_->bindStorage(3);
   samples.dispatch((unsigned(rows) + 63u) / 64u);
-  const Buffer& rowSums = *rowSums_;
   const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);
-  samples_->bindStorage(1);
-  rowSums.bindStorage(2);
-  rowCounts_->bindStorage(3);
-  std::vector<float> partial(size_t(rows) * 4 * shaders::kMaxLayers);
-  auto accumulate = [&](const shaders::LayerSplits& splits) {
-    glProgramUniform4fv(gather.id(), glGetUniformLocation(gather.id(), "splitInterior"), 4,
-                        &splits.interior[0][0]);
-    gather.set("layerCount", splits.layerCount);
+  const Program& step = programs.compute("passes/lloyd_step.comp", {});
+  step.set("rowCount", rows);
+  rowSums_->bindStorage(2);
+  state_->bindStorage(4);
+  parameters.bind();
+  for (int i = 0; i < lvsm.lloydIterations; ++i) {
     gather.dispatch((unsigned(rows) + 63u) / 64u);
-    rowSums.read(std::as_writable_bytes(std::span(partial)));
-    LloydSums sums(splits.layerCount);
-    for (int row = 0; row < rows; ++row) {
-      const float* r = &partial[size_t(row) * 4 * shaders::kMaxLayers];
-      for (int k = 0; k + 1 < splits.layerCount; ++k) {
-        sums.clusterWeight[size_t(k)] += r[k];
-        sums.clusterSum[size_t(k)] += r[shaders::kMaxLayers + k];
-      }
-      for (int l = 0; l < splits.layerCount; ++l) {
-        sums.layerWeight[size_t(l)] += r[2 * shaders::kMaxLayers + l];
-        sums.layerSum[size_t(l)] += r[3 * shaders::kMaxLayers + l];
-      }
-    }
-    return sums;
-  };
-  const shaders::LayerSplits splits =
-      lloydRelaxation(lvsm.splits.layerCount, lvsm.lloydIterations,
-                      std::max(2.0f * lvsm.overlap, 1e-3f), lvsm.overlap, accumulate);
+    step.set("lastStep", i + 1 == lvsm.lloydIterations ? 1 : 0);
+    step.dispatch(1);
+  }
+  parameters.copyPlacedSplits(*state_);
   checkErrors("placing the layers");
-  return splits;
 }
 
 }  // namespace penumbra::gl

@@ -31,22 +31,26 @@ class ZmaxPyramid {
 };
 
 // Places LVSM's layer splits by Lloyd relaxation over the second-occluder samples of every
-// cascade's depth map (one depth metric for all cascades, so one placement serves them all).
+// cascade's depth map (one depth metric for all cascades, so one placement serves them all),
+// entirely on the GPU: the placed splits and the encode's ranges for them go into the parameter
+// blocks without a wait; readPlacedSplits() reads them back for a report.
 class LloydPlacement {
  public:
-  shaders::LayerSplits place(ProgramCache& programs, const LinearDepthMaps& depth,
-                             const shaders::LvsmParams& lvsm);
+  void place(ProgramCache& programs, ParameterBlock& parameters, const LinearDepthMaps& depth,
+             const shaders::LvsmParams& lvsm);
   void release();
   bool placed() const { return samples_.has_value(); }
   std::vector<SplitSample> readSamples() const;
+  shaders::LayerSplits readPlacedSplits() const;  // waits for the placement
   uint64_t bytes() const {
-    return samples_ ? samples_->size() + rowCounts_->size() + rowSums_->size() : 0;
+    return samples_ ? samples_->size() + rowCounts_->size() + rowSums_->size() + state_->size() : 0;
   }
 
  private:
   std::optional<Buffer> samples_;    // each row's weighted samples at the front of its slot
   std::optional<Buffer> rowCounts_;  // how many each row holds
-  std::optional<Buffer> rowSums_;    // each step's per-row sums, read back by the CPU
+  std::optional<Buffer> rowSums_;    // each step's per-row sums
+  std::optional<Buffer> state_;      // shaders::LloydState: the splits between steps
   int size_ = 0, layers_ = 0;
 };
 

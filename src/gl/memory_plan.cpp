@@ -11,6 +11,7 @@
 #include "penumbra/point_light.h"
 #include "penumbra/scene.h"
 #include "penumbra/shared/constants.h"
+#include "penumbra/shared/layer_placement.h"
 #include "penumbra/shared/summed_area.h"
 
 namespace penumbra::gl {
@@ -158,7 +159,7 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   }
   if (placesLayersByLloyd(s)) {
     m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowCountBytes(size, layers) +
-                   lloydRowSumBytes(size, layers);
+                   lloydRowSumBytes(size, layers) + sizeof(shaders::LloydState);
   }
   m.frame = frameBytes(s.width, s.height, writesDiagnostics(s), s.lookupInputs);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);

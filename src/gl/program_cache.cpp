@@ -4,8 +4,10 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstring>
 
+#include "penumbra/shared/layer_placement.h"
 #include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra::gl {
@@ -71,6 +73,17 @@ void ParameterBlock::upload(Technique technique, const TechniqueParams& params) 
   technique_ = technique;
   uploaded_ = params;
   valid_ = true;
+}
+
+void ParameterBlock::copyPlacedSplits(const Buffer& lloydState) {
+  using shaders::LloydState;
+  glCopyNamedBufferSubData(lloydState.id(), buffer_.id(), offsetof(LloydState, splits),
+                           offsetof(TechniqueParams, lvsm) + offsetof(shaders::LvsmParams, splits),
+                           sizeof(shaders::LayerSplits));
+  static_assert(sizeof LloydState::texelLayerRanges == sizeof(shaders::TexelLayerRangeTable));
+  glCopyNamedBufferSubData(lloydState.id(), ranges_.id(), offsetof(LloydState, texelLayerRanges), 0,
+                           sizeof(shaders::TexelLayerRangeTable));
+  valid_ = false;
 }
 
 void ParameterBlock::bind(int parameterBinding, int rangeBinding) const {

@@ -42,6 +42,9 @@ class ParameterBlock {
  public:
   ParameterBlock();
   void upload(Technique technique, const TechniqueParams& params);
+  // LVSM's splits and the encode's ranges for them from a Lloyd placement's state
+  // (shaders::LloydState), copied on the GPU; the next upload() writes the whole block again.
+  void copyPlacedSplits(const Buffer& lloydState);
   // Binds the parameters and the texel-layer ranges to these uniform-block bindings.
   void bind(int parameterBinding = 0, int rangeBinding = 1) const;
   uint64_t bytes() const { return buffer_.size() + ranges_.size(); }

@@ -67,6 +67,14 @@ double failureRatePercent(const Image& diagnostic) {
   return drawn == 0 ? 0.0 : 100.0 * double(failed) / double(drawn);
 }
 
+// The splits of a frame that did not read Lloyd's back: every interior split NaN, so that no one
+// takes them for the ones used.
+shaders::LayerSplits unreadLayerSplits(int layerCount) {
+  shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
+  for (glm::vec4& row : splits.interior) row = glm::vec4(std::numeric_limits<float>::quiet_NaN());
+  return splits;
+}
+
 }  // namespace
 
 // Box-averages factor x factor blocks.
@@ -349,7 +357,14 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   result.cascadeFrame = frame.cascades;
   result.cascadeBlurs = s.cascadeBlurs;
   result.depthBounds = range;
-  result.params = s.shadows.params();
+  // LVSM's Lloyd splits stay on the GPU in a frame that waits for nothing (ShadowFilter::params
+  // reads them back); one that reads an image or its times waits anyway.
+  if (reads != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
+    result.params = s.shadows.params();
+  } else {
+    result.params = s.shadows.state().params;
+    result.params.lvsm.splits = unreadLayerSplits(result.params.lvsm.splits.layerCount);
+  }
   result.fusedPrefilter = fused;
   auto times = [&](auto read) {
     PassTimes t;

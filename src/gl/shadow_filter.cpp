@@ -433,6 +433,7 @@ void checkRequest(const ShadowFilter::State& s, const DepthInput& depth,
 // the request completes: a pass that throws leaves no half-made map.
 void adopt(ShadowFilter::State& s, const DepthInput& depth, const FilterSettings& settings) {
   s.filtered = false;
+  s.splitsOnGpu = false;
   s.depth = LinearDepthMaps{};
   s.settings = settings;
   s.input = depth;
@@ -464,7 +465,7 @@ void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& setting
   s.depth = importDepth(s, depth);
   s.auxiliaryTimer.reset();
   const bool lloyd = placesLayersByLloyd(r);
-  if (!lloyd) s.parameters.upload(settings.technique, s.params);
+  s.parameters.upload(settings.technique, s.params);
   s.auxiliaryTimer.begin();
   if (buildsZmaxPyramid(r)) {
     s.zmax.build(s.programs, s.parameters, s.depth);
@@ -472,9 +473,8 @@ void ShadowFilter::filter(const DepthInput& depth, const FilterSettings& setting
     s.zmax.release();
   }
   if (lloyd) {
-    // Lloyd relaxation reads its sums back each step (thesis §4.1.2): LVSM's one wait.
-    s.params.lvsm.splits = s.lloyd.place(s.programs, s.depth, s.params.lvsm);
-    s.parameters.upload(settings.technique, s.params);
+    s.lloyd.place(s.programs, s.parameters, s.depth, s.params.lvsm);
+    s.splitsOnGpu = true;
   } else {
     s.lloyd.release();
   }
@@ -611,7 +611,12 @@ FilterMemory ShadowFilter::memory() const {
 }
 
 const TechniqueParams& ShadowFilter::params() const {
-  return state_->params;
+  State& s = *state_;
+  if (s.splitsOnGpu) {
+    s.params.lvsm.splits = s.lloyd.readPlacedSplits();
+    s.splitsOnGpu = false;
+  }
+  return s.params;
 }
 
 int ShadowFilter::channelMipLevels() const {

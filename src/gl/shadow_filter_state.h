@@ -41,6 +41,9 @@ struct ShadowFilter::State {
   FilterSettings settings;  // of the last filter()
   DepthInput input;
   TechniqueParams params;  // in effect (EVSM's exponents clamped, LVSM's splits placed)
+  // LVSM's Lloyd splits were placed on the GPU and `params` does not hold them yet: params()
+  // reads them back on first use, so that a frame that reports nothing waits for nothing.
+  bool splitsOnGpu = false;
   std::vector<BlurSpec> layerBlurs;
   bool fused = false;
 

@@ -8,11 +8,12 @@
 #include <cmath>
 
 #include "gl_test_context.h"
+#include "gl_wait_counter.h"
+#include "penumbra/compare/comparison.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/renderer.h"
 #include "penumbra/metrics.h"
 #include "penumbra/scene.h"
-#include "penumbra/compare/comparison.h"
 
 namespace penumbra {
 namespace {
@@ -125,6 +126,42 @@ TEST_F(FrameRenderer, WarmFrameCreatesAndUploadsNothing) {
   EXPECT_GT(GlCallCounter::count, 0);
 }
 
+// A frame that reads nothing back and is not timed waits for nothing (RenderSettings::readBack),
+// LVSM's Lloyd placement included: its splits stay on the GPU, and the result says so (NaN); a
+// frame that reads an image back reads them too, the same splits.
+TEST_F(FrameRenderer, AFrameThatReadsNothingBackWaitsForNothing) {
+  gl::Renderer renderer(*context);
+  const Scene scene = makeBuiltinScene("backyard");
+  renderer.setScene(scene);
+  gl::RenderSettings s = smallSettings(Technique::Lvsm);
+  s.lookupInputs = false;
+  s.params.lvsm.placement = shaders::kLayerPlacementLloyd;
+  s.cascades.count = 2;
+  const gl::FrameView view{scene.camera, scene.light};
+  const gl::RenderResult read = renderer.render(s, view);  // compiles and creates everything
+  s.readBack = gl::frame_image::kNone;
+  s.timing = false;
+  gl::RenderResult unread;
+  {
+    const testing::WaitCounter counter;
+    unread = renderer.render(s, view);
+    EXPECT_EQ(testing::WaitCounter::waits, 0);
+  }
+  for (int i = 1; i < s.params.lvsm.splits.layerCount; ++i) {
+    EXPECT_TRUE(std::isnan(shaders::layerSplit(unread.params.lvsm.splits, i))) << i;
+    const float placed = shaders::layerSplit(read.params.lvsm.splits, i);
+    EXPECT_GT(placed, 0.0f) << i;
+    EXPECT_LT(placed, 1.0f) << i;
+  }
+  s.readBack = gl::frame_image::kColor;
+  const gl::RenderResult again = renderer.render(s, view);
+  for (int i = 1; i < s.params.lvsm.splits.layerCount; ++i) {
+    EXPECT_EQ(shaders::layerSplit(again.params.lvsm.splits, i),
+              shaders::layerSplit(read.params.lvsm.splits, i))
+        << "the same view places the same splits";
+  }
+}
+
 TEST_F(FrameRenderer, EveryCascadeOfAPlanarSceneMatchesTheFilteredReference) {
   // VSM is exact for a planar occluder over a parallel planar receiver (thesis §3.2), so each
   // cascade's pixels must match the filtered reference as closely as one map's do.
@@ -181,8 +218,8 @@ TEST_F(FrameRenderer, PcfKeepsItsKernelsWorldWidthInEveryCascade) {
     for (int x = 0; x < s.width; ++x) {
       const int c = int(r.cascades.at(x, y, 0));
       if (c < 0 || r.lookup.at(x, y, 3) < 1.0f) continue;  // blend bands too
-      worst[size_t(c)] =
-          std::max(worst[size_t(c)], double(std::abs(r.visibility.at(x, y) - ref.visibility.at(x, y))));
+      worst[size_t(c)] = std::max(
+          worst[size_t(c)], double(std::abs(r.visibility.at(x, y) - ref.visibility.at(x, y))));
       ++pixels[size_t(c)];
     }
   }
@@ -233,9 +270,10 @@ TEST_F(FrameRenderer, StabilizedCascadesRasteriseAStaticSceneIdenticallyAsTheCam
           mismatches += now.at(x, y) != before.at(sx, sy);
         }
       }
-      EXPECT_EQ(mismatches, 0) << "cascade " << c << ": a stabilised map of a static scene is "
-                                  "the same rasterisation, shifted by " << shift.x << ", "
-                               << shift.y << " texels";
+      EXPECT_EQ(mismatches, 0) << "cascade " << c
+                               << ": a stabilised map of a static scene is "
+                                  "the same rasterisation, shifted by "
+                               << shift.x << ", " << shift.y << " texels";
     }
     if (fit == CascadeFit::Tight) {
       EXPECT_EQ(identical, 0) << "tight boxes follow the camera: every map changes";
@@ -269,8 +307,8 @@ TEST_F(FrameRenderer, StabilisedCascadesShimmerLessAlongTheCameraPath) {
   }
   RecordProperty("shimmer_stabilized", std::to_string(shimmer[0]));
   RecordProperty("shimmer_tight", std::to_string(shimmer[1]));
-  EXPECT_LT(shimmer[0], 0.5 * shimmer[1]) << "stabilised " << shimmer[0] << ", tight "
-                                          << shimmer[1];
+  EXPECT_LT(shimmer[0], 0.5 * shimmer[1])
+      << "stabilised " << shimmer[0] << ", tight " << shimmer[1];
 }
 
 }  // namespace

@@ -1,58 +1,24 @@
 // ShadowFilter as a guest on a host's context (CurrentContext, GlErrors::LeaveToHost): a frame's
 // filter() waits for nothing — no glFinish, read-back, query result or glGetError — and the
-// host's debug callback and pending error survive it. LVSM's Lloyd placement, which reads its
-// sums back each step (thesis §4.1.2), is the documented exception.
+// host's debug callback and pending error survive it. LVSM's Lloyd placement (thesis §4.1.2)
+// included: it runs on the GPU, and only params() reads its splits back.
 #include <epoxy/gl.h>
 #include <gtest/gtest.h>
 
 #include <bit>
 
-#include "gl_call_swap.h"
 #include "gl_test_context.h"
+#include "gl_wait_counter.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/gl/program.h"
 #include "penumbra/gl/shadow_filter.h"
+#include "penumbra/shared/layer_placement.h"
 
 namespace penumbra::gl {
 namespace {
 
-using penumbra::testing::CountedGlCalls;
 using penumbra::testing::GlTest;
-
-// Resolves the entry points that wait for the GPU or read its results, then counts their calls.
-struct WaitCounter {
-  static inline int waits = 0;
-
-  static int resolve() {
-    Texture texture(GL_TEXTURE_2D);
-    glTextureStorage2D(texture.id(), 1, GL_R32F, 1, 1);
-    float texel = 0.0f;
-    glGetTextureImage(texture.id(), 0, GL_RED, GL_FLOAT, sizeof texel, &texel);
-    Buffer buffer(16);
-    glGetNamedBufferSubData(buffer.id(), 0, 4, &texel);
-    glReadPixels(0, 0, 0, 0, GL_RED, GL_FLOAT, &texel);
-    GLuint query = 0;
-    glCreateQueries(GL_TIME_ELAPSED, 1, &query);
-    glBeginQuery(GL_TIME_ELAPSED, query);
-    glEndQuery(GL_TIME_ELAPSED);
-    GLuint64 result = 0;
-    glGetQueryObjectui64v(query, GL_QUERY_RESULT, &result);
-    glDeleteQueries(1, &query);
-    glFinish();
-    while (glGetError() != GL_NO_ERROR) {
-    }
-    waits = 0;
-    return 0;
-  }
-
-  int resolved = resolve();
-  CountedGlCalls<&epoxy_glFinish> finish{waits};
-  CountedGlCalls<&epoxy_glGetError> getError{waits};
-  CountedGlCalls<&epoxy_glGetTextureImage> getTextureImage{waits};
-  CountedGlCalls<&epoxy_glGetNamedBufferSubData> getNamedBufferSubData{waits};
-  CountedGlCalls<&epoxy_glReadPixels> readPixels{waits};
-  CountedGlCalls<&epoxy_glGetQueryObjectui64v> getQueryObject{waits};
-};
+using penumbra::testing::WaitCounter;
 
 struct HostDebugLog {
   int messages = 0;
@@ -88,29 +54,45 @@ TEST_F(GlTest, ShadowFilterAsGuestWaitsForNothingAndLeavesTheHostsErrors) {
   };
   // Warm every program first: compiling checks its own status (not a wait on the GPU's work,
   // and once per program), and the point is a frame's cost.
-  const Case cases[] = {{Technique::Vsm, FilterMode::Trilinear},
-                        {Technique::Evsm4, FilterMode::Anisotropic},
-                        {Technique::Esm, FilterMode::Bilinear},
-                        {Technique::Msm, FilterMode::SummedArea},
-                        {Technique::PowerCdf, FilterMode::Trilinear},
-                        {Technique::Pcf, FilterMode::Bilinear}};
+  const Case cases[] = {
+      {Technique::Vsm, FilterMode::Trilinear},      {Technique::Evsm4, FilterMode::Anisotropic},
+      {Technique::Esm, FilterMode::Bilinear},       {Technique::Msm, FilterMode::SummedArea},
+      {Technique::PowerCdf, FilterMode::Trilinear}, {Technique::Pcf, FilterMode::Bilinear},
+      {Technique::Lvsm, FilterMode::Trilinear}};
   auto settingsFor = [](const Case& c) {
     FilterSettings s;
     s.technique = c.technique;
     s.filter = c.mode;
     s.params.esm.classifier = shaders::kEsmClassifyZmax;
+    s.params.lvsm.placement = shaders::kLayerPlacementLloyd;
     return s;
   };
   for (const Case& c : cases) filter.filter(input, settingsFor(c));
   {
     const WaitCounter counter;  // resolving its entry points drains the queue: the error after
-    glEnable(0xFFFF);            // the host's own mistake, pending: GL_INVALID_ENUM
+    glEnable(0xFFFF);           // the host's own mistake, pending: GL_INVALID_ENUM
     for (const Case& c : cases) {
       SCOPED_TRACE(std::string(techniqueId(c.technique)));
       filter.filter(input, settingsFor(c));
       filter.bind();
       EXPECT_EQ(WaitCounter::waits, 0);
+      EXPECT_EQ(WaitCounter::errorChecks, 0);
     }
+    // The last filter was LVSM's: params() reads the placed splits back, once. Every weighted
+    // 2x2 block straddles the step (0.25 | 0.75), its second occluder at 0.75: the first split
+    // sits there, one overlap in front, the others teleported behind it, two overlaps apart.
+    const TechniqueParams& placed = filter.params();
+    EXPECT_EQ(WaitCounter::waits, 1);
+    const shaders::LayerSplits& splits = placed.lvsm.splits;
+    const float overlap = placed.lvsm.overlap;
+    for (int i = 1; i < splits.layerCount; ++i) {
+      // D24 holds 0.75 exactly; the rest is fp32 rounding of a few sums.
+      EXPECT_NEAR(shaders::layerSplit(splits, i),
+                  0.75f - overlap + float(i - 1) * shaders::lloydMinGap(overlap), 1e-5f)
+          << i;
+    }
+    filter.params();
+    EXPECT_EQ(WaitCounter::waits, 1) << "read back once";
   }
   void* callback = nullptr;
   glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);

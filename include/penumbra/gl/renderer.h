@@ -85,7 +85,8 @@ struct RenderSettings {
   // camera pass compiles the other targets out (on llvmpipe EVSM4's pass went from 1.26-1.30x
   // its minimal lookup to 1.16-1.18x, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
   // A frame that reads none and is not timed has no glFinish and no image read-back (the
-  // cascaded depth-bounds fit and LVSM's Lloyd placement still read their small buffers back).
+  // cascaded depth-bounds fit still reads its small buffer back; LVSM's Lloyd placement stays
+  // on the GPU).
   // Reference frames also read their visibility, and where the CPU completes pixels the colour,
   // diagnostic and lookup's inputs it completes them from (a supersampled reference returns only
   // the colour, visibility and diagnostic asked for, averaged).
@@ -153,7 +154,9 @@ struct RenderResult {
   // ESM with a classifier, in a frame that reads the diagnostic back: failing pixels as a share
   // of drawn pixels, in percent; else 0.
   double failureRatePercent = 0.0;
-  // The parameters used, with LVSM's splits as placed for this frame.
+  // The parameters used, with LVSM's splits as placed for this frame. Lloyd's splits are placed
+  // on the GPU and read back only by a frame that waits anyway (reads an image back or is
+  // timed); in one that reads nothing back and is not timed their interior entries are NaN.
   TechniqueParams params;
   // Per pixel, row 0 at the top: the shadow-map lookup (u, v, receiver depth, w) with w = 1 inside
   // the shadow map on a surface facing the light (N.L > 0.05: where the shadow test decides the

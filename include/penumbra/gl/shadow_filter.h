@@ -139,6 +139,8 @@ class ShadowFilter {
 
   FilterMemory memory() const;
   // The parameters in effect (EVSM's exponents clamped to their storage, LVSM's splits placed).
+  // LVSM's Lloyd placement runs on the GPU: the first call after filter() reads its splits back
+  // (80 bytes), waiting for the placement; filter() itself waits for nothing.
   const TechniqueParams& params() const;
   int channelMipLevels() const;
   int layers() const;

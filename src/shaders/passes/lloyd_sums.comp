@@ -16,21 +16,18 @@ layout(std430, binding = 2) writeonly buffer Sums {
 layout(std430, binding = 3) readonly buffer RowCounts {
   int rowCounts[];
 };
+// The splits this step moves (passes/lloyd_step.comp); once they settle, the steps left do nothing.
+layout(std430, binding = 4) readonly buffer State {
+  LloydState state;
+};
 
-uniform vec4 splitInterior[4];
-uniform int layerCount;
 uniform int rowCount;
 uniform int rowLength;
 
 void main() {
   int row = int(gl_GlobalInvocationID.x);
-  if (row >= rowCount) return;
-  LayerSplits splits;
-  for (int k = 0; k < 4; ++k) splits.interior[k] = splitInterior[k];
-  splits.layerCount = layerCount;
-  splits.pad0 = 0;
-  splits.pad1 = 0;
-  splits.pad2 = 0;
+  if (row >= rowCount || state.settled != 0) return;
+  LayerSplits splits = state.splits;
   float clusterWeight[kMaxLayers];
   float clusterSum[kMaxLayers];
   float layerWeight[kMaxLayers];
@@ -41,7 +38,7 @@ void main() {
     layerWeight[i] = 0.0f;
     layerSum[i] = 0.0f;
   }
-  int count = layerCount < 2 ? 0 : rowCounts[row];
+  int count = splits.layerCount < 2 ? 0 : rowCounts[row];
   for (int x = 0; x < count; ++x) {
     vec2 entry = samples[row * rowLength + x];
     float depth = entry.x;

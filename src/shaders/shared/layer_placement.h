@@ -1,6 +1,7 @@
-// Lloyd relaxation of layer splits (thesis §4.1.2), the parts the GPU's sample and sum passes and
-// the CPU reference (src/core/layer_placement.cpp) share: the second-occluder sample of a 2x2
-// texel block and the cluster a sample joins.
+// Lloyd relaxation of layer splits (thesis §4.1.2), the parts the GPU's passes and the CPU
+// reference (src/core/layer_placement.cpp) share: the second-occluder sample of a 2x2 texel
+// block, the cluster a sample joins, a step's update of the splits from its sums, when the
+// relaxation has settled, and the splits it places.
 #ifndef PENUMBRA_SHARED_LAYER_PLACEMENT_H
 #define PENUMBRA_SHARED_LAYER_PLACEMENT_H
 #include "layers.h"
@@ -45,6 +46,123 @@ PENUMBRA_INLINE int nearestSplit(LayerSplits splits, float depth) {
   }
   return nearest;
 }
+
+// What a Lloyd step gathers, per split (cluster k, 0-based) and per layer: the total weight and
+// the weighted sum of depths of the samples that join it.
+struct LloydStepSums {
+  float clusterWeight[kMaxLayers];
+  float clusterSum[kMaxLayers];
+  float layerWeight[kMaxLayers];
+  float layerSum[kMaxLayers];
+};
+
+// The relaxation stops once no split moves by more than this in a step.
+const float kLloydSettled = 0.000001f;
+
+// How close two splits (and a split and 0 or 1) may come: two overlaps, so that neighbouring
+// layers' widened ranges (overlappedLayerRange) do not cover each other's splits.
+PENUMBRA_INLINE float lloydMinGap(float overlap) {
+  return max(2.0f * overlap, 0.001f);
+}
+
+PENUMBRA_INLINE LayerSplits withInteriorSplit(LayerSplits splits, int k, float depth) {
+  splits.interior[k / 4][k % 4] = depth;
+  return splits;
+}
+
+// The interior splits of `candidate` sorted, kept strictly inside (0,1) and `minGap` apart:
+// pushed forward from 0, then back from 1.
+PENUMBRA_INLINE LayerSplits packSplits(LayerSplits candidate, float minGap) {
+  int n = candidate.layerCount - 1;
+  float s[kMaxLayers];
+  for (int k = 0; k < kMaxLayers; ++k) s[k] = layerSplit(candidate, k + 1);
+  for (int i = 1; i < n; ++i) {  // insertion sort: at most 15 splits
+    float v = s[i];
+    int j = i - 1;
+    while (j >= 0 && s[j] > v) {
+      s[j + 1] = s[j];
+      --j;
+    }
+    s[j + 1] = v;
+  }
+  float previous = 0.0f;
+  for (int i = 0; i < n; ++i) {
+    s[i] = max(s[i], previous + minGap);
+    previous = s[i];
+  }
+  float next = 1.0f;
+  for (int i = n - 1; i >= 0; --i) {
+    s[i] = min(s[i], next - minGap);
+    next = s[i];
+  }
+  LayerSplits sorted = uniformLayerSplits(candidate.layerCount);
+  for (int k = 0; k < n; ++k) sorted = withInteriorSplit(sorted, k, s[k]);
+  return sorted;
+}
+
+// One Lloyd step's move: each split to its cluster's weighted mean. A split left with no weight
+// is teleported (thesis: "merge the two adjacent layers and split whatever layer has the highest
+// weight"): placed at the weighted mean of the heaviest layer (the first of equals), each empty
+// split into a different layer; with no weight anywhere it keeps its place.
+PENUMBRA_INLINE LayerSplits lloydUpdate(LloydStepSums sums, LayerSplits splits, float minGap) {
+  int n = splits.layerCount - 1;
+  if (n <= 0) return splits;
+  LayerSplits next = uniformLayerSplits(splits.layerCount);
+  int kept = 0;
+  for (int k = 0; k < n; ++k) {
+    if (sums.clusterWeight[k] > 0.0f) {
+      next = withInteriorSplit(next, kept, sums.clusterSum[k] / sums.clusterWeight[k]);
+      ++kept;
+    }
+  }
+  float layerWeight[kMaxLayers];
+  for (int l = 0; l < kMaxLayers; ++l) layerWeight[l] = sums.layerWeight[l];
+  for (int i = 0; i < n - kept; ++i) {
+    int heaviest = 0;
+    for (int l = 1; l < splits.layerCount; ++l) {
+      if (layerWeight[l] > layerWeight[heaviest]) heaviest = l;
+    }
+    float teleported = layerSplit(splits, i % n + 1);
+    if (layerWeight[heaviest] > 0.0f) {
+      teleported = sums.layerSum[heaviest] / layerWeight[heaviest];
+      layerWeight[heaviest] = 0.0f;  // the next teleport goes elsewhere
+    }
+    next = withInteriorSplit(next, kept + i, teleported);
+  }
+  return packSplits(next, minGap);
+}
+
+PENUMBRA_INLINE float largestSplitMove(LayerSplits a, LayerSplits b) {
+  float moved = 0.0f;
+  for (int k = 1; k < a.layerCount; ++k) {
+    moved = max(moved, abs(layerSplit(a, k) - layerSplit(b, k)));
+  }
+  return moved;
+}
+
+// The splits a relaxation places: its centres sit at second occluders' mean depths, and a
+// boundary exactly there would leave half of those surfaces in the layer in front, still
+// bleeding, so each split moves `frontMargin` (one overlap) toward the light.
+PENUMBRA_INLINE LayerSplits lloydPlacedSplits(LayerSplits relaxed, float frontMargin,
+                                              float minGap) {
+  LayerSplits moved = relaxed;
+  for (int k = 0; k + 1 < relaxed.layerCount; ++k) {
+    moved = withInteriorSplit(moved, k, layerSplit(relaxed, k + 1) - frontMargin);
+  }
+  return packSplits(moved, minGap);
+}
+
+// The GPU relaxation's state between its passes (passes/lloyd_step.comp): the splits, whether
+// they settled, and after the last step the placed splits with the encode's texel-layer ranges
+// for them (texelLayerRanges), laid out as the parameter blocks hold them, which copy them there.
+struct LloydState {
+  LayerSplits splits;
+  int settled;
+  int pad0;
+  int pad1;
+  int pad2;
+  vec4 texelLayerRanges[kMaxTexelLayers];
+};
 
 PENUMBRA_END_SHARED
 #endif
