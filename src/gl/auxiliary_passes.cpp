@@ -75,7 +75,7 @@ shaders::LayerSplits LloydPlacement::readPlacedSplits() const {
 void LloydPlacement::release() {
   samples_.reset();
   rowCounts_.reset();
-  rowSums_.reset();
+  groupSums_.reset();
   state_.reset();
 }
 
@@ -88,17 +88,18 @@ void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
     layers_ = layers;
     samples_.emplace(lloydSampleBytes(size) * size_t(layers));
     rowCounts_.emplace(lloydRowCountBytes(size, layers));
-    rowSums_.emplace(lloydRowSumBytes(size, layers));
+    groupSums_.emplace(lloydGroupSumBytes(size, layers));
     state_.emplace(sizeof(shaders::LloydState));
   }
   shaders::LloydState start{};
   start.splits = shaders::uniformLayerSplits(lvsm.splits.layerCount);
   glNamedBufferSubData(state_->id(), 0, sizeof start, &start);
   // Each row's weighted samples (every cascade's rows in turn); then each step's sums, row by
-  // row, and the step itself, which adds the rows and moves the splits. The thesis reads its
-  // reduction back each step; here the splits stay on the GPU and go from the state straight
-  // into the parameter blocks.
+  // row and added up in groups of 64 rows, and the step itself, which adds the groups and moves
+  // the splits. The thesis reads its reduction back each step; here the splits stay on the GPU
+  // and go from the state straight into the parameter blocks.
   const int rows = (size - 1) * layers;
+  const unsigned sumGroups = (unsigned(rows) + 63u) / 64u;  // of the sums pass, 64 rows each
   const Program& samples =
       programs.compute("passes/split_samples.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
@@ -106,17 +107,17 @@ void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
   glBindTextureUnit(0, depth.texture);
   samples_->bindStorage(1);
   rowCounts_->bindStorage(3);
-  samples.dispatch((unsigned(rows) + 63u) / 64u);
+  samples.dispatch(sumGroups);  // one invocation per row here too
   const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);
   const Program& step = programs.compute("passes/lloyd_step.comp", {});
-  step.set("rowCount", rows);
-  rowSums_->bindStorage(2);
+  step.set("groupCount", int(sumGroups));
+  groupSums_->bindStorage(2);
   state_->bindStorage(4);
   parameters.bind();
   for (int i = 0; i < lvsm.lloydIterations; ++i) {
-    gather.dispatch((unsigned(rows) + 63u) / 64u);
+    gather.dispatch(sumGroups);
     step.set("lastStep", i + 1 == lvsm.lloydIterations ? 1 : 0);
     step.dispatch(1);
   }

@@ -43,13 +43,14 @@ class LloydPlacement {
   std::vector<SplitSample> readSamples() const;
   shaders::LayerSplits readPlacedSplits() const;  // waits for the placement
   uint64_t bytes() const {
-    return samples_ ? samples_->size() + rowCounts_->size() + rowSums_->size() + state_->size() : 0;
+    return samples_ ? samples_->size() + rowCounts_->size() + groupSums_->size() + state_->size()
+                    : 0;
   }
 
  private:
   std::optional<Buffer> samples_;    // each row's weighted samples at the front of its slot
   std::optional<Buffer> rowCounts_;  // how many each row holds
-  std::optional<Buffer> rowSums_;    // each step's per-row sums
+  std::optional<Buffer> groupSums_;  // each step's sums, per group of 64 rows
   std::optional<Buffer> state_;      // shaders::LloydState: the splits between steps
   int size_ = 0, layers_ = 0;
 };

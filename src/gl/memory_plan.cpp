@@ -122,9 +122,10 @@ SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
           c * n * size_t(shaders::summedAreaRowPitch(shadowMapSize)) * 8};
 }
 
-size_t lloydRowSumBytes(int shadowMapSize, int cascades) {
-  // Per sample row: cluster and layer weights and sums, kMaxLayers floats each.
-  return size_t(shadowMapSize - 1) * size_t(cascades) * 4 * shaders::kMaxLayers * sizeof(float);
+size_t lloydGroupSumBytes(int shadowMapSize, int cascades) {
+  // Per group of 64 sample rows: cluster and layer weights and sums, kMaxLayers floats each.
+  const size_t groups = (size_t(shadowMapSize - 1) * size_t(cascades) + 63) / 64;
+  return groups * 4 * shaders::kMaxLayers * sizeof(float);
 }
 
 size_t lloydRowCountBytes(int shadowMapSize, int cascades) {
@@ -159,7 +160,7 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   }
   if (placesLayersByLloyd(s)) {
     m.auxiliary += lloydSampleBytes(size) * cascades + lloydRowCountBytes(size, layers) +
-                   lloydRowSumBytes(size, layers) + sizeof(shaders::LloydState);
+                   lloydGroupSumBytes(size, layers) + sizeof(shaders::LloydState);
   }
   m.frame = frameBytes(s.width, s.height, writesDiagnostics(s), s.lookupInputs);
   if (fitsDepthBounds(s)) m.frame += depthBoundsBytes(s.width, s.height);

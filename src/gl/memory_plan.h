@@ -42,7 +42,7 @@ struct SummedAreaSizes {
 };
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize);
 size_t lloydSampleBytes(int shadowMapSize);
-size_t lloydRowSumBytes(int shadowMapSize, int cascades);
+size_t lloydGroupSumBytes(int shadowMapSize, int cascades);
 size_t lloydRowCountBytes(int shadowMapSize, int cascades);
 
 // One texture a render creates, as the GL's proxy test takes it.

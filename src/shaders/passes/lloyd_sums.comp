@@ -2,14 +2,15 @@
 // of samples: for each split (cluster) and each layer, the total weight and weighted depth of
 // the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them. A
 // row holds only its weighted samples (passes/split_samples.comp), in the order the CPU meets
-// them: the ones it skips added nothing.
+// them: the ones it skips added nothing. Each group adds its 64 rows' sums in shared memory, so
+// that the step (passes/lloyd_step.comp) adds one partial per group, not one per row.
 #include "../shared/layer_placement.h"
 
 layout(local_size_x = 64) in;
 layout(std430, binding = 1) readonly buffer Samples {
   vec2 samples[];
 };
-// Per row: cluster weights, cluster sums, layer weights, layer sums, kMaxLayers entries each.
+// Per group: cluster weights, cluster sums, layer weights, layer sums, kMaxLayers entries each.
 layout(std430, binding = 2) writeonly buffer Sums {
   float sums[];
 };
@@ -24,9 +25,11 @@ layout(std430, binding = 4) readonly buffer State {
 uniform int rowCount;
 uniform int rowLength;
 
+shared float rowSums[64][4 * kMaxLayers];
+
 void main() {
+  int local = int(gl_LocalInvocationID.x);
   int row = int(gl_GlobalInvocationID.x);
-  if (row >= rowCount || state.settled != 0) return;
   LayerSplits splits = state.splits;
   float clusterWeight[kMaxLayers];
   float clusterSum[kMaxLayers];
@@ -38,7 +41,9 @@ void main() {
     layerWeight[i] = 0.0f;
     layerSum[i] = 0.0f;
   }
-  int count = splits.layerCount < 2 ? 0 : rowCounts[row];
+  // Settled splits (the same for the whole dispatch) take no more sums: the step skips them.
+  bool adds = state.settled == 0 && splits.layerCount >= 2 && row < rowCount;
+  int count = adds ? rowCounts[row] : 0;
   for (int x = 0; x < count; ++x) {
     vec2 entry = samples[row * rowLength + x];
     float depth = entry.x;
@@ -50,11 +55,15 @@ void main() {
     layerWeight[layer] += weight;
     layerSum[layer] += weight * depth;
   }
-  int base = row * 4 * kMaxLayers;
   for (int i = 0; i < kMaxLayers; ++i) {
-    sums[base + i] = clusterWeight[i];
-    sums[base + kMaxLayers + i] = clusterSum[i];
-    sums[base + 2 * kMaxLayers + i] = layerWeight[i];
-    sums[base + 3 * kMaxLayers + i] = layerSum[i];
+    rowSums[local][i] = clusterWeight[i];
+    rowSums[local][kMaxLayers + i] = clusterSum[i];
+    rowSums[local][2 * kMaxLayers + i] = layerWeight[i];
+    rowSums[local][3 * kMaxLayers + i] = layerSum[i];
   }
+  barrier();
+  // Invocation q adds quantity q over the group's rows, in order.
+  float total = 0.0f;
+  for (int r = 0; r < 64; ++r) total += rowSums[r][local];
+  sums[int(gl_WorkGroupID.x) * 4 * kMaxLayers + local] = total;
 }
