@@ -4,7 +4,6 @@
 #pragma once
 
 #include <algorithm>
-#include <functional>
 #include <span>
 #include <vector>
 
@@ -36,7 +35,7 @@ struct LloydSums {
 };
 
 // Gathers the sums: each weighted sample joins its nearest split (the first of equals) and the
-// layer that contains it. The GPU gathers the same sums (passes/lloyd_sums.comp).
+// layer that contains it, in fp64. The GPU gathers the same sums in fp32 (passes/lloyd_sums.comp).
 LloydSums accumulateLloyd(std::span<const SplitSample> samples, const shaders::LayerSplits& splits);
 
 // Moves each split to its cluster's weighted mean, teleports empty ones (below), keeps order.
@@ -51,16 +50,11 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
                                const shaders::LayerSplits& splits, float minGap);
 
 // Uniform splits relaxed for up to `iterations` steps, stopping early once no split moves by
-// more than 1e-6, then moved `frontMargin` toward the light. Deterministic for a given input.
-// The relaxed centres sit at second occluders' mean depths; a boundary exactly there would leave
-// half of those surfaces in the layer in front, still bleeding, so the renderer places each split
-// one overlap in front of its centre.
+// more than shaders::kLloydSettled, then moved `frontMargin` toward the light. Deterministic for a
+// given input. The relaxed centres sit at second occluders' mean depths; a boundary exactly there
+// would leave half of those surfaces in the layer in front, still bleeding, so the renderer places
+// each split one overlap in front of its centre.
 shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
                                      int iterations, float minGap, float frontMargin = 0.0f);
-
-// The same relaxation with the sums gathered elsewhere (on the GPU).
-using LloydAccumulator = std::function<LloydSums(const shaders::LayerSplits&)>;
-shaders::LayerSplits lloydRelaxation(int layerCount, int iterations, float minGap,
-                                     float frontMargin, const LloydAccumulator& accumulate);
 
 }  // namespace penumbra

@@ -6,7 +6,8 @@
 namespace penumbra {
 namespace {
 
-// The sums as the shared update reads them: fp64 totals rounded once to fp32.
+// The sums as the shared update reads them: each fp64 total rounded to fp32, as the GPU holds
+// its totals (the update divides in fp32 on both sides).
 shaders::LloydStepSums stepSums(const LloydSums& sums) {
   shaders::LloydStepSums out{};
   for (size_t k = 0; k < sums.clusterWeight.size(); ++k) {
@@ -60,23 +61,16 @@ shaders::LayerSplits lloydStep(std::span<const SplitSample> samples,
   return lloydUpdate(accumulateLloyd(samples, splits), splits, minGap);
 }
 
-shaders::LayerSplits lloydRelaxation(int layerCount, int iterations, float minGap,
-                                     float frontMargin, const LloydAccumulator& accumulate) {
+shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
+                                     int iterations, float minGap, float frontMargin) {
   shaders::LayerSplits splits = shaders::uniformLayerSplits(layerCount);
   for (int i = 0; i < iterations; ++i) {
-    const shaders::LayerSplits next = lloydUpdate(accumulate(splits), splits, minGap);
+    const shaders::LayerSplits next = lloydStep(samples, splits, minGap);
     const float moved = shaders::largestSplitMove(next, splits);
     splits = next;
     if (moved < shaders::kLloydSettled) break;
   }
   return shaders::lloydPlacedSplits(splits, frontMargin, minGap);
-}
-
-shaders::LayerSplits lloydRelaxation(std::span<const SplitSample> samples, int layerCount,
-                                     int iterations, float minGap, float frontMargin) {
-  return lloydRelaxation(
-      layerCount, iterations, minGap, frontMargin,
-      [&](const shaders::LayerSplits& splits) { return accumulateLloyd(samples, splits); });
 }
 
 }  // namespace penumbra

@@ -3,6 +3,8 @@
 
 #include <epoxy/gl.h>
 
+#include <cassert>
+
 #include "memory_plan.h"
 #include "penumbra/gl/context.h"
 #include "penumbra/shared/constants.h"
@@ -98,8 +100,10 @@ void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
   // row and added up in groups of 64 rows, and the step itself, which adds the groups and moves
   // the splits. The thesis reads its reduction back each step; here the splits stay on the GPU
   // and go from the state straight into the parameter blocks.
+  // The step that places the splits is the last one: at least one (validateParams).
+  assert(lvsm.lloydIterations >= 1);
   const int rows = (size - 1) * layers;
-  const unsigned sumGroups = (unsigned(rows) + 63u) / 64u;  // of the sums pass, 64 rows each
+  const unsigned rowGroups = lloydRowGroups(size, layers);
   const Program& samples =
       programs.compute("passes/split_samples.comp", {{"MSAA", depth.multisampled() ? "1" : "0"}});
   glProgramUniform2i(samples.id(), glGetUniformLocation(samples.id(), "size"), size, size);
@@ -107,18 +111,19 @@ void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
   glBindTextureUnit(0, depth.texture);
   samples_->bindStorage(1);
   rowCounts_->bindStorage(3);
-  samples.dispatch(sumGroups);  // one invocation per row here too
+  samples.dispatch(rowGroups);
   const Program& gather = programs.compute("passes/lloyd_sums.comp", {});
   gather.set("rowCount", rows);
   gather.set("rowLength", size - 1);
   const Program& step = programs.compute("passes/lloyd_step.comp", {});
-  step.set("groupCount", int(sumGroups));
+  step.set("groupCount", int(rowGroups));
+  step.set("lastStep", 0);
   groupSums_->bindStorage(2);
   state_->bindStorage(4);
   parameters.bind();
   for (int i = 0; i < lvsm.lloydIterations; ++i) {
-    gather.dispatch(sumGroups);
-    step.set("lastStep", i + 1 == lvsm.lloydIterations ? 1 : 0);
+    gather.dispatch(rowGroups);
+    if (i + 1 == lvsm.lloydIterations) step.set("lastStep", 1);
     step.dispatch(1);
   }
   parameters.copyPlacedSplits(*state_);

@@ -122,10 +122,16 @@ SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize) {
           c * n * size_t(shaders::summedAreaRowPitch(shadowMapSize)) * 8};
 }
 
+unsigned lloydRowGroups(int shadowMapSize, int cascades) {
+  const unsigned rows = unsigned(shadowMapSize - 1) * unsigned(cascades);
+  return (rows + unsigned(shaders::kLloydRowsPerGroup) - 1u) /
+         unsigned(shaders::kLloydRowsPerGroup);
+}
+
 size_t lloydGroupSumBytes(int shadowMapSize, int cascades) {
-  // Per group of 64 sample rows: cluster and layer weights and sums, kMaxLayers floats each.
-  const size_t groups = (size_t(shadowMapSize - 1) * size_t(cascades) + 63) / 64;
-  return groups * 4 * shaders::kMaxLayers * sizeof(float);
+  // Per group of sample rows: cluster and layer weights and sums.
+  return size_t(lloydRowGroups(shadowMapSize, cascades)) * shaders::kLloydQuantities *
+         sizeof(float);
 }
 
 size_t lloydRowCountBytes(int shadowMapSize, int cascades) {

@@ -42,6 +42,8 @@ struct SummedAreaSizes {
 };
 SummedAreaSizes summedAreaSizes(int channels, int shadowMapSize);
 size_t lloydSampleBytes(int shadowMapSize);
+// Lloyd's sums pass: its groups of sample rows (every cascade's rows in turn), and their sums.
+unsigned lloydRowGroups(int shadowMapSize, int cascades);
 size_t lloydGroupSumBytes(int shadowMapSize, int cascades);
 size_t lloydRowCountBytes(int shadowMapSize, int cascades);
 

@@ -13,6 +13,15 @@
 namespace penumbra::gl {
 namespace {
 
+// The Lloyd state as std430 lays it out (passes/lloyd_step.comp), copied from into the std140
+// blocks: the splits first, the ranges at the next 16-byte boundary after the flags.
+static_assert(offsetof(shaders::LloydState, splits) == 0);
+static_assert(offsetof(shaders::LloydState, texelLayerRanges) == 96);
+static_assert(sizeof(shaders::LloydState::texelLayerRanges) ==
+              sizeof(shaders::TexelLayerRangeTable));
+static_assert((offsetof(TechniqueParams, lvsm) + offsetof(shaders::LvsmParams, splits)) % 16 == 0,
+              "std140 aligns the splits' vec4s to 16 bytes");
+
 std::string variantKey(std::string key, const std::vector<ShaderDefine>& defines) {
   for (const ShaderDefine& d : defines) key += "|" + d.name + "=" + d.value;
   return key;
@@ -80,7 +89,6 @@ void ParameterBlock::copyPlacedSplits(const Buffer& lloydState) {
   glCopyNamedBufferSubData(lloydState.id(), buffer_.id(), offsetof(LloydState, splits),
                            offsetof(TechniqueParams, lvsm) + offsetof(shaders::LvsmParams, splits),
                            sizeof(shaders::LayerSplits));
-  static_assert(sizeof LloydState::texelLayerRanges == sizeof(shaders::TexelLayerRangeTable));
   glCopyNamedBufferSubData(lloydState.id(), ranges_.id(), offsetof(LloydState, texelLayerRanges), 0,
                            sizeof(shaders::TexelLayerRangeTable));
   valid_ = false;

@@ -359,7 +359,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   result.depthBounds = range;
   // LVSM's Lloyd splits stay on the GPU in a frame that waits for nothing (ShadowFilter::params
   // reads them back); one that reads an image or its times waits anyway.
-  if (reads != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
+  const unsigned lookupImages =
+      fi::kLookup | fi::kReceiverPlane | fi::kUvDerivatives | fi::kCascades;
+  const unsigned imagesRead = reads & (lookupInputs ? fi::kAll : fi::kAll & ~lookupImages);
+  if (imagesRead != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
     result.params = s.shadows.params();
   } else {
     result.params = s.shadows.state().params;

@@ -139,19 +139,22 @@ TEST_F(FrameRenderer, AFrameThatReadsNothingBackWaitsForNothing) {
   s.cascades.count = 2;
   const gl::FrameView view{scene.camera, scene.light};
   const gl::RenderResult read = renderer.render(s, view);  // compiles and creates everything
-  s.readBack = gl::frame_image::kNone;
   s.timing = false;
-  gl::RenderResult unread;
-  {
-    const testing::WaitCounter counter;
-    unread = renderer.render(s, view);
-    EXPECT_EQ(testing::WaitCounter::waits, 0);
-  }
-  for (int i = 1; i < s.params.lvsm.splits.layerCount; ++i) {
-    EXPECT_TRUE(std::isnan(shaders::layerSplit(unread.params.lvsm.splits, i))) << i;
-    const float placed = shaders::layerSplit(read.params.lvsm.splits, i);
-    EXPECT_GT(placed, 0.0f) << i;
-    EXPECT_LT(placed, 1.0f) << i;
+  // Nothing asked, and the lookup's inputs asked of a frame that does not write them.
+  for (const unsigned readBack : {gl::frame_image::kNone, gl::frame_image::kLookup}) {
+    s.readBack = readBack;
+    gl::RenderResult unread;
+    {
+      const testing::WaitCounter counter;
+      unread = renderer.render(s, view);
+      EXPECT_EQ(testing::WaitCounter::waits, 0) << readBack;
+    }
+    for (int i = 1; i < s.params.lvsm.splits.layerCount; ++i) {
+      EXPECT_TRUE(std::isnan(shaders::layerSplit(unread.params.lvsm.splits, i))) << i;
+      const float placed = shaders::layerSplit(read.params.lvsm.splits, i);
+      EXPECT_GT(placed, 0.0f) << i;
+      EXPECT_LT(placed, 1.0f) << i;
+    }
   }
   s.readBack = gl::frame_image::kColor;
   const gl::RenderResult again = renderer.render(s, view);

@@ -1,6 +1,6 @@
 // Counts calls of the GL entry points that wait for the GPU or read its results (glFinish, image,
-// buffer and pixel reads, query results) while alive, and apart from them glGetError's (no wait
-// on the GPU, but a guest must leave the host's errors alone).
+// buffer and pixel reads, query results: every one penumbra calls) while alive, and apart from
+// them glGetError's (no wait on the GPU, but a guest must leave the host's errors alone).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -20,6 +20,7 @@ struct WaitCounter {
     glTextureStorage2D(texture.id(), 1, GL_R32F, 1, 1);
     float texel = 0.0f;
     glGetTextureImage(texture.id(), 0, GL_RED, GL_FLOAT, sizeof texel, &texel);
+    glGetTextureSubImage(texture.id(), 0, 0, 0, 0, 1, 1, 1, GL_RED, GL_FLOAT, sizeof texel, &texel);
     gl::Buffer buffer(16);
     glGetNamedBufferSubData(buffer.id(), 0, 4, &texel);
     // A framebuffer of its own: a surfaceless context's default one is incomplete.
@@ -51,6 +52,7 @@ struct WaitCounter {
   CountedGlCalls<&epoxy_glFinish> finish{waits};
   CountedGlCalls<&epoxy_glGetError> getError{errorChecks};
   CountedGlCalls<&epoxy_glGetTextureImage> getTextureImage{waits};
+  CountedGlCalls<&epoxy_glGetTextureSubImage> getTextureSubImage{waits};
   CountedGlCalls<&epoxy_glGetNamedBufferSubData> getNamedBufferSubData{waits};
   CountedGlCalls<&epoxy_glReadPixels> readPixels{waits};
   CountedGlCalls<&epoxy_glGetQueryObjectui64v> getQueryObject{waits};

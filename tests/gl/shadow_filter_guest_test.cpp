@@ -79,8 +79,10 @@ TEST_F(GlTest, ShadowFilterAsGuestWaitsForNothingAndLeavesTheHostsErrors) {
       EXPECT_EQ(WaitCounter::errorChecks, 0);
     }
     // The last filter was LVSM's: params() reads the placed splits back, once. Every weighted
-    // 2x2 block straddles the step (0.25 | 0.75), its second occluder at 0.75: the first split
-    // sits there, one overlap in front, the others teleported behind it, two overlaps apart.
+    // 2x2 block straddles the step (0.25 | 0.75), its second occluder at 0.75: one split moves
+    // there, the others are teleported there or, with no weight left, keep their places; the
+    // packing keeps them two overlaps apart behind the first, and the placement moves all one
+    // overlap in front.
     const TechniqueParams& placed = filter.params();
     EXPECT_EQ(WaitCounter::waits, 1);
     const shaders::LayerSplits& splits = placed.lvsm.splits;

@@ -11,7 +11,7 @@
 // A guest's manners: filter() restores every GL state it changes (GlStateGuard lists them);
 // it never reads the host's error queue or touches its debug callback unless the context is
 // penumbra's own; it waits for nothing (no glFinish, read-back or query) unless timing was
-// asked for with setTiming(true).
+// asked for with setTiming(true). params() after an LVSM Lloyd placement reads its splits back.
 #pragma once
 
 #include <cstdint>
@@ -140,7 +140,8 @@ class ShadowFilter {
   FilterMemory memory() const;
   // The parameters in effect (EVSM's exponents clamped to their storage, LVSM's splits placed).
   // LVSM's Lloyd placement runs on the GPU: the first call after filter() reads its splits back
-  // (80 bytes), waiting for the placement; filter() itself waits for nothing.
+  // (80 bytes), waiting for the placement, so it needs the filter's context current (and on
+  // penumbra's own context reports a GL error pending there); filter() itself waits for nothing.
   const TechniqueParams& params() const;
   int channelMipLevels() const;
   int layers() const;

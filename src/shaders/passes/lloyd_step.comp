@@ -1,15 +1,16 @@
 // One Lloyd step of layered VSM's split placement (thesis §4.1.2), on the GPU: the sums
 // (passes/lloyd_sums.comp, one partial per group of rows) added up, the splits moved to their
-// clusters' weighted means (shared lloydUpdate), and after the last step the placed splits and the encode's texel-layer
-// ranges for them, which the renderer copies into its parameter blocks. Nothing is read back:
-// a frame waits for no step (the CPU reference reads its sums: src/core/layer_placement.cpp).
+// clusters' weighted means (shared lloydUpdate), and after the last step the placed splits and
+// the encode's texel-layer ranges for them, which the renderer copies into its parameter
+// blocks. Nothing is read back: a frame waits for no step (the CPU reference:
+// src/core/layer_placement.cpp).
 #include "../lib/technique_block.glsl"
 #include "../shared/layer_placement.h"
 
-// One invocation per quantity of the sums (4 * kMaxLayers: cluster weights, cluster sums, layer
-// weights, layer sums), each adding the sum groups' partials. One group of 64: on llvmpipe a
-// group of 64 x 16 invocations took 1.6 ms a step, its barrier switching between 128 coroutines.
-layout(local_size_x = 64) in;
+// One invocation per quantity of the sums, each adding the sums groups' partials: one small
+// group, whose barrier stays cheap where a CPU runs it
+// (docs/results/lloyd-gpu-llvmpipe-2026-12-07.md).
+layout(local_size_x = kLloydQuantities) in;
 layout(std430, binding = 2) readonly buffer Sums {
   float sums[];
 };
@@ -20,14 +21,14 @@ layout(std430, binding = 4) buffer State {
 uniform int groupCount;  // of the sums pass
 uniform bool lastStep;
 
-shared float totals[64];
+shared float totals[kLloydQuantities];
 
 void main() {
   int quantity = int(gl_LocalInvocationID.x);
   bool settled = state.settled != 0;
   float t = 0.0f;
   if (!settled) {
-    for (int g = 0; g < groupCount; ++g) t += sums[g * 64 + quantity];
+    for (int g = 0; g < groupCount; ++g) t += sums[g * kLloydQuantities + quantity];
   }
   totals[quantity] = t;
   barrier();

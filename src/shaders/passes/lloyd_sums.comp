@@ -2,11 +2,11 @@
 // of samples: for each split (cluster) and each layer, the total weight and weighted depth of
 // the samples that join it, as accumulateLloyd (src/core/layer_placement.cpp) gathers them. A
 // row holds only its weighted samples (passes/split_samples.comp), in the order the CPU meets
-// them: the ones it skips added nothing. Each group adds its 64 rows' sums in shared memory, so
-// that the step (passes/lloyd_step.comp) adds one partial per group, not one per row.
+// them: the ones it skips added nothing. Each group adds its rows' sums in shared memory, so that
+// the step (passes/lloyd_step.comp) adds one partial per group, not one per row.
 #include "../shared/layer_placement.h"
 
-layout(local_size_x = 64) in;
+layout(local_size_x = kLloydRowsPerGroup) in;
 layout(std430, binding = 1) readonly buffer Samples {
   vec2 samples[];
 };
@@ -25,7 +25,7 @@ layout(std430, binding = 4) readonly buffer State {
 uniform int rowCount;
 uniform int rowLength;
 
-shared float rowSums[64][4 * kMaxLayers];
+shared float rowSums[kLloydRowsPerGroup][kLloydQuantities];
 
 void main() {
   int local = int(gl_LocalInvocationID.x);
@@ -62,8 +62,9 @@ void main() {
     rowSums[local][3 * kMaxLayers + i] = layerSum[i];
   }
   barrier();
-  // Invocation q adds quantity q over the group's rows, in order.
+  // Invocation q adds quantity q over the group's rows, in order (kLloydRowsPerGroup equals
+  // kLloydQuantities).
   float total = 0.0f;
-  for (int r = 0; r < 64; ++r) total += rowSums[r][local];
-  sums[int(gl_WorkGroupID.x) * 4 * kMaxLayers + local] = total;
+  for (int r = 0; r < kLloydRowsPerGroup; ++r) total += rowSums[r][local];
+  sums[int(gl_WorkGroupID.x) * kLloydQuantities + local] = total;
 }

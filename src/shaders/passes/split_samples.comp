@@ -5,7 +5,7 @@
 // them), and on the built-in scenes they are 95-99.6% of the blocks, which every one of the
 // relaxation's steps (16 by default) would otherwise read again.
 #include "../shared/layer_placement.h"
-layout(local_size_x = 64) in;
+layout(local_size_x = kLloydRowsPerGroup) in;  // one invocation per row, as the sums pass
 #if MSAA
 layout(binding = 0) uniform sampler2DMSArray depthMap;
 #else

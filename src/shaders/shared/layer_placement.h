@@ -56,6 +56,12 @@ struct LloydStepSums {
   float layerSum[kMaxLayers];
 };
 
+// The GPU's sums (passes/lloyd_sums.comp, lloyd_step.comp): the quantities of a step's sums
+// (cluster weights, cluster sums, layer weights, layer sums), and the rows of samples each sums
+// group adds up. Equal, so that a group's invocation i adds quantity i over the group's rows.
+const int kLloydQuantities = 4 * kMaxLayers;
+const int kLloydRowsPerGroup = kLloydQuantities;
+
 // The relaxation stops once no split moves by more than this in a step.
 const float kLloydSettled = 0.000001f;
 
