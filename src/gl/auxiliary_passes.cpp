@@ -118,9 +118,9 @@ void LloydPlacement::place(ProgramCache& programs, ParameterBlock& parameters,
   const Program& step = programs.compute("passes/lloyd_step.comp", {});
   step.set("groupCount", int(rowGroups));
   step.set("lastStep", 0);
+  step.set("overlap", lvsm.overlap);
   groupSums_->bindStorage(2);
   state_->bindStorage(4);
-  parameters.bind();
   for (int i = 0; i < lvsm.lloydIterations; ++i) {
     gather.dispatch(rowGroups);
     if (i + 1 == lvsm.lloydIterations) step.set("lastStep", 1);

@@ -13,6 +13,7 @@
 #include "penumbra/gl/program.h"
 #include "penumbra/gl/shadow_filter.h"
 #include "penumbra/shared/layer_placement.h"
+#include "penumbra/shared/technique_dispatch.h"
 
 namespace penumbra::gl {
 namespace {
@@ -95,6 +96,31 @@ TEST_F(GlTest, ShadowFilterAsGuestWaitsForNothingAndLeavesTheHostsErrors) {
     }
     filter.params();
     EXPECT_EQ(WaitCounter::waits, 1) << "read back once";
+  }
+  {
+    // The blocks bind() hands the host hold the placed splits and the encode's ranges for them,
+    // as the CPU computes them from those splits (the same shared functions; subtractions and
+    // clamps of the same floats: equal to the bit).
+    const TechniqueParams& placed = filter.params();
+    filter.bind();
+    const ShadowBindings bindings;
+    GLint parameterBuffer = 0, rangeBuffer = 0;
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, GLuint(bindings.parameterBlock), &parameterBuffer);
+    glGetIntegeri_v(GL_UNIFORM_BUFFER_BINDING, GLuint(bindings.layerRangeBlock), &rangeBuffer);
+    TechniqueParams onGpu;
+    glGetNamedBufferSubData(GLuint(parameterBuffer), 0, sizeof onGpu, &onGpu);
+    shaders::TexelLayerRangeTable ranges;
+    glGetNamedBufferSubData(GLuint(rangeBuffer), 0, sizeof ranges, &ranges);
+    const shaders::TexelLayerRangeTable expected =
+        shaders::texelLayerRangeTable(shaders::kTechniqueLvsm, placed);
+    for (int i = 1; i < placed.lvsm.splits.layerCount; ++i) {
+      EXPECT_EQ(shaders::layerSplit(onGpu.lvsm.splits, i),
+                shaders::layerSplit(placed.lvsm.splits, i));
+    }
+    for (int t = 0; t < shaders::kMaxTexelLayers; ++t) {
+      for (int c = 0; c < 4; ++c)
+        EXPECT_EQ(ranges.texelLayer[t][c], expected.texelLayer[t][c]) << t;
+    }
   }
   void* callback = nullptr;
   glGetPointerv(GL_DEBUG_CALLBACK_FUNCTION, &callback);

@@ -4,8 +4,8 @@
 // the encode's texel-layer ranges for them, which the renderer copies into its parameter
 // blocks. Nothing is read back: a frame waits for no step (the CPU reference:
 // src/core/layer_placement.cpp).
-#include "../lib/technique_block.glsl"
 #include "../shared/layer_placement.h"
+#include "../shared/lvsm.h"
 
 // One invocation per quantity of the sums, each adding the sums groups' partials: one small
 // group, whose barrier stays cheap where a CPU runs it
@@ -19,6 +19,7 @@ layout(std430, binding = 4) buffer State {
 };
 
 uniform int groupCount;  // of the sums pass
+uniform float overlap;   // LvsmParams::overlap
 uniform bool lastStep;
 
 shared float totals[kLloydQuantities];
@@ -33,7 +34,7 @@ void main() {
   totals[quantity] = t;
   barrier();
   if (quantity != 0) return;
-  float minGap = lloydMinGap(penumbraParams.lvsm.overlap);
+  float minGap = lloydMinGap(overlap);
   LayerSplits splits = state.splits;
   if (!settled) {
     LloydStepSums s;
@@ -49,11 +50,10 @@ void main() {
     state.splits = next;
   }
   if (lastStep) {
-    TechniqueParams p = penumbraParams;
-    p.lvsm.splits = lloydPlacedSplits(splits, p.lvsm.overlap, minGap);
-    state.splits = p.lvsm.splits;
+    LayerSplits placed = lloydPlacedSplits(splits, overlap, minGap);
+    state.splits = placed;
     for (int l = 0; l < kMaxTexelLayers; ++l) {
-      state.texelLayerRanges[l] = texelLayerRanges(kTechniqueLvsm, l, p);
+      state.texelLayerRanges[l] = lvsmTexelLayerRanges(l, placed, overlap);
     }
   }
 }

@@ -160,7 +160,8 @@ PENUMBRA_INLINE LayerSplits lloydPlacedSplits(LayerSplits relaxed, float frontMa
 
 // The GPU relaxation's state between its passes (passes/lloyd_step.comp): the splits, whether
 // they settled, and after the last step the placed splits with the encode's texel-layer ranges
-// for them (texelLayerRanges), laid out as the parameter blocks hold them, which copy them there.
+// for them (lvsmTexelLayerRanges), laid out as the parameter blocks hold them, which copy them
+// there.
 struct LloydState {
   LayerSplits splits;
   int settled;

@@ -39,6 +39,16 @@ PENUMBRA_INLINE vec2 lvsmLayerRange(int layer, LvsmParams p) {
   return overlappedLayerRange(p.splits, layer, p.overlap);
 }
 
+// The ranges LVSM's texel layer `texelLayer` encodes into: its two layers' (lvsmLayerRange),
+// the last layer's again past the last, as (lower, upper, lower, upper). Splits and overlap
+// apart, for the Lloyd step that writes them for splits it placed (passes/lloyd_step.comp).
+PENUMBRA_INLINE vec4 lvsmTexelLayerRanges(int texelLayer, LayerSplits splits, float overlap) {
+  int last = splits.layerCount - 1;
+  vec2 a = overlappedLayerRange(splits, min(2 * texelLayer, last), overlap);
+  vec2 b = overlappedLayerRange(splits, min(2 * texelLayer + 1, last), overlap);
+  return vec4(a.x, a.y, b.x, b.y);
+}
+
 // The layer warp of thesis eq. 4.2: 0 in front of the layer, 1 behind it, linear inside.
 PENUMBRA_INLINE float lvsmWarp(float depth, vec2 range) {
   return clamp((depth - range.x) / (range.y - range.x), 0.0f, 1.0f);

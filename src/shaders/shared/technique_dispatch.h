@@ -77,10 +77,7 @@ PENUMBRA_INLINE TexelEncoding nextTexelLayer(int technique, TexelEncoding e) {
 PENUMBRA_INLINE vec4 texelLayerRanges(int technique, int texelLayer, TechniqueParams p) {
   vec4 ranges = vec4(0.0f, 1.0f, 0.0f, 1.0f);
   if (technique == kTechniqueLvsm) {
-    int last = p.lvsm.splits.layerCount - 1;
-    vec2 a = lvsmLayerRange(min(2 * texelLayer, last), p.lvsm);
-    vec2 b = lvsmLayerRange(min(2 * texelLayer + 1, last), p.lvsm);
-    ranges = vec4(a.x, a.y, b.x, b.y);
+    ranges = lvsmTexelLayerRanges(texelLayer, p.lvsm.splits, p.lvsm.overlap);
   } else if (technique == kTechniquePowerCdf) {
     int last = p.powerCdf.splits.layerCount - 1;
     int firstLayer = (4 * texelLayer) / 3;
