@@ -343,26 +343,25 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   RenderResult result;
   namespace fi = frame_image;
   // A reference frame's visibility marks the pixels the CPU completes (completeReferenceOnCpu
-  // reads the colour and diagnostic it shades them from where they were not asked for).
-  const unsigned reads = settings.readBack | (reference ? fi::kVisibility : fi::kNone);
+  // reads the colour and diagnostic it shades them from where they were not asked for). The
+  // lookup's inputs are read only where the frame wrote them.
+  const unsigned lookupImages =
+      fi::kLookup | fi::kReceiverPlane | fi::kUvDerivatives | fi::kCascades;
+  const unsigned reads = (settings.readBack | (reference ? fi::kVisibility : fi::kNone)) &
+                         (lookupInputs ? fi::kAll : fi::kAll & ~lookupImages);
   if (reads & fi::kColor) result.color = s.camera.readColor();
   if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
   if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();
-  if (lookupInputs) {
-    if (reads & fi::kLookup) result.lookup = s.camera.readLookup();
-    if (reads & fi::kReceiverPlane) result.receiverPlane = s.camera.readReceiverPlane();
-    if (reads & fi::kUvDerivatives) result.uvDerivatives = s.camera.readUvDerivatives();
-    if (reads & fi::kCascades) result.cascades = s.camera.readCascades();
-  }
+  if (reads & fi::kLookup) result.lookup = s.camera.readLookup();
+  if (reads & fi::kReceiverPlane) result.receiverPlane = s.camera.readReceiverPlane();
+  if (reads & fi::kUvDerivatives) result.uvDerivatives = s.camera.readUvDerivatives();
+  if (reads & fi::kCascades) result.cascades = s.camera.readCascades();
   result.cascadeFrame = frame.cascades;
   result.cascadeBlurs = s.cascadeBlurs;
   result.depthBounds = range;
   // LVSM's Lloyd splits stay on the GPU in a frame that waits for nothing (ShadowFilter::params
   // reads them back); one that reads an image or its times waits anyway.
-  const unsigned lookupImages =
-      fi::kLookup | fi::kReceiverPlane | fi::kUvDerivatives | fi::kCascades;
-  const unsigned imagesRead = reads & (lookupInputs ? fi::kAll : fi::kAll & ~lookupImages);
-  if (imagesRead != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
+  if (reads != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
     result.params = s.shadows.params();
   } else {
     result.params = s.shadows.state().params;
