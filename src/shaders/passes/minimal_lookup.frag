@@ -1,12 +1,13 @@
 // The camera pass's yardstick (bench --passes): the least a lookup of the technique can do on
-// one map. The receiver in the light's map, the channels by one hardware-filtered fetch per
-// channel layer at level 0 (bilinear) where they average linearly, else the layer's four texels
-// reduced by hand (the power CDF's min and max, ESM's log space: bilinear hardware filtering
-// would average them into a wrong visibility); with the summed-area filter (SUMMED_AREA), each
+// one map. The receiver in the light's map, each channel layer read once through the pass's
+// filter mode (shared filterLayer: one hardware-filtered fetch where the channels average
+// linearly, at the level of the footprint from uv's screen derivatives for mip-mapped modes;
+// else the taps reduced by hand: the power CDF's min and max, ESM's log space, which hardware
+// filtering would average into a wrong visibility); with the summed-area filter (SUMMED_AREA), each
 // read channel's mean over the least box the production lookup takes (the blur's width, no
 // footprint) from the table, as it reads the table; the technique's own reconstruction
 // (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
-// normal offset, receiver plane, footprint, cascade, ESM fallback or diagnostics: what the
+// normal offset, receiver plane, soft light, cascade, ESM fallback or diagnostics: what the
 // production pass (camera.frag) adds to this is its cost over the yardstick. With
 // WITH_ESM_FALLBACK, ESM's classification and fallback as well: what the pass adds besides its
 // fallback.
@@ -71,19 +72,17 @@ void main() {
     channels[c] = summedAreaBoxMean(sources, c, box, penumbraLookup.shadowMapSize);
   }
 #else
+  // The footprint from the screen derivatives of uv, as the hardware takes its own.
+  vec2 uvDx = dFdx(uv);
+  vec2 uvDy = dFdy(uv);
   for (int layer = 0; layer < LAYER_COUNT; ++layer) {
     ivec4 reductions = ivec4(kReduceMean);
     for (int k = 0; k < 4; ++k) {
       reductions[k] = channelReduction(penumbraTechnique, 4 * layer + k, params);
     }
-    vec4 v;
-    if (all(equal(reductions, ivec4(kReduceMean)))) {
-      v = textureLod(penumbraChannelMap, vec3(uv, float(layer)), 0.0f);
-    } else {
-      LayerAccumulator a = startLayerReduction(reductions, params.esm.exponent);
-      a = accumulateBilinear(sources, a, layer, uv, 0, penumbraLookup.shadowMapSize, 1.0f);
-      v = layerReductionResult(a);
-    }
+    vec4 v = filterLayer(sources, lookupSettings(0), layer,
+                         all(equal(reductions, ivec4(kReduceMean))), reductions,
+                         params.esm.exponent, uv, uvDx, uvDy);
     for (int k = 0; k < 4; ++k) channels[4 * layer + k] = v[k];
   }
 #endif

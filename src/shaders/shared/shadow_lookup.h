@@ -95,6 +95,25 @@ PENUMBRA_INLINE vec4 channelProbes(LookupSources s, LookupSettings ls, int layer
   return v;
 }
 
+// One texel layer through the filter mode: where every channel read averages linearly
+// (`linear`), the hardware's filter at the footprint's level (bilinear: level 0; point: the
+// nearest texel; anisotropic: the probes, or the driver's own filter), else the taps by hand,
+// each channel reduced by its own reduction. The production lookup's fetch, and the minimal
+// lookup's (passes/minimal_lookup.frag): the least that filter mode reads.
+PENUMBRA_INLINE vec4 filterLayer(LookupSources s, LookupSettings ls, int layer, bool linear,
+                                 ivec4 reductions, float logExponent, vec2 uv, vec2 uvDx,
+                                 vec2 uvDy) {
+  if (!linear) return filterLayerByTaps(s, ls, layer, reductions, logExponent, uv, uvDx, uvDy);
+  if (ls.filterMode == kFilterPoint) {
+    return channelTexel(s, layer, nearestTexel(uv, ls.shadowMapSize), 0);
+  }
+  if (ls.filterMode == kFilterAnisotropicDriver)
+    return channelAnisotropic(s, layer, uv, uvDx, uvDy);
+  if (ls.filterMode == kFilterAnisotropic) return channelProbes(s, ls, layer, uv, uvDx, uvDy);
+  float lod = ls.filterMode == kFilterBilinear ? 0.0f : lookupProbes(uvDx, uvDy, ls).lod;
+  return channelLinear(s, layer, uv, lod);
+}
+
 #if PENUMBRA_SUMMED_AREA
 // The table's continuous prefix sum at texel-edge coordinates (X, Y): bilinear between the
 // integer prefix sums, since the channel is constant over each texel. Relative to `origin`, a
@@ -168,21 +187,9 @@ PENUMBRA_INLINE FilteredChannels filterChannels(LookupSources s, LookupSettings 
         linear = false;
       }
     }
-    vec4 v = vec4(0.0f);
-    if (!linear) {
-      ivec4 reductions = ivec4(kReduceMean);
-      for (int k = 0; k < 4; ++k) reductions[k] = channelReduction(technique, 4 * layer + k, p);
-      v = filterLayerByTaps(s, ls, layer, reductions, p.esm.exponent, uv, uvDx, uvDy);
-    } else if (ls.filterMode == kFilterPoint) {
-      v = channelTexel(s, layer, nearestTexel(uv, ls.shadowMapSize), 0);
-    } else if (ls.filterMode == kFilterAnisotropicDriver) {
-      v = channelAnisotropic(s, layer, uv, uvDx, uvDy);
-    } else if (ls.filterMode == kFilterAnisotropic) {
-      v = channelProbes(s, ls, layer, uv, uvDx, uvDy);
-    } else {
-      float lod = ls.filterMode == kFilterBilinear ? 0.0f : lookupProbes(uvDx, uvDy, ls).lod;
-      v = channelLinear(s, layer, uv, lod);
-    }
+    ivec4 reductions = ivec4(kReduceMean);
+    for (int k = 0; k < 4; ++k) reductions[k] = channelReduction(technique, 4 * layer + k, p);
+    vec4 v = filterLayer(s, ls, layer, linear, reductions, p.esm.exponent, uv, uvDx, uvDy);
     for (int k = 0; k < 4; ++k) {
       int c = 4 * layer + k;
       if (c >= range.x && c <= range.y) f.values[c] = v[k];
