@@ -221,13 +221,18 @@ void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBloc
   const int layers = shape_.layout.layers;
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
-    // One map: its radius compiled in. Cascades' radii follow the view: a uniform (blur.comp).
+    // One map: its radius and weights compiled in. Cascades' radii follow the view: uniforms
+    // (blur.comp).
     std::vector<ShaderDefine> kernelDefines = defines;
     kernelDefines.push_back(blurTapsAlikeDefine(spec, alike));
-    if (shape_.cascades == 1) kernelDefines.push_back(blurRadiusDefine(spec));
+    if (shape_.cascades == 1) {
+      for (ShaderDefine& d : blurKernelDefines(spec)) kernelDefines.push_back(std::move(d));
+    }
     const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
-    if (shape_.cascades > 1) blur.set("radius", spec.radius);
-    setBlurWeights(blur, spec);
+    if (shape_.cascades > 1) {
+      blur.set("radius", spec.radius);
+      setBlurWeights(blur, spec);
+    }
     parameters.bind();
     setSize(blur, "size", shape_.size);
     const GLint direction = glGetUniformLocation(blur.id(), "direction");
@@ -256,11 +261,10 @@ void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const Parameter
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     std::vector<ShaderDefine> fusedDefines = defines;
-    fusedDefines.push_back(blurRadiusDefine(spec));
+    for (ShaderDefine& d : blurKernelDefines(spec)) fusedDefines.push_back(std::move(d));
     fusedDefines.push_back(blurTapsAlikeDefine(spec, alike));
     for (ShaderDefine& d : fusedTileDefines(shape_.layout)) fusedDefines.push_back(std::move(d));
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
-    setBlurWeights(fused, spec);
     parameters.bind();
     setSize(fused, "size", shape_.size);
     fused.set("cascade", cascade);

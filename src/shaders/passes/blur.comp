@@ -7,9 +7,13 @@
 // count (docs/results/passes-llvmpipe-2026-12-04.md). So one map compiles its radius in (RADIUS:
 // the user's kernel, one variant); cascades, whose kernels follow the view, take it as a uniform
 // rather than compiling a variant for every radius the camera passes through.
-// The weights stay uniforms: as constants the compiler may regroup the sum, and MSM's
-// ill-conditioned moments then part from the CPU twin's. A box (TAPS_ALIKE) sums its taps and
-// scales once instead, as the CPU twin does.
+// With the radius, its weights are compiled in (WEIGHTS, their exact bits): read from a uniform
+// array, the exponential techniques' blur of one map took 1.24-1.36x the plain blur of constant
+// weights on llvmpipe, 1.00-1.03x as constants (docs/results/passes-llvmpipe-2026-12-07.md).
+// The accumulation is precise (shared/channel_reduction.h), so the compiler cannot regroup the
+// constant weights' sum, w t0 + w t1 into w (t0 + t1): a box's unit-weight sum of exponentials
+// would pass fp32's range, and MSM's ill-conditioned moments part from the CPU twin's. A box
+// over other channels (TAPS_ALIKE) sums its taps and scales once, as the CPU twin does.
 #include "../lib/layer_reduction.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
@@ -18,7 +22,7 @@ layout(binding = 0, CHANNEL_FORMAT) uniform writeonly image2D target;
 
 #ifdef RADIUS
 const int kRadius = RADIUS;
-uniform float weights[2 * kRadius + 1];
+const float weights[2 * kRadius + 1] = WEIGHTS;
 #define BLUR_RADIUS kRadius
 #else
 uniform int radius;

@@ -12,9 +12,9 @@
 #include "../lib/texel_components.glsl"
 
 // The radius at compile time (RADIUS): the shared arrays have their size, the loops a constant
-// trip count. The weights are uniforms, as blur.comp's (same arithmetic, same bits).
+// trip count; the weights compiled in too (WEIGHTS), as blur.comp's (same arithmetic, same bits).
 const int kRadius = RADIUS;
-uniform float weights[2 * kRadius + 1];
+const float weights[2 * kRadius + 1] = WEIGHTS;
 const int kSpan = TILE + 2 * kRadius;
 #include "../lib/blur_taps.glsl"
 

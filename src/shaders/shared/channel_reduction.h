@@ -31,6 +31,9 @@ PENUMBRA_INLINE ChannelAccumulator startReduction(int reduction, float logExpone
 
 // Adds one tap. A tap of weight <= 0 lies outside the kernel and changes nothing, for min and max
 // too: a bilinear lookup exactly on a texel centre must not take the neighbour's extreme.
+// Means add w t in order (PENUMBRA_PRECISE): with the weights compiled in, a compiler could
+// otherwise regroup equal weights' products into w (t0 + t1 + ...), whose sum of exponentials
+// passes fp32's range (blur.comp).
 PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float value, float weight) {
   if (weight <= 0.0f) return a;
   if (a.reduction == kReduceMin) {
@@ -41,7 +44,8 @@ PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float val
     a.logSum = a.taps == 0 ? esmLogSumStart(value, weight)
                            : esmLogSumAdd(a.logSum, value, weight, a.logExponent);
   } else {
-    a.value = a.value + weight * value;
+    PENUMBRA_PRECISE float total = a.value + weight * value;
+    a.value = total;
   }
   a.taps = a.taps + 1;
   return a;
@@ -50,16 +54,20 @@ PENUMBRA_INLINE ChannelAccumulator accumulateTap(ChannelAccumulator a, float val
 // One tap of a texel layer whose channels all reduce as means: the weighted sum of whole texels,
 // the accumulateTap arithmetic of a mean channel on four at once. The prefilter passes take this
 // path where every channel is a mean (decided on the CPU, reductionDefines) so that llvmpipe's
-// masked execution does not run the other reductions' branches for every tap.
+// masked execution does not run the other reductions' branches for every tap. In order, as
+// accumulateTap's.
 PENUMBRA_INLINE vec4 accumulateMeanTexel(vec4 sum, vec4 texel, float weight) {
-  return sum + weight * texel;
+  PENUMBRA_PRECISE vec4 total = sum + weight * texel;
+  return total;
 }
 // The same for a texel of two or one components (the fused prefilter keeps only the format's).
 PENUMBRA_INLINE vec2 accumulateMeanTexel(vec2 sum, vec2 texel, float weight) {
-  return sum + weight * texel;
+  PENUMBRA_PRECISE vec2 total = sum + weight * texel;
+  return total;
 }
 PENUMBRA_INLINE float accumulateMeanTexel(float sum, float texel, float weight) {
-  return sum + weight * texel;
+  PENUMBRA_PRECISE float total = sum + weight * texel;
+  return total;
 }
 
 // A kernel whose taps all weigh alike (the box): the passes add every tap at unit weight and

@@ -3,8 +3,9 @@
 // Rules: include guards, `f` literals, no swizzles, no out/inout, structs built member by member
 // (constructor syntax differs), every function marked PENUMBRA_INLINE. Texture access only
 // through the functions lookup_access.h declares, which each side defines over its own textures.
-// PENUMBRA_PRECISE marks ill-conditioned arithmetic (MSM's Hankel solve) where GLSL compilers
-// must not fuse or reorder operations, so the GPU rounds as the C++ reference does.
+// PENUMBRA_PRECISE marks arithmetic where GLSL compilers must not fuse or reorder operations, so
+// the GPU rounds as the C++ reference does: ill-conditioned (MSM's Hankel solve), or a sum whose
+// regrouping could overflow (the prefilter's taps, channel_reduction.h).
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
 

@@ -136,7 +136,11 @@ PENUMBRA_INLINE vec4 encodeCurrentTexelLayer(int technique, TexelEncoding e, vec
   for (int c = 0; c < 4; ++c) {
     if (4 * texelLayer + c >= count) v[c] = 0.0f;
   }
-  return v;
+  // Precise: the fused prefilter's blur, precise (channel_reduction.h), makes every value that
+  // flows into it precise, its encode included (GLSL's precise reaches back through them); the
+  // separate encode pass must round as it does, or the two paths part by an ulp of the exponent.
+  PENUMBRA_PRECISE vec4 encoded = v;
+  return encoded;
 }
 
 // The walk at texel layer `texelLayer`, for passes that encode one layer at a time.
