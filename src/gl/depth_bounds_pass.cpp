@@ -1,9 +1,8 @@
 // Depth-only camera pass and its min/max reduction.
 #include "depth_bounds_pass.h"
 
-#include <epoxy/gl.h>
-
 #include <cstring>
+#include <limits>
 
 #include "material_programs.h"
 #include "memory_plan.h"
@@ -13,7 +12,7 @@
 namespace penumbra::gl {
 
 DepthBoundsPass::~DepthBoundsPass() {
-  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  release();
 }
 
 void DepthBoundsPass::release() {
@@ -21,30 +20,72 @@ void DepthBoundsPass::release() {
   framebuffer_ = 0;
   width_ = height_ = 0;
   depth_ = Texture();
-  bounds_.reset();
+  for (Slot& slot : slots_) {
+    if (slot.fence != nullptr) glDeleteSync(slot.fence);
+    if (slot.buffer != 0) glDeleteBuffers(1, &slot.buffer);  // unmaps it
+    slot = Slot{};
+  }
+  measured_ = 0;
+  latest_.reset();
+  latestFrame_ = 0;
 }
 
 uint64_t DepthBoundsPass::bytes() const {
   return framebuffer_ == 0 ? 0 : depthBoundsBytes(width_, height_);
 }
 
+void DepthBoundsPass::allocate(int width, int height) {
+  if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
+  width_ = width;
+  height_ = height;
+  depth_ = Texture(GL_TEXTURE_2D);
+  glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
+  glCreateFramebuffers(1, &framebuffer_);
+  glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
+  glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
+  if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    throw Error("the depth-bounds framebuffer is incomplete");
+  }
+  // Persistently mapped and coherent: a finished measurement is read from memory, with no GL
+  // call that could wait.
+  const GLbitfield flags = GL_MAP_READ_BIT | GL_MAP_PERSISTENT_BIT | GL_MAP_COHERENT_BIT;
+  for (Slot& slot : slots_) {
+    if (slot.buffer != 0) continue;
+    glCreateBuffers(1, &slot.buffer);
+    glNamedBufferStorage(slot.buffer, kDepthBoundsBytesPerMeasurement, nullptr, flags);
+    slot.bits = static_cast<const uint32_t*>(
+        glMapNamedBufferRange(slot.buffer, 0, kDepthBoundsBytesPerMeasurement, flags));
+    if (slot.bits == nullptr) throw Error("the depth-bounds buffer could not be mapped");
+  }
+}
+
+bool DepthBoundsPass::collect(Slot& slot, bool wait) {
+  if (slot.fence == nullptr) return false;
+  const GLuint64 timeout = wait ? std::numeric_limits<GLuint64>::max() : 0;
+  const GLenum status =
+      glClientWaitSync(slot.fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, timeout);
+  if (status == GL_TIMEOUT_EXPIRED) return false;
+  if (status == GL_WAIT_FAILED) throw Error("waiting for the depth bounds failed");
+  glDeleteSync(slot.fence);
+  slot.fence = nullptr;
+  if (slot.frame > latestFrame_) {
+    latestFrame_ = slot.frame;
+    if (slot.bits[1] == 0u) {
+      latest_ = slot.fallback;  // nothing drawn
+    } else {
+      DepthRange range;
+      std::memcpy(&range.near, &slot.bits[0], 4);
+      std::memcpy(&range.far, &slot.bits[1], 4);
+      latest_ = range;
+    }
+  }
+  return true;
+}
+
 DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scene,
                                     const glm::mat4& clipFromWorld, DepthRange projection,
-                                    int width, int height, DepthRange fallback) {
-  if (framebuffer_ == 0 || width != width_ || height != height_) {
-    if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
-    width_ = width;
-    height_ = height;
-    depth_ = Texture(GL_TEXTURE_2D);
-    glTextureStorage2D(depth_.id(), 1, GL_DEPTH_COMPONENT32F, width, height);
-    glCreateFramebuffers(1, &framebuffer_);
-    glNamedFramebufferTexture(framebuffer_, GL_DEPTH_ATTACHMENT, depth_.id(), 0);
-    glNamedFramebufferDrawBuffer(framebuffer_, GL_NONE);
-    if (glCheckNamedFramebufferStatus(framebuffer_, GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-      throw Error("the depth-bounds framebuffer is incomplete");
-    }
-    bounds_.emplace(2 * sizeof(uint32_t));
-  }
+                                    int width, int height, DepthRange fallback, bool wait) {
+  if (framebuffer_ == 0 || width != width_ || height != height_) allocate(width, height);
   const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
                                   "passes/depth_only.frag", {});
   variants.each([&](const Program& draw) { draw.set("clipFromWorld", clipFromWorld); });
@@ -62,28 +103,44 @@ DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scen
   glDisable(GL_CULL_FACE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
+  // The oldest slot takes this measurement: its own, if unread, is dropped (a newer one stands).
+  Slot& slot = slots_[size_t(measured_ % slots_.size())];
+  if (slot.fence != nullptr) {
+    glDeleteSync(slot.fence);
+    slot.fence = nullptr;
+  }
+  slot.frame = ++measured_;
+  slot.fallback = fallback;
   // Positive floats order like their bit patterns: atomic min/max on the bits.
   const uint32_t start[2] = {0x7f7fffffu, 0u};
-  glClearNamedBufferSubData(bounds_->id(), GL_R32UI, 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
+  glClearNamedBufferSubData(slot.buffer, GL_R32UI, 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
                             &start[0]);
-  glClearNamedBufferSubData(bounds_->id(), GL_R32UI, 4, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
+  glClearNamedBufferSubData(slot.buffer, GL_R32UI, 4, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
                             &start[1]);
   const Program& reduce = programs.compute("passes/depth_bounds.comp", {});
   glProgramUniform2i(reduce.id(), glGetUniformLocation(reduce.id(), "size"), width, height);
   reduce.set("near", projection.near);
   reduce.set("far", projection.far);
   glBindTextureUnit(0, depth_.id());
-  bounds_->bindStorage(1);
+  glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, slot.buffer);
   reduce.dispatch((unsigned(width) + 15u) / 16u, (unsigned(height) + 15u) / 16u);
-  glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  uint32_t bits[2] = {0, 0};
-  bounds_->read(std::as_writable_bytes(std::span(bits)));
+  // The shader's writes made visible to the mapping before the fence signals.
+  glMemoryBarrier(GL_CLIENT_MAPPED_BUFFER_BARRIER_BIT);
+  slot.fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+  glFlush();  // the fence signals without another frame's flush
   checkErrors("measuring the depth bounds");
-  if (bits[1] == 0u) return fallback;  // nothing drawn
-  DepthRange range;
-  std::memcpy(&range.near, &bits[0], 4);
-  std::memcpy(&range.far, &bits[1], 4);
-  return range;
+
+  if (!wait) {
+    // The earlier measurements, newest first: every finished one is collected, the newest kept.
+    // Not this frame's, even where it is done: a frame's bounds must not depend on how fast the
+    // GPU ran, or the same frames would render differently from run to run.
+    for (uint64_t back = 1; back < slots_.size() && back < measured_; ++back) {
+      collect(slots_[size_t((measured_ - 1 - back) % slots_.size())], false);
+    }
+    if (latest_) return *latest_;
+  }
+  collect(slot, true);  // asked to wait, or none finished before: the first measurement
+  return *latest_;
 }
 
 }  // namespace penumbra::gl

@@ -100,7 +100,8 @@ bool fitsDepthBounds(const RenderSettings& s) {
 }
 
 uint64_t depthBoundsBytes(int width, int height) {
-  return uint64_t(width) * uint64_t(height) * 4 + 8;  // D32F target and two uint bounds
+  return uint64_t(width) * uint64_t(height) * 4 +
+         kDepthBoundsMeasurementsInFlight * kDepthBoundsBytesPerMeasurement;
 }
 
 bool writesDiagnostics(const RenderSettings& s) {

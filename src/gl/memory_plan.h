@@ -36,7 +36,11 @@ uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sam
 // (writesDiagnostics, implied by lookupInputs); the lookup's four inputs when it writes them
 // (RenderSettings::lookupInputs).
 uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs);
-uint64_t depthBoundsBytes(int width, int height);  // the depth-bounds pass
+// The depth-bounds pass: its D32F target, and the results of the measurements it keeps in
+// flight so that a frame that waits for nothing reads a finished one (depth_bounds_pass.h).
+inline constexpr int kDepthBoundsMeasurementsInFlight = 3;
+inline constexpr uint64_t kDepthBoundsBytesPerMeasurement = 8;  // the nearest and farthest bits
+uint64_t depthBoundsBytes(int width, int height);
 struct SummedAreaSizes {
   size_t extremes, stats, sums;  // two keys, {centre, step} and the 64-bit sums per channel
 };

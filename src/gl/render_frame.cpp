@@ -249,6 +249,18 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   frame.shadowMapSize = settings.shadowMapSize;
   frame.lightView = fitLightView(view.light, s.viewBounds.shadowed);
   const float aspect = float(settings.width) / float(settings.height);
+  // What the frame reads back. A reference frame's visibility marks the pixels the CPU completes
+  // (completeReferenceOnCpu reads the colour and diagnostic it shades them from where they were
+  // not asked for). The lookup's inputs are read only where the frame writes them. A frame that
+  // reads nothing and is not timed waits for nothing: it takes the newest depth bounds the GPU
+  // has finished (DepthBoundsPass::measure) and leaves LVSM's Lloyd splits on the GPU.
+  namespace fi = frame_image;
+  const bool lookupInputs = reference || settings.lookupInputs;
+  const unsigned lookupImages =
+      fi::kLookup | fi::kReceiverPlane | fi::kUvDerivatives | fi::kCascades;
+  const unsigned reads = (settings.readBack | (reference ? fi::kVisibility : fi::kNone)) &
+                         (lookupInputs ? fi::kAll : fi::kAll & ~lookupImages);
+  const bool waits = reads != fi::kNone || settings.timing;
   DepthRange range{cameraNear(s.viewBounds), cameraFar(frame.shadowCamera, s.viewBounds)};
   s.depthBoundsTimer.reset();
   if (fitsDepthBounds(settings)) {
@@ -256,7 +268,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     const glm::mat4 clipFromWorld =
         clipFromView(frame.shadowCamera, aspect, s.viewBounds) * viewFromWorld(frame.shadowCamera);
     range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
-                                  settings.height, range);
+                                  settings.height, range, waits);
     s.depthBoundsTimer.end();
   } else {
     s.depthBounds.release();
@@ -336,19 +348,10 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   }
   const bool fused = s.shadows.state().fused;
 
-  const bool lookupInputs = reference || settings.lookupInputs;
   s.camera.prepare(settings.width, settings.height, writesDiagnostics(settings), lookupInputs);
   s.camera.render(s.programs, *s.scene, settings, frame, s.shadows, reference);
 
   RenderResult result;
-  namespace fi = frame_image;
-  // A reference frame's visibility marks the pixels the CPU completes (completeReferenceOnCpu
-  // reads the colour and diagnostic it shades them from where they were not asked for). The
-  // lookup's inputs are read only where the frame wrote them.
-  const unsigned lookupImages =
-      fi::kLookup | fi::kReceiverPlane | fi::kUvDerivatives | fi::kCascades;
-  const unsigned reads = (settings.readBack | (reference ? fi::kVisibility : fi::kNone)) &
-                         (lookupInputs ? fi::kAll : fi::kAll & ~lookupImages);
   if (reads & fi::kColor) result.color = s.camera.readColor();
   if (reads & fi::kVisibility) result.visibility = s.camera.readVisibility();
   if (reads & fi::kDiagnostic) result.diagnostic = s.camera.readDiagnostic();
@@ -361,7 +364,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   result.depthBounds = range;
   // LVSM's Lloyd splits stay on the GPU in a frame that waits for nothing (ShadowFilter::params
   // reads them back); one that reads an image or its times waits anyway.
-  if (reads != fi::kNone || settings.timing || !s.shadows.state().splitsOnGpu) {
+  if (waits || !s.shadows.state().splitsOnGpu) {
     result.params = s.shadows.params();
   } else {
     result.params = s.shadows.state().params;

@@ -165,6 +165,60 @@ TEST_F(FrameRenderer, AFrameThatReadsNothingBackWaitsForNothing) {
   }
 }
 
+// Cascades fitted to the visible depths (--cascade-depth fitted): a frame that reads nothing back
+// and is not timed waits for none, and takes the newest bounds of an earlier frame the GPU has
+// finished; a frame that reads an image takes its own; a first measurement, with none before it,
+// waits for its own.
+TEST_F(FrameRenderer, FittedDepthBoundsWaitOnlyInAFrameThatReadsBack) {
+  const Scene scene = makeBuiltinScene("backyard");
+  gl::RenderSettings s = smallSettings(Technique::Vsm);
+  s.lookupInputs = false;
+  s.cascades.count = 2;
+  s.cascades.fitDepthBounds = true;
+  const gl::FrameView whole{scene.camera, scene.light};
+  Camera closer = scene.camera;
+  closer.position = glm::mix(scene.camera.position, scene.camera.target, 0.6f);
+  const gl::FrameView near{closer, scene.light};
+  const auto same = [](DepthRange a, DepthRange b) { return a.near == b.near && a.far == b.far; };
+
+  gl::Renderer renderer(*context);
+  renderer.setScene(scene);
+  s.readBack = gl::frame_image::kColor;
+  const gl::RenderResult wholeRead = renderer.render(s, whole);
+  const gl::RenderResult nearRead = renderer.render(s, near);
+  ASSERT_FALSE(same(wholeRead.depthBounds, nearRead.depthBounds))
+      << "the two views must see different depths for this to tell their bounds apart";
+
+  s.readBack = gl::frame_image::kNone;
+  s.timing = false;
+  for (int frame = 0; frame < 2; ++frame) {
+    gl::RenderResult unread;
+    {
+      const testing::WaitCounter counter;
+      unread = renderer.render(s, whole);
+      EXPECT_EQ(testing::WaitCounter::waits, 0) << frame;
+    }
+    if (frame == 0) {
+      // The frame before read its image back: its measurement is finished on any GPU.
+      EXPECT_TRUE(same(unread.depthBounds, nearRead.depthBounds));
+    } else {
+      // The frame before's (llvmpipe finishes the reduction at its dispatch), or on a GPU still
+      // running it, the one before that.
+      EXPECT_TRUE(same(unread.depthBounds, wholeRead.depthBounds) ||
+                  same(unread.depthBounds, nearRead.depthBounds));
+    }
+  }
+  s.readBack = gl::frame_image::kColor;
+  EXPECT_TRUE(same(renderer.render(s, near).depthBounds, nearRead.depthBounds))
+      << "a frame that reads back takes its own bounds";
+
+  gl::Renderer fresh(*context);
+  fresh.setScene(scene);
+  s.readBack = gl::frame_image::kNone;
+  EXPECT_TRUE(same(fresh.render(s, near).depthBounds, nearRead.depthBounds))
+      << "a first measurement waits for its own bounds";
+}
+
 TEST_F(FrameRenderer, EveryCascadeOfAPlanarSceneMatchesTheFilteredReference) {
   // VSM is exact for a planar occluder over a parallel planar receiver (thesis §3.2), so each
   // cascade's pixels must match the filtered reference as closely as one map's do.

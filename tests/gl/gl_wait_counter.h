@@ -1,6 +1,7 @@
 // Counts calls of the GL entry points that wait for the GPU or read its results (glFinish, image,
-// buffer and pixel reads, query results: every one penumbra calls) while alive, and apart from
-// them glGetError's (no wait on the GPU, but a guest must leave the host's errors alone).
+// buffer and pixel reads, query results, fence waits: every one penumbra calls) while alive, and
+// apart from them glGetError's (no wait on the GPU, but a guest must leave the host's errors
+// alone).
 #pragma once
 
 #include <epoxy/gl.h>
@@ -9,6 +10,28 @@
 #include "penumbra/gl/program.h"
 
 namespace penumbra::testing {
+
+// glClientWaitSync counts as a wait only with a timeout: with none it asks whether the fence has
+// signalled and returns at once.
+class CountedSyncWaits {
+ public:
+  explicit CountedSyncWaits(int& counter) {
+    real_ = epoxy_glClientWaitSync;
+    counter_ = &counter;
+    epoxy_glClientWaitSync = &counted;
+  }
+  ~CountedSyncWaits() { epoxy_glClientWaitSync = real_; }
+  CountedSyncWaits(const CountedSyncWaits&) = delete;
+  CountedSyncWaits& operator=(const CountedSyncWaits&) = delete;
+
+ private:
+  static GLenum counted(GLsync sync, GLbitfield flags, GLuint64 timeout) {
+    if (timeout > 0) ++*counter_;
+    return real_(sync, flags, timeout);
+  }
+  static inline PFNGLCLIENTWAITSYNCPROC real_ = nullptr;
+  static inline int* counter_ = nullptr;
+};
 
 struct WaitCounter {
   static inline int waits = 0;
@@ -40,6 +63,9 @@ struct WaitCounter {
     GLuint64 result = 0;
     glGetQueryObjectui64v(query, GL_QUERY_RESULT, &result);
     glDeleteQueries(1, &query);
+    GLsync fence = glFenceSync(GL_SYNC_GPU_COMMANDS_COMPLETE, 0);
+    glClientWaitSync(fence, GL_SYNC_FLUSH_COMMANDS_BIT, 0);
+    glDeleteSync(fence);
     glFinish();
     while (glGetError() != GL_NO_ERROR) {
     }
@@ -56,6 +82,7 @@ struct WaitCounter {
   CountedGlCalls<&epoxy_glGetNamedBufferSubData> getNamedBufferSubData{waits};
   CountedGlCalls<&epoxy_glReadPixels> readPixels{waits};
   CountedGlCalls<&epoxy_glGetQueryObjectui64v> getQueryObject{waits};
+  CountedSyncWaits clientWaitSync{waits};
 };
 
 }  // namespace penumbra::testing
