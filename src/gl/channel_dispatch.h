@@ -46,8 +46,9 @@ void bindChannelLayer(unsigned unit, const Texture& texture, const ChannelLayout
 // weights, each written as its exact bits). A loop bounded by a uniform radius, or layers by a
 // uniform count, costs llvmpipe 1.4-2x the same loop of constant trip count
 // (docs/results/passes-llvmpipe-2026-12-04.md); one program per kernel is cheap beside that.
-// The minimal kernels take both; the prefilter passes take RADIUS only (blurRadiusDefine) and
-// their weights as the uniform array `weights` (setBlurWeights): see blur.comp for why.
+// The minimal kernels and one map's prefilter passes take both; cascades' passes take RADIUS
+// only (blurRadiusDefine: the fused pass) or neither (blur.comp), their weights as the uniform
+// array `weights` (setBlurWeights): a cascade's Gaussian follows the view (blur.comp).
 std::vector<ShaderDefine> blurKernelDefines(const BlurSpec& spec);
 ShaderDefine blurRadiusDefine(const BlurSpec& spec);
 // TAPS_ALIKE: 1 where the prefilter passes sum the kernel's taps at unit weight and scale the

@@ -16,18 +16,24 @@ DepthBoundsPass::~DepthBoundsPass() {
 }
 
 void DepthBoundsPass::release() {
+  forget();
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
   framebuffer_ = 0;
   width_ = height_ = 0;
   depth_ = Texture();
   for (Slot& slot : slots_) {
-    if (slot.fence != nullptr) glDeleteSync(slot.fence);
     if (slot.buffer != 0) glDeleteBuffers(1, &slot.buffer);  // unmaps it
     slot = Slot{};
   }
+}
+
+void DepthBoundsPass::forget() {
+  for (Slot& slot : slots_) {
+    glDeleteSync(slot.fence);  // no sync (0) is ignored
+    slot.fence = nullptr;
+    slot.range.reset();
+  }
   measured_ = 0;
-  latest_.reset();
-  latestFrame_ = 0;
 }
 
 uint64_t DepthBoundsPass::bytes() const {
@@ -59,32 +65,31 @@ void DepthBoundsPass::allocate(int width, int height) {
   }
 }
 
-bool DepthBoundsPass::collect(Slot& slot, bool wait) {
-  if (slot.fence == nullptr) return false;
-  const GLuint64 timeout = wait ? std::numeric_limits<GLuint64>::max() : 0;
-  const GLenum status =
-      glClientWaitSync(slot.fence, wait ? GL_SYNC_FLUSH_COMMANDS_BIT : 0, timeout);
-  if (status == GL_TIMEOUT_EXPIRED) return false;
-  if (status == GL_WAIT_FAILED) throw Error("waiting for the depth bounds failed");
-  glDeleteSync(slot.fence);
-  slot.fence = nullptr;
-  if (slot.frame > latestFrame_) {
-    latestFrame_ = slot.frame;
+DepthRange DepthBoundsPass::collect(Slot& slot) {
+  if (!slot.range) {
+    GLenum status = glClientWaitSync(slot.fence, 0, 0);
+    while (status == GL_TIMEOUT_EXPIRED) {
+      status = glClientWaitSync(slot.fence, GL_SYNC_FLUSH_COMMANDS_BIT,
+                                std::numeric_limits<GLuint64>::max());
+    }
+    if (status == GL_WAIT_FAILED) throw Error("waiting for the depth bounds failed");
+    glDeleteSync(slot.fence);
+    slot.fence = nullptr;
     if (slot.bits[1] == 0u) {
-      latest_ = slot.fallback;  // nothing drawn
+      slot.range = slot.projection;  // nothing drawn
     } else {
       DepthRange range;
       std::memcpy(&range.near, &slot.bits[0], 4);
       std::memcpy(&range.far, &slot.bits[1], 4);
-      latest_ = range;
+      slot.range = range;
     }
   }
-  return true;
+  return *slot.range;
 }
 
 DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scene,
                                     const glm::mat4& clipFromWorld, DepthRange projection,
-                                    int width, int height, DepthRange fallback, bool wait) {
+                                    int width, int height, bool wait) {
   if (framebuffer_ == 0 || width != width_ || height != height_) allocate(width, height);
   const MaterialPrograms variants(programs, scene, GpuScene::Meshes::All, "passes/camera.vert",
                                   "passes/depth_only.frag", {});
@@ -103,14 +108,14 @@ DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scen
   glDisable(GL_CULL_FACE);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 
-  // The oldest slot takes this measurement: its own, if unread, is dropped (a newer one stands).
+  // This measurement takes the slot of the one before the previous.
   Slot& slot = slots_[size_t(measured_ % slots_.size())];
-  if (slot.fence != nullptr) {
-    glDeleteSync(slot.fence);
-    slot.fence = nullptr;
-  }
-  slot.frame = ++measured_;
-  slot.fallback = fallback;
+  Slot& previous = slots_[size_t((measured_ + slots_.size() - 1) % slots_.size())];
+  glDeleteSync(slot.fence);
+  slot.fence = nullptr;
+  slot.range.reset();
+  slot.projection = projection;
+  const bool first = measured_++ == 0;
   // Positive floats order like their bit patterns: atomic min/max on the bits.
   const uint32_t start[2] = {0x7f7fffffu, 0u};
   glClearNamedBufferSubData(slot.buffer, GL_R32UI, 0, 4, GL_RED_INTEGER, GL_UNSIGNED_INT,
@@ -130,17 +135,7 @@ DepthRange DepthBoundsPass::measure(ProgramCache& programs, const GpuScene& scen
   glFlush();  // the fence signals without another frame's flush
   checkErrors("measuring the depth bounds");
 
-  if (!wait) {
-    // The earlier measurements, newest first: every finished one is collected, the newest kept.
-    // Not this frame's, even where it is done: a frame's bounds must not depend on how fast the
-    // GPU ran, or the same frames would render differently from run to run.
-    for (uint64_t back = 1; back < slots_.size() && back < measured_; ++back) {
-      collect(slots_[size_t((measured_ - 1 - back) % slots_.size())], false);
-    }
-    if (latest_) return *latest_;
-  }
-  collect(slot, true);  // asked to wait, or none finished before: the first measurement
-  return *latest_;
+  return collect(wait || first ? slot : previous);
 }
 
 }  // namespace penumbra::gl

@@ -24,40 +24,41 @@ class DepthBoundsPass {
   DepthBoundsPass(const DepthBoundsPass&) = delete;
   DepthBoundsPass& operator=(const DepthBoundsPass&) = delete;
 
-  // Measures the visible view-depth range of this frame (`fallback` where nothing is drawn).
-  // `wait`: returns this frame's range, waiting for the GPU. Otherwise waits for nothing and
-  // returns the newest range of an earlier frame the GPU has finished (the latency real-time
-  // sample-distribution shadow maps run with; the previous frame's wherever the GPU keeps up);
-  // only a first measurement, with none before it, waits.
+  // Measures the visible view-depth range of this frame (the projection's range where nothing is
+  // drawn). `wait`: returns this frame's range, waiting for the GPU. Otherwise returns the
+  // previous measurement's, one frame late as real-time sample-distribution shadow maps run:
+  // always that one, so that the same frames render alike whatever the GPU's pace, and without
+  // a wait wherever the GPU keeps a frame's pace. A first measurement, with none before it,
+  // waits for its own.
   DepthRange measure(ProgramCache& programs, const GpuScene& scene, const glm::mat4& clipFromWorld,
-                     DepthRange projection, int width, int height, DepthRange fallback, bool wait);
+                     DepthRange projection, int width, int height, bool wait);
   uint64_t bytes() const;
   // Frees the target when depth bounds are no longer fitted (the memory report stays exact),
   // and forgets the ranges measured.
   void release();
+  // Forgets the ranges measured (a new scene's frames must not take the old one's).
+  void forget();
 
  private:
-  // One measurement in flight: its result buffer, mapped for reading without a GL call, the
-  // fence after its reduction, and the range that stands when it found nothing drawn.
+  // One measurement: its result buffer, mapped for reading without a GL call, the fence after
+  // its reduction, the range that stands when it finds nothing drawn, and once read, its range.
   struct Slot {
     unsigned buffer = 0;
     const uint32_t* bits = nullptr;
     GLsync fence = nullptr;
-    DepthRange fallback;
-    uint64_t frame = 0;  // which measurement it holds, counting from 1; 0: none
+    DepthRange projection;
+    std::optional<DepthRange> range;
   };
 
   void allocate(int width, int height);
-  // Whether the slot's measurement is done, waiting for it or not; reads it into latest_.
-  bool collect(Slot& slot, bool wait);
+  // The slot's range, once its fence has signalled: a poll first, a wait only if it has not.
+  DepthRange collect(Slot& slot);
 
   int width_ = 0, height_ = 0;
   Texture depth_;
   unsigned framebuffer_ = 0;
-  std::array<Slot, kDepthBoundsMeasurementsInFlight> slots_{};
-  uint64_t measured_ = 0;  // measurements started
-  std::optional<DepthRange> latest_;
-  uint64_t latestFrame_ = 0;
+  std::array<Slot, kDepthBoundsMeasurementsInFlight> slots_{};  // this frame's and the previous
+  uint64_t measured_ = 0;  // measurements started since the last forget()
 };
 
 }  // namespace penumbra::gl

@@ -36,9 +36,9 @@ uint64_t lightPassBytes(int shadowMapSize, int samples);  // R32F + D32F per sam
 // (writesDiagnostics, implied by lookupInputs); the lookup's four inputs when it writes them
 // (RenderSettings::lookupInputs).
 uint64_t frameBytes(int width, int height, bool diagnostics, bool lookupInputs);
-// The depth-bounds pass: its D32F target, and the results of the measurements it keeps in
-// flight so that a frame that waits for nothing reads a finished one (depth_bounds_pass.h).
-inline constexpr int kDepthBoundsMeasurementsInFlight = 3;
+// The depth-bounds pass: its D32F target, and the results of this frame's measurement and the
+// previous frame's, which a frame that waits for nothing takes (depth_bounds_pass.h).
+inline constexpr int kDepthBoundsMeasurementsInFlight = 2;
 inline constexpr uint64_t kDepthBoundsBytesPerMeasurement = 8;  // the nearest and farthest bits
 uint64_t depthBoundsBytes(int width, int height);
 struct SummedAreaSizes {

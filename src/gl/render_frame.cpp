@@ -141,6 +141,7 @@ void Renderer::setScene(const Scene& scene) {
     s.scene->updateVertices(scene);  // a new pose of the same scene
   } else {
     s.scene = std::make_unique<GpuScene>(scene);
+    s.depthBounds.forget();  // another scene's bounds (a new pose's are a frame late as ever)
   }
   s.sceneFingerprint = fingerprint;
   s.sceneLayoutFingerprint = layout;
@@ -268,7 +269,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
     const glm::mat4 clipFromWorld =
         clipFromView(frame.shadowCamera, aspect, s.viewBounds) * viewFromWorld(frame.shadowCamera);
     range = s.depthBounds.measure(s.programs, *s.scene, clipFromWorld, range, settings.width,
-                                  settings.height, range, waits);
+                                  settings.height, waits);
     s.depthBoundsTimer.end();
   } else {
     s.depthBounds.release();

@@ -223,13 +223,14 @@ void ShadowMapFilter::blurSeparately(ProgramCache& programs, const ParameterBloc
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
     // One map: its radius and weights compiled in. Cascades' radii follow the view: uniforms
     // (blur.comp).
+    const bool compiledKernel = shape_.cascades == 1;
     std::vector<ShaderDefine> kernelDefines = defines;
     kernelDefines.push_back(blurTapsAlikeDefine(spec, alike));
-    if (shape_.cascades == 1) {
+    if (compiledKernel) {
       for (ShaderDefine& d : blurKernelDefines(spec)) kernelDefines.push_back(std::move(d));
     }
     const Program& blur = programs.compute("passes/blur.comp", kernelDefines);
-    if (shape_.cascades > 1) {
+    if (!compiledKernel) {
       blur.set("radius", spec.radius);
       setBlurWeights(blur, spec);
     }
@@ -260,11 +261,19 @@ void ShadowMapFilter::encodeAndBlurFused(ProgramCache& programs, const Parameter
   bindChannelImage(channels_, shape_.layout, 0);
   for (int cascade = 0; cascade < shape_.cascades; ++cascade) {
     const BlurSpec& spec = cascadeBlurs[size_t(cascade)];
+    // The radius compiled in; one map's weights too, cascades' as uniforms (their Gaussians'
+    // sigmas follow the view: a variant per frame otherwise).
+    const bool compiledWeights = shape_.cascades == 1;
     std::vector<ShaderDefine> fusedDefines = defines;
-    for (ShaderDefine& d : blurKernelDefines(spec)) fusedDefines.push_back(std::move(d));
+    if (compiledWeights) {
+      for (ShaderDefine& d : blurKernelDefines(spec)) fusedDefines.push_back(std::move(d));
+    } else {
+      fusedDefines.push_back(blurRadiusDefine(spec));
+    }
     fusedDefines.push_back(blurTapsAlikeDefine(spec, alike));
     for (ShaderDefine& d : fusedTileDefines(shape_.layout)) fusedDefines.push_back(std::move(d));
     const Program& fused = programs.compute("passes/prefilter_fused.comp", fusedDefines);
+    if (!compiledWeights) setBlurWeights(fused, spec);
     parameters.bind();
     setSize(fused, "size", shape_.size);
     fused.set("cascade", cascade);

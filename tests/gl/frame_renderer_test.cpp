@@ -166,57 +166,63 @@ TEST_F(FrameRenderer, AFrameThatReadsNothingBackWaitsForNothing) {
 }
 
 // Cascades fitted to the visible depths (--cascade-depth fitted): a frame that reads nothing back
-// and is not timed waits for none, and takes the newest bounds of an earlier frame the GPU has
-// finished; a frame that reads an image takes its own; a first measurement, with none before it,
-// waits for its own.
+// and is not timed takes the previous frame's bounds and, the GPU done with them, waits for
+// nothing; a frame that reads an image takes its own; a first measurement, and the first after
+// a new scene, waits for its own.
 TEST_F(FrameRenderer, FittedDepthBoundsWaitOnlyInAFrameThatReadsBack) {
   const Scene scene = makeBuiltinScene("backyard");
   gl::RenderSettings s = smallSettings(Technique::Vsm);
   s.lookupInputs = false;
   s.cascades.count = 2;
   s.cascades.fitDepthBounds = true;
-  const gl::FrameView whole{scene.camera, scene.light};
-  Camera closer = scene.camera;
-  closer.position = glm::mix(scene.camera.position, scene.camera.target, 0.6f);
-  const gl::FrameView near{closer, scene.light};
+  // Three views that see different depths.
+  std::vector<gl::FrameView> views;
+  for (const float closer : {0.0f, 0.6f, 0.3f}) {
+    Camera camera = scene.camera;
+    camera.position = glm::mix(scene.camera.position, scene.camera.target, closer);
+    views.push_back({camera, scene.light});
+  }
   const auto same = [](DepthRange a, DepthRange b) { return a.near == b.near && a.far == b.far; };
 
   gl::Renderer renderer(*context);
   renderer.setScene(scene);
   s.readBack = gl::frame_image::kColor;
-  const gl::RenderResult wholeRead = renderer.render(s, whole);
-  const gl::RenderResult nearRead = renderer.render(s, near);
-  ASSERT_FALSE(same(wholeRead.depthBounds, nearRead.depthBounds))
-      << "the two views must see different depths for this to tell their bounds apart";
+  std::vector<DepthRange> own;
+  for (const gl::FrameView& view : views) own.push_back(renderer.render(s, view).depthBounds);
+  ASSERT_FALSE(same(own[0], own[1]) || same(own[1], own[2]) || same(own[0], own[2]))
+      << "the views must see different depths for this to tell their bounds apart";
 
   s.readBack = gl::frame_image::kNone;
   s.timing = false;
-  for (int frame = 0; frame < 2; ++frame) {
-    gl::RenderResult unread;
-    {
-      const testing::WaitCounter counter;
-      unread = renderer.render(s, whole);
-      EXPECT_EQ(testing::WaitCounter::waits, 0) << frame;
-    }
-    if (frame == 0) {
-      // The frame before read its image back: its measurement is finished on any GPU.
-      EXPECT_TRUE(same(unread.depthBounds, nearRead.depthBounds));
-    } else {
-      // The frame before's (llvmpipe finishes the reduction at its dispatch), or on a GPU still
-      // running it, the one before that.
-      EXPECT_TRUE(same(unread.depthBounds, wholeRead.depthBounds) ||
-                  same(unread.depthBounds, nearRead.depthBounds));
-    }
+  int previous = 2;
+  for (const int view : {0, 1, 2, 1}) {
+    glFinish();  // the previous frame's bounds are done on any GPU
+    const testing::WaitCounter counter;
+    const gl::RenderResult unread = renderer.render(s, views[size_t(view)]);
+    EXPECT_EQ(testing::WaitCounter::waits, 0) << view;
+    EXPECT_TRUE(same(unread.depthBounds, own[size_t(previous)]))
+        << "view " << view << " takes view " << previous << "'s bounds";
+    previous = view;
   }
   s.readBack = gl::frame_image::kColor;
-  EXPECT_TRUE(same(renderer.render(s, near).depthBounds, nearRead.depthBounds))
+  EXPECT_TRUE(same(renderer.render(s, views[0]).depthBounds, own[0]))
       << "a frame that reads back takes its own bounds";
 
-  gl::Renderer fresh(*context);
-  fresh.setScene(scene);
+  // A new scene's first frame: no bounds of the backyard's, its own after a wait.
+  const Scene other = makeBuiltinScene("planar");
+  s.readBack = gl::frame_image::kColor;
+  const DepthRange otherOwn = renderer.render(other, s).depthBounds;
+  renderer.setScene(scene);
   s.readBack = gl::frame_image::kNone;
-  EXPECT_TRUE(same(fresh.render(s, near).depthBounds, nearRead.depthBounds))
-      << "a first measurement waits for its own bounds";
+  {
+    const testing::WaitCounter counter;
+    EXPECT_TRUE(same(renderer.render(s, views[1]).depthBounds, own[1]))
+        << "a first measurement waits for its own";
+    // Its fence asked for (a poll where llvmpipe is done: it runs the reduction at dispatch):
+    // the counter sees these calls, and the frames above asked for none that waited.
+    EXPECT_GE(testing::WaitCounter::waits + testing::WaitCounter::polls, 1);
+  }
+  EXPECT_FALSE(same(otherOwn, own[1]));
 }
 
 TEST_F(FrameRenderer, EveryCascadeOfAPlanarSceneMatchesTheFilteredReference) {

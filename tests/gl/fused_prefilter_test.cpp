@@ -79,16 +79,9 @@ TEST_F(FusedPrefilter, GivesTheSeparatePassesChannels) {
         int bad = 0;
         for (size_t i = 0; i < fusedChannels.data().size(); ++i) {
           const float a = fusedChannels.data()[i], b = separateChannels.data()[i];
-          // Same arithmetic in the same order: equal up to the compiler contracting a multiply
-          // and an add into one fma in one shader and not the other (half an ulp per tap, and
-          // in the encodes of CSM's waves and LVSM's warps). VSM's and the power CDF's encodes
-          // are products of depth, and taps summed at unit weight leave no multiply to
-          // contract: there the same bits.
-          const bool sameBits =
-              sumsTapsAtUnitWeight(blur, alikeTapsFor(k.technique, s.params)) &&
-              (k.technique == Technique::Vsm || k.technique == Technique::PowerCdf);
-          const float tolerance = sameBits ? 0.0f : 1e-6f * std::max(1.0f, std::abs(b));
-          if (!(std::abs(a - b) <= tolerance) && ++bad <= 3) {
+          // Same arithmetic in the same order, the encode and the taps' sums precise in both
+          // (shared/technique_dispatch.h, channel_reduction.h): the same bits.
+          if (!(a == b) && ++bad <= 3) {
             ADD_FAILURE() << what << " value " << i << " (texel "
                           << i / size_t(fusedChannels.channels()) << "): fused " << a
                           << " separate " << b;

@@ -11,13 +11,14 @@
 
 namespace penumbra::testing {
 
-// glClientWaitSync counts as a wait only with a timeout: with none it asks whether the fence has
-// signalled and returns at once.
+// glClientWaitSync counts as a wait only with a timeout; with none it asks whether the fence has
+// signalled and returns at once: a poll, counted apart.
 class CountedSyncWaits {
  public:
-  explicit CountedSyncWaits(int& counter) {
+  CountedSyncWaits(int& waits, int& polls) {
     real_ = epoxy_glClientWaitSync;
-    counter_ = &counter;
+    waits_ = &waits;
+    polls_ = &polls;
     epoxy_glClientWaitSync = &counted;
   }
   ~CountedSyncWaits() { epoxy_glClientWaitSync = real_; }
@@ -26,15 +27,17 @@ class CountedSyncWaits {
 
  private:
   static GLenum counted(GLsync sync, GLbitfield flags, GLuint64 timeout) {
-    if (timeout > 0) ++*counter_;
+    ++*(timeout > 0 ? waits_ : polls_);
     return real_(sync, flags, timeout);
   }
   static inline PFNGLCLIENTWAITSYNCPROC real_ = nullptr;
-  static inline int* counter_ = nullptr;
+  static inline int* waits_ = nullptr;
+  static inline int* polls_ = nullptr;
 };
 
 struct WaitCounter {
   static inline int waits = 0;
+  static inline int polls = 0;  // glClientWaitSync without a timeout
   static inline int errorChecks = 0;
 
   // Calls each entry point once, so that libepoxy resolves it before the swap.
@@ -70,6 +73,7 @@ struct WaitCounter {
     while (glGetError() != GL_NO_ERROR) {
     }
     waits = 0;
+    polls = 0;
     errorChecks = 0;
     return 0;
   }
@@ -82,7 +86,7 @@ struct WaitCounter {
   CountedGlCalls<&epoxy_glGetNamedBufferSubData> getNamedBufferSubData{waits};
   CountedGlCalls<&epoxy_glReadPixels> readPixels{waits};
   CountedGlCalls<&epoxy_glGetQueryObjectui64v> getQueryObject{waits};
-  CountedSyncWaits clientWaitSync{waits};
+  CountedSyncWaits clientWaitSync{waits, polls};
 };
 
 }  // namespace penumbra::testing

@@ -84,9 +84,10 @@ struct RenderSettings {
   // visibility nor the diagnostic, and writes no lookup inputs, draws its colour alone: the
   // camera pass compiles the other targets out (on llvmpipe EVSM4's pass went from 1.26-1.30x
   // its minimal lookup to 1.16-1.18x, docs/results/passes-llvmpipe-2026-12-06-diagnostics.md).
-  // A frame that reads none and is not timed has no glFinish and no image read-back (the
-  // cascaded depth-bounds fit still reads its small buffer back; LVSM's Lloyd placement stays
-  // on the GPU).
+  // A frame that reads none and is not timed has no glFinish and no read-back, and waits for
+  // nothing where the GPU keeps a frame's pace: the cascades' fitted depth bounds are the
+  // previous frame's (a frame late, as real-time SDSM runs), LVSM's Lloyd placement stays on
+  // the GPU.
   // Reference frames also read their visibility, and where the CPU completes pixels the colour,
   // diagnostic and lookup's inputs it completes them from (a supersampled reference returns only
   // the colour, visibility and diagnostic asked for, averaged).

@@ -8,8 +8,8 @@
 // the user's kernel, one variant); cascades, whose kernels follow the view, take it as a uniform
 // rather than compiling a variant for every radius the camera passes through.
 // With the radius, its weights are compiled in (WEIGHTS, their exact bits): read from a uniform
-// array, the exponential techniques' blur of one map took 1.24-1.36x the plain blur of constant
-// weights on llvmpipe, 1.00-1.03x as constants (docs/results/passes-llvmpipe-2026-12-07.md).
+// array, the exponential techniques' blur of one map took 1.12-1.36x the plain blur of constant
+// weights on llvmpipe, 0.90-1.10x as constants (docs/results/passes-llvmpipe-2026-12-07.md).
 // The accumulation is precise (shared/channel_reduction.h), so the compiler cannot regroup the
 // constant weights' sum, w t0 + w t1 into w (t0 + t1): a box's unit-weight sum of exponentials
 // would pass fp32's range, and MSM's ill-conditioned moments part from the CPU twin's. A box

@@ -12,9 +12,14 @@
 #include "../lib/texel_components.glsl"
 
 // The radius at compile time (RADIUS): the shared arrays have their size, the loops a constant
-// trip count; the weights compiled in too (WEIGHTS), as blur.comp's (same arithmetic, same bits).
+// trip count. One map compiles its weights in too (WEIGHTS), as blur.comp does; cascades take
+// them as uniforms: a Gaussian's weights follow each cascade's sigma, which follows the view.
 const int kRadius = RADIUS;
+#ifdef WEIGHTS
 const float weights[2 * kRadius + 1] = WEIGHTS;
+#else
+uniform float weights[2 * kRadius + 1];
+#endif
 const int kSpan = TILE + 2 * kRadius;
 #include "../lib/blur_taps.glsl"
 
