@@ -18,8 +18,9 @@
 namespace penumbra {
 namespace {
 
-// Counts calls of the GL entry points that create objects or upload data by swapping libepoxy's
-// dispatch pointers (resolved by the first frame) for counting wrappers. Buffer updates of at
+// Counts calls of the GL entry points that create objects (programs among them: a compile) or
+// upload data by swapping libepoxy's dispatch pointers (resolved by the first frame) for
+// counting wrappers. Buffer updates of at
 // most 4 KiB (`small`) are per-frame parameters like uniforms: the technique block when Lloyd
 // moves LVSM's splits, per-cascade blur weights when fitted depth bounds resize the cascades;
 // they are counted apart, so a frame whose parameters did not change can be held to none.
@@ -31,6 +32,7 @@ struct GlCallCounter {
   static inline PFNGLNAMEDBUFFERSUBDATAPROC bufferSubData = nullptr;
   static inline PFNGLTEXTURESUBIMAGE3DPROC textureSubImage3D = nullptr;
   static inline PFNGLTEXTURESUBIMAGE2DPROC textureSubImage2D = nullptr;
+  static inline PFNGLCREATEPROGRAMPROC createProgram = nullptr;
 
   GlCallCounter() {
     count = 0;
@@ -40,6 +42,11 @@ struct GlCallCounter {
     bufferSubData = epoxy_glNamedBufferSubData;
     textureSubImage3D = epoxy_glTextureSubImage3D;
     textureSubImage2D = epoxy_glTextureSubImage2D;
+    createProgram = epoxy_glCreateProgram;
+    epoxy_glCreateProgram = [] {
+      ++count;
+      return createProgram();
+    };
     epoxy_glCreateTextures = [](GLenum t, GLsizei n, GLuint* ids) {
       ++count;
       createTextures(t, n, ids);
@@ -69,6 +76,7 @@ struct GlCallCounter {
     epoxy_glNamedBufferSubData = bufferSubData;
     epoxy_glTextureSubImage3D = textureSubImage3D;
     epoxy_glTextureSubImage2D = textureSubImage2D;
+    epoxy_glCreateProgram = createProgram;
   }
 };
 
@@ -106,6 +114,14 @@ TEST_F(FrameRenderer, WarmFrameCreatesAndUploadsNothing) {
   cases.push_back({"lvsm lloyd, 2 cascades", smallSettings(Technique::Lvsm), true});
   cases.back().settings.params.lvsm.placement = shaders::kLayerPlacementLloyd;
   cases.back().settings.cascades.count = 2;
+  // Fitted depth bounds resize the cascades with the view, and with them each cascade's
+  // Gaussian (here cascade 1's sigma 0.452 -> 0.446): its weights are uniforms, not a program
+  // per frame (the radius, compiled in, moves in whole taps only).
+  cases.push_back(
+      {"evsm4 fused, Gaussian, 3 cascades fitted to depth", smallSettings(Technique::Evsm4), true});
+  cases.back().settings.cascades.count = 3;
+  cases.back().settings.cascades.fitDepthBounds = true;
+  cases.back().settings.fusePrefilter = true;
   for (const Case& c : cases) {
     gl::FrameView view{scene.camera, scene.light};
     renderer.render(c.settings, view);  // cold: creates the pass resources
