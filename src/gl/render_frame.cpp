@@ -253,8 +253,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   // What the frame reads back. A reference frame's visibility marks the pixels the CPU completes
   // (completeReferenceOnCpu reads the colour and diagnostic it shades them from where they were
   // not asked for). The lookup's inputs are read only where the frame writes them. A frame that
-  // reads nothing and is not timed waits for nothing: it takes the newest depth bounds the GPU
-  // has finished (DepthBoundsPass::measure) and leaves LVSM's Lloyd splits on the GPU.
+  // reads nothing and is not timed waits for nothing where the GPU keeps pace: it takes the
+  // previous frame's depth bounds (DepthBoundsPass::measure) and leaves LVSM's Lloyd splits on
+  // the GPU.
   namespace fi = frame_image;
   const bool lookupInputs = reference || settings.lookupInputs;
   const unsigned lookupImages =
