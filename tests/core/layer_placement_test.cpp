@@ -2,9 +2,13 @@
 // teleportation of empty splits, determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <random>
+#include <vector>
 
 #include "penumbra/layer_placement.h"
+#include "penumbra/shared/layer_placement.h"
 
 namespace penumbra {
 namespace {
@@ -69,6 +73,87 @@ TEST(LayerPlacement, IsDeterministic) {
   const shaders::LayerSplits a = lloydRelaxation(samples, 6, 16, 1e-3f);
   const shaders::LayerSplits b = lloydRelaxation(samples, 6, 16, 1e-3f);
   for (int i = 1; i < 6; ++i) EXPECT_EQ(shaders::layerSplit(a, i), shaders::layerSplit(b, i));
+}
+
+// The packing as a list would do it: a stable sort, pushed forward from 0, then back from 1.
+std::vector<float> packedAsAList(std::vector<float> splits, float minGap) {
+  std::stable_sort(splits.begin(), splits.end());
+  float previous = 0.0f;
+  for (float& s : splits) previous = s = std::max(s, previous + minGap);
+  float next = 1.0f;
+  for (auto s = splits.rbegin(); s != splits.rend(); ++s) next = *s = std::min(*s, next - minGap);
+  return splits;
+}
+
+shaders::LayerSplits splitsOf(const std::vector<float>& interior) {
+  shaders::LayerSplits s = shaders::uniformLayerSplits(int(interior.size()) + 1);
+  for (size_t k = 0; k < interior.size(); ++k) s.interior[k / 4][k % 4] = interior[k];
+  return s;
+}
+
+std::vector<float> interiorOf(const shaders::LayerSplits& s) {
+  std::vector<float> interior;
+  for (int i = 1; i < s.layerCount; ++i) interior.push_back(shaders::layerSplit(s, i));
+  return interior;
+}
+
+// The shared packing ranks the splits with constant indices only (a GPU compiles that in a
+// tenth of the time an insertion sort takes): it must give what a sorted list gives, ties and
+// all 16 layers included. Draws from a few values make ties common; the arithmetic is the same
+// max and min in the same order, so the results agree to the bit.
+TEST(LayerPlacement, PackingIsASortedListSpacedApart) {
+  std::mt19937 random(7);
+  const float values[] = {0.0f, 0.1f, 0.1f, 0.3f, 0.5f, 0.5f, 0.52f, 0.9f, 0.995f, 1.0f};
+  for (int trial = 0; trial < 400; ++trial) {
+    const int layers = 2 + int(random() % (shaders::kMaxLayers - 1));
+    std::vector<float> interior(size_t(layers - 1));
+    for (float& v : interior) v = values[random() % std::size(values)];
+    const float minGap = trial % 2 ? 0.001f : 0.02f;
+    const std::vector<float> expected = packedAsAList(interior, minGap);
+    EXPECT_EQ(interiorOf(shaders::packSplits(splitsOf(interior), minGap)), expected)
+        << "trial " << trial << ", " << layers << " layers";
+  }
+}
+
+// The shared update keeps each weighted cluster's mean and teleports the empty ones in cluster
+// order, each into the heaviest layer left or, with none, to the old split of its turn. As a list
+// would do it: the kept means, then the teleports, packed.
+TEST(LayerPlacement, UpdateIsTheKeptMeansAndTeleportsOfAList) {
+  std::mt19937 random(11);
+  for (int trial = 0; trial < 400; ++trial) {
+    const int layers = 2 + int(random() % (shaders::kMaxLayers - 1));
+    const int n = layers - 1;
+    const shaders::LayerSplits splits = shaders::uniformLayerSplits(layers);
+    shaders::LloydStepSums sums{};
+    for (int k = 0; k < n; ++k) {
+      // Two in five clusters empty; a mean inside (0,1).
+      sums.clusterWeight[k] = random() % 5 < 2 ? 0.0f : float(1 + random() % 9);
+      sums.clusterSum[k] = sums.clusterWeight[k] * float(random() % 1000) / 1000.0f;
+    }
+    for (int l = 0; l < layers; ++l) {
+      // Layers weigh nothing in one trial in three, else some of them do, ties included.
+      sums.layerWeight[l] = trial % 3 == 0 || random() % 3 == 0 ? 0.0f : float(1 + random() % 4);
+      sums.layerSum[l] = sums.layerWeight[l] * float(random() % 1000) / 1000.0f;
+    }
+    std::vector<float> list;
+    for (int k = 0; k < n; ++k) {
+      if (sums.clusterWeight[k] > 0.0f) list.push_back(sums.clusterSum[k] / sums.clusterWeight[k]);
+    }
+    std::vector<float> layerWeight(sums.layerWeight, sums.layerWeight + layers);
+    for (int turn = 0; list.size() < size_t(n); ++turn) {
+      const size_t heaviest = size_t(std::max_element(layerWeight.begin(), layerWeight.end()) -
+                                     layerWeight.begin());  // the first of equals
+      if (layerWeight[heaviest] > 0.0f) {
+        list.push_back(sums.layerSum[heaviest] / layerWeight[heaviest]);
+        layerWeight[heaviest] = 0.0f;
+      } else {
+        list.push_back(shaders::layerSplit(splits, turn + 1));
+      }
+    }
+    const std::vector<float> expected = packedAsAList(list, 0.001f);
+    EXPECT_EQ(interiorOf(shaders::lloydUpdate(sums, splits, 0.001f)), expected)
+        << "trial " << trial << ", " << layers << " layers";
+  }
 }
 
 }  // namespace

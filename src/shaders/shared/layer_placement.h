@@ -71,69 +71,92 @@ PENUMBRA_INLINE float lloydMinGap(float overlap) {
   return max(2.0f * overlap, 0.001f);
 }
 
-PENUMBRA_INLINE LayerSplits withInteriorSplit(LayerSplits splits, int k, float depth) {
-  splits.interior[k / 4][k % 4] = depth;
-  return splits;
-}
+// Every index into a local array below is a constant once a loop over kMaxLayers unrolls; a
+// count that varies (the layers, a rank, a teleport's turn) only takes part in comparisons. A
+// run-time index makes a GPU compiler expand each access into a ladder over the whole array, and
+// with the insertion sort and teleports written that way llvmpipe took 2.9-4.9 s to compile the
+// step (passes/lloyd_step.comp), most of `compare`'s first run (docs/results/
+// passes-llvmpipe-2026-12-07.md).
 
 // The interior splits of `candidate` sorted, kept strictly inside (0,1) and `minGap` apart:
-// pushed forward from 0, then back from 1.
+// pushed forward from 0, then back from 1. The sort is stable: split i goes to its rank, the
+// splits below it plus the equal ones before it.
 PENUMBRA_INLINE LayerSplits packSplits(LayerSplits candidate, float minGap) {
   int n = candidate.layerCount - 1;
-  float s[kMaxLayers];
-  for (int k = 0; k < kMaxLayers; ++k) s[k] = layerSplit(candidate, k + 1);
-  for (int i = 1; i < n; ++i) {  // insertion sort: at most 15 splits
-    float v = s[i];
-    int j = i - 1;
-    while (j >= 0 && s[j] > v) {
-      s[j + 1] = s[j];
-      --j;
+  float s[kMaxLayers - 1];
+  int rank[kMaxLayers - 1];
+  for (int i = 0; i < kMaxLayers - 1; ++i) s[i] = layerSplit(candidate, i + 1);
+  for (int i = 0; i < kMaxLayers - 1; ++i) {
+    rank[i] = 0;
+    for (int j = 0; j < kMaxLayers - 1; ++j) {
+      if (j < n && (s[j] < s[i] || (s[j] == s[i] && j < i))) ++rank[i];
     }
-    s[j + 1] = v;
+  }
+  float sorted[kMaxLayers - 1];
+  for (int r = 0; r < kMaxLayers - 1; ++r) {
+    sorted[r] = 1.0f;
+    for (int i = 0; i < kMaxLayers - 1; ++i) {
+      if (i < n && rank[i] == r) sorted[r] = s[i];
+    }
   }
   float previous = 0.0f;
-  for (int i = 0; i < n; ++i) {
-    s[i] = max(s[i], previous + minGap);
-    previous = s[i];
+  for (int i = 0; i < kMaxLayers - 1; ++i) {
+    if (i < n) {
+      sorted[i] = max(sorted[i], previous + minGap);
+      previous = sorted[i];
+    }
   }
   float next = 1.0f;
-  for (int i = n - 1; i >= 0; --i) {
-    s[i] = min(s[i], next - minGap);
-    next = s[i];
+  for (int i = kMaxLayers - 2; i >= 0; --i) {
+    if (i < n) {
+      sorted[i] = min(sorted[i], next - minGap);
+      next = sorted[i];
+    }
   }
-  LayerSplits sorted = uniformLayerSplits(candidate.layerCount);
-  for (int k = 0; k < n; ++k) sorted = withInteriorSplit(sorted, k, s[k]);
-  return sorted;
+  LayerSplits spaced = uniformLayerSplits(candidate.layerCount);
+  for (int k = 0; k < kMaxLayers - 1; ++k) {
+    if (k < n) spaced.interior[k / 4][k % 4] = sorted[k];
+  }
+  return spaced;
 }
 
 // One Lloyd step's move: each split to its cluster's weighted mean. A split left with no weight
 // is teleported (thesis: "merge the two adjacent layers and split whatever layer has the highest
 // weight"): placed at the weighted mean of the heaviest layer (the first of equals), each empty
-// split into a different layer; with no weight anywhere it keeps its place.
+// split into a different layer; with no weight anywhere it keeps its place. Empty clusters
+// teleport in their order; which slot a split takes does not matter, as packSplits sorts them.
 PENUMBRA_INLINE LayerSplits lloydUpdate(LloydStepSums sums, LayerSplits splits, float minGap) {
   int n = splits.layerCount - 1;
   if (n <= 0) return splits;
   LayerSplits next = uniformLayerSplits(splits.layerCount);
-  int kept = 0;
-  for (int k = 0; k < n; ++k) {
-    if (sums.clusterWeight[k] > 0.0f) {
-      next = withInteriorSplit(next, kept, sums.clusterSum[k] / sums.clusterWeight[k]);
-      ++kept;
-    }
-  }
   float layerWeight[kMaxLayers];
   for (int l = 0; l < kMaxLayers; ++l) layerWeight[l] = sums.layerWeight[l];
-  for (int i = 0; i < n - kept; ++i) {
+  int teleports = 0;  // empty clusters so far
+  for (int k = 0; k < kMaxLayers - 1; ++k) {
+    if (k >= n) continue;
+    if (sums.clusterWeight[k] > 0.0f) {
+      next.interior[k / 4][k % 4] = sums.clusterSum[k] / sums.clusterWeight[k];
+      continue;
+    }
     int heaviest = 0;
-    for (int l = 1; l < splits.layerCount; ++l) {
-      if (layerWeight[l] > layerWeight[heaviest]) heaviest = l;
+    float heaviestWeight = layerWeight[0];
+    float heaviestSum = sums.layerSum[0];
+    for (int l = 1; l < kMaxLayers; ++l) {
+      if (l < splits.layerCount && layerWeight[l] > heaviestWeight) {
+        heaviest = l;
+        heaviestWeight = layerWeight[l];
+        heaviestSum = sums.layerSum[l];
+      }
     }
-    float teleported = layerSplit(splits, i % n + 1);
-    if (layerWeight[heaviest] > 0.0f) {
-      teleported = sums.layerSum[heaviest] / layerWeight[heaviest];
-      layerWeight[heaviest] = 0.0f;  // the next teleport goes elsewhere
+    float teleported = layerSplit(splits, teleports % n + 1);
+    if (heaviestWeight > 0.0f) {
+      teleported = heaviestSum / heaviestWeight;
+      for (int l = 0; l < kMaxLayers; ++l) {
+        if (l == heaviest) layerWeight[l] = 0.0f;  // the next teleport goes elsewhere
+      }
     }
-    next = withInteriorSplit(next, kept + i, teleported);
+    next.interior[k / 4][k % 4] = teleported;
+    ++teleports;
   }
   return packSplits(next, minGap);
 }
@@ -152,8 +175,10 @@ PENUMBRA_INLINE float largestSplitMove(LayerSplits a, LayerSplits b) {
 PENUMBRA_INLINE LayerSplits lloydPlacedSplits(LayerSplits relaxed, float frontMargin,
                                               float minGap) {
   LayerSplits moved = relaxed;
-  for (int k = 0; k + 1 < relaxed.layerCount; ++k) {
-    moved = withInteriorSplit(moved, k, layerSplit(relaxed, k + 1) - frontMargin);
+  for (int k = 0; k < kMaxLayers - 1; ++k) {
+    if (k + 1 < relaxed.layerCount) {
+      moved.interior[k / 4][k % 4] = layerSplit(relaxed, k + 1) - frontMargin;
+    }
   }
   return packSplits(moved, minGap);
 }
