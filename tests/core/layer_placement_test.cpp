@@ -97,33 +97,44 @@ std::vector<float> interiorOf(const shaders::LayerSplits& s) {
   return interior;
 }
 
-// The shared packing ranks the splits with constant indices only (a GPU compiles that in a
-// tenth of the time an insertion sort takes): it must give what a sorted list gives, ties and
-// all 16 layers included. Draws from a few values make ties common; the arithmetic is the same
-// max and min in the same order, so the results agree to the bit.
-TEST(LayerPlacement, PackingIsASortedListSpacedApart) {
+// The shared packing ranks the splits and indexes its arrays with loop constants only (with
+// run-time indexes llvmpipe took seconds to compile the Lloyd step): it must give what a sorted
+// list gives, from one layer (no split) to all 16, ties included; so must the placement, which
+// moves each split toward the light first. Draws from a few values make ties common; the
+// arithmetic is the same subtraction, max and min in the same order, so the results agree to
+// the bit.
+TEST(LayerPlacement, PackingAndPlacementAreASortedListSpacedApart) {
   std::mt19937 random(7);
   const float values[] = {0.0f, 0.1f, 0.1f, 0.3f, 0.5f, 0.5f, 0.52f, 0.9f, 0.995f, 1.0f};
   for (int trial = 0; trial < 400; ++trial) {
-    const int layers = 2 + int(random() % (shaders::kMaxLayers - 1));
+    const int layers = 1 + int(random() % shaders::kMaxLayers);
     std::vector<float> interior(size_t(layers - 1));
     for (float& v : interior) v = values[random() % std::size(values)];
     const float minGap = trial % 2 ? 0.001f : 0.02f;
-    const std::vector<float> expected = packedAsAList(interior, minGap);
-    EXPECT_EQ(interiorOf(shaders::packSplits(splitsOf(interior), minGap)), expected)
+    EXPECT_EQ(interiorOf(shaders::packSplits(splitsOf(interior), minGap)),
+              packedAsAList(interior, minGap))
+        << "trial " << trial << ", " << layers << " layers";
+    const float margin = 0.01f;
+    std::vector<float> moved = interior;
+    for (float& v : moved) v -= margin;
+    EXPECT_EQ(interiorOf(shaders::lloydPlacedSplits(splitsOf(interior), margin, minGap)),
+              packedAsAList(moved, minGap))
         << "trial " << trial << ", " << layers << " layers";
   }
 }
 
 // The shared update keeps each weighted cluster's mean and teleports the empty ones in cluster
 // order, each into the heaviest layer left or, with none, to the old split of its turn. As a list
-// would do it: the kept means, then the teleports, packed.
+// would do it: the kept means, then the teleports, packed. The old splits are spaced unevenly,
+// so that a teleport that kept another place than its turn's would show.
 TEST(LayerPlacement, UpdateIsTheKeptMeansAndTeleportsOfAList) {
   std::mt19937 random(11);
   for (int trial = 0; trial < 400; ++trial) {
     const int layers = 2 + int(random() % (shaders::kMaxLayers - 1));
     const int n = layers - 1;
-    const shaders::LayerSplits splits = shaders::uniformLayerSplits(layers);
+    std::vector<float> old(static_cast<size_t>(n));
+    for (float& v : old) v = float(1 + random() % 998) / 1000.0f;
+    const shaders::LayerSplits splits = splitsOf(packedAsAList(old, 0.001f));
     shaders::LloydStepSums sums{};
     for (int k = 0; k < n; ++k) {
       // Two in five clusters empty; a mean inside (0,1).
