@@ -75,7 +75,7 @@ PENUMBRA_INLINE float lloydMinGap(float overlap) {
 // count that varies (the layers, a rank, a teleport's turn) only takes part in comparisons. A
 // run-time index makes a GPU compiler expand each access into a ladder over the whole array, and
 // with the insertion sort and teleports written that way llvmpipe took 2.9-4.9 s to compile the
-// step (passes/lloyd_step.comp), most of `compare`'s first run (docs/results/
+// step (passes/lloyd_step.comp), the largest part of a first `compare` (docs/results/
 // passes-llvmpipe-2026-12-07.md).
 
 // The interior splits of `candidate` sorted, kept strictly inside (0,1) and `minGap` apart:
