@@ -3,6 +3,7 @@
 // file, and the settings panel draws (a screenshot with it differs from one without it).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
 #include <sstream>
@@ -648,8 +649,10 @@ TEST(Viewer, TheErrorViewOnceCompleteEqualsTheRenderersReference) {
 }
 
 // The true shadow is traced on a background thread: with an area light (64 shadow rays a pixel,
-// 0.5 to 2 s at 800x450 on two cores) the window draws many frames meanwhile, none
-// of them long.
+// 0.25 to 2 s at 800x450 on two cores, with another test beside it under ctest -j2) the window
+// keeps drawing meanwhile, none of its frames long. At least ten frames a second while it
+// traces, so that the count scales with the trace: a window that waited for the trace would
+// draw one frame at most (a CI run drew 4 in a 246 ms trace, under a fixed bound of 5).
 TEST(Viewer, KeepsDrawingFramesWhileTheTrueShadowTraces) {
   REQUIRE_XVFB();
   ScratchFolder scratch;
@@ -661,7 +664,7 @@ TEST(Viewer, KeepsDrawingFramesWhileTheTrueShadowTraces) {
   const RunResult run = runViewer(settings, shot, scratch.path(), {"--show", "truth-error"});
   ASSERT_EQ(run.exitCode(), 0) << run.output;
   const BackgroundTiming trace = backgroundTiming(run.output, "true shadow");
-  EXPECT_GE(trace.frames, 5);
+  EXPECT_GE(trace.frames, std::max(2, int(trace.jobMs / 100.0)));
   EXPECT_LT(trace.longestMs, trace.jobMs / 4.0);
 }
 
