@@ -6,7 +6,6 @@
 // into.
 #include "gltf_json_types.h"
 
-#include <cstring>
 #include <nlohmann/json.hpp>
 #include <string_view>
 #include <unordered_map>
@@ -264,22 +263,9 @@ void refuseDeepNesting(std::span<const uint8_t> text, const std::string& name) {
   }
 }
 
-uint32_t readUint32(const uint8_t* p) {
-  return uint32_t(p[0]) | uint32_t(p[1]) << 8 | uint32_t(p[2]) << 16 | uint32_t(p[3]) << 24;
-}
-
 }  // namespace
 
-void checkGltfJsonTypes(std::span<const uint8_t> bytes, const std::string& name) {
-  std::span<const uint8_t> text = bytes;
-  if (bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0) {
-    // GLB (glTF 2.0 §4.4): a 12-byte header, then the JSON chunk's length and type, then JSON.
-    if (bytes.size() < 20 || readUint32(bytes.data() + 16) != 0x4E4F534Au)
-      return;  // tinygltf says why
-    const uint32_t length = readUint32(bytes.data() + 12);
-    if (length > bytes.size() - 20) return;
-    text = bytes.subspan(20, length);
-  }
+void checkGltfJsonTypes(std::span<const uint8_t> text, const std::string& name) {
   refuseDeepNesting(text, name);
   json document = json::parse(text.begin(), text.end(), nullptr, false);
   if (document.is_discarded()) return;  // not JSON: tinygltf's message says where

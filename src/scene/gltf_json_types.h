@@ -9,9 +9,9 @@
 
 namespace penumbra::scene {
 
-// Checks the JSON of a .gltf, or the JSON chunk of a .glb, against the types the glTF 2.0
-// schema gives the core properties (extension contents and extras are left to their readers).
-// Throws Error "<name>: <path> must be ... (it is ...)".
-void checkGltfJsonTypes(std::span<const uint8_t> bytes, const std::string& name);
+// Checks the JSON of a .gltf, or the JSON chunk of a .glb (glbJsonChunk), against the types the
+// glTF 2.0 schema gives the core properties (extension contents and extras are left to their
+// readers). Throws Error "<name>: <path> must be ... (it is ...)".
+void checkGltfJsonTypes(std::span<const uint8_t> text, const std::string& name);
 
 }  // namespace penumbra::scene

@@ -19,6 +19,7 @@
 #include <sstream>
 
 #include "file_scene.h"
+#include "glb_container.h"
 #include "gltf_animation.h"
 #include "gltf_json_types.h"
 #include "image_decoding.h"
@@ -985,8 +986,8 @@ Scene loadGltf(std::span<const uint8_t> bytes, const std::string& name,
   context.model = &model;
   std::string err, warn;
   if (bytes.size() > size_t(UINT32_MAX)) throw Error(name + ": larger than 4 GiB");
-  checkGltfJsonTypes(bytes, name);
-  const bool binary = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
+  const bool binary = isGlb(bytes);
+  checkGltfJsonTypes(binary ? glbJsonChunk(bytes, name) : bytes, name);
   const bool ok = binary
                       ? parser.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(),
                                                     unsigned(bytes.size()), baseDirectory.string())

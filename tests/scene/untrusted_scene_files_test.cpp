@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 
 #include "penumbra/error.h"
@@ -126,6 +127,69 @@ TEST(UntrustedGltf, RefusesJsonNestedDeeperThanTheParserRecursesSafely) {
                        "than 128 levels"))
       << message;
   EXPECT_EQ(refusal(nested(100)), "loaded");
+}
+
+// The quad as a binary glTF (glTF 2.0 §4.4): the header, the JSON chunk padded with spaces and
+// the BIN chunk holding the positions and indices (60 bytes).
+std::string quadGlb() {
+  std::string bin(kQuad.size() * 12 + kQuadIndices.size() * 2, '\0');
+  std::memcpy(bin.data(), kQuad.data(), kQuad.size() * 12);
+  std::memcpy(bin.data() + kQuad.size() * 12, kQuadIndices.data(), kQuadIndices.size() * 2);
+  std::string json =
+      R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+      R"("buffers":[{"byteLength":60}],"bufferViews":[{"buffer":0,"byteLength":48},)"
+      R"({"buffer":0,"byteOffset":48,"byteLength":12}],"accessors":[{"bufferView":0,)"
+      R"("componentType":5126,"count":4,"type":"VEC3","min":[-0.5,0,-0.5],"max":[0.5,0,0.5]},)"
+      R"({"bufferView":1,"componentType":5123,"count":6,"type":"SCALAR"}]})";
+  json.resize((json.size() + 3) / 4 * 4, ' ');
+  const auto word = [](uint32_t v) {
+    return std::string{char(v & 0xff), char(v >> 8 & 0xff), char(v >> 16 & 0xff), char(v >> 24)};
+  };
+  const uint32_t length = uint32_t(12 + 8 + json.size() + 8 + bin.size());
+  return "glTF" + word(2) + word(length) + word(uint32_t(json.size())) + "JSON" + json +
+         word(uint32_t(bin.size())) + std::string("BIN\0", 4) + bin;
+}
+
+void setWord(std::string& glb, size_t at, uint32_t v) {
+  for (int i = 0; i < 4; ++i) glb[at + size_t(i)] = char(v >> (8 * i) & 0xff);
+}
+
+// A binary glTF's chunks must lie inside the length its header gives, and that inside the
+// file. tinygltf checks the BIN chunk against the header's length without the chunk's own
+// 8-byte header: with the length 8 short of the chunk's end and the file cut there, it read 8
+// bytes past the file (heap-buffer-overflow, found by scripts/fuzz-loaders).
+TEST(UntrustedGltf, RefusesABinaryGltfWhoseChunksRunPastItsLength) {
+  const fs::path dir = scratch("glb");
+  const std::string whole = quadGlb();
+  EXPECT_EQ(refusal(testing::writeFile(dir / "quad.glb", whole)), "loaded");
+
+  const size_t binHeader = whole.size() - 60 - 8;
+  std::string past = whole.substr(0, whole.size() - 8);
+  setWord(past, 8, uint32_t(past.size()));
+  EXPECT_EQ(refusal(testing::writeFile(dir / "past.glb", past)),
+            (dir / "past.glb").string() +
+                ": chunk 1 gives 60 bytes of data, but 52 are left of the length the binary "
+                "glTF header gives, at byte " +
+                std::to_string(binHeader));
+
+  const std::string cut = whole.substr(0, whole.size() - 4);
+  EXPECT_EQ(refusal(testing::writeFile(dir / "cut.glb", cut)),
+            (dir / "cut.glb").string() + ": the binary glTF header gives a length of " +
+                std::to_string(whole.size()) + " bytes, but the file holds " +
+                std::to_string(cut.size()) + ", at byte 8");
+
+  std::string version1 = whole;
+  setWord(version1, 4, 1);
+  EXPECT_EQ(
+      refusal(testing::writeFile(dir / "v1.glb", version1)),
+      (dir / "v1.glb").string() + ": binary glTF version 1; only version 2 is read, at byte 4");
+
+  std::string binFirst = whole;
+  setWord(binFirst, 16, 0x004E4942u);
+  EXPECT_EQ(refusal(testing::writeFile(dir / "bin_first.glb", binFirst)),
+            (dir / "bin_first.glb").string() +
+                ": the first chunk of a binary glTF must be its JSON, at byte 16");
 }
 
 // A 64 x 64 grid (7,938 triangles, no normals: three vertices each) drawn by 100 nodes.
