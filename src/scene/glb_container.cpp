@@ -19,7 +19,7 @@ uint32_t readUint32(std::span<const uint8_t> bytes, size_t at) {
 }
 
 std::string at(size_t offset) {
-  return ", at byte " + std::to_string(offset);
+  return " (at byte " + std::to_string(offset) + ")";
 }
 
 }  // namespace
@@ -34,43 +34,51 @@ std::span<const uint8_t> glbJsonChunk(std::span<const uint8_t> bytes, const std:
                 " bytes is shorter than its 12-byte header and the JSON chunk's 8-byte header");
   }
   if (const uint32_t version = readUint32(bytes, 4); version != 2) {
-    throw Error(name + ": binary glTF version " + std::to_string(version) +
-                "; only version 2 is read" + at(4));
+    throw Error(name + ": binary glTF version " + std::to_string(version) + at(4) +
+                "; only version 2 is read");
   }
   // The container ends where the header says; bytes after it are not part of the glTF.
   const size_t length = readUint32(bytes, 8);
   if (length > bytes.size()) {
     throw Error(name + ": the binary glTF header gives a length of " + std::to_string(length) +
-                " bytes, but the file holds " + std::to_string(bytes.size()) + at(8));
+                " bytes" + at(8) + ", but the file holds " + std::to_string(bytes.size()));
+  }
+  if (length < kHeaderBytes + kChunkHeaderBytes) {
+    throw Error(name + ": the binary glTF header gives a length of " + std::to_string(length) +
+                " bytes" + at(8) + ", too short for the JSON chunk that must follow it");
   }
   size_t offset = kHeaderBytes;
   std::span<const uint8_t> json;
   for (int chunk = 0; offset < length; ++chunk) {
     if (length - offset < kChunkHeaderBytes) {
-      throw Error(name + ": a chunk header needs 8 bytes, but " + std::to_string(length - offset) +
-                  " are left of the length the binary glTF header gives" + at(offset));
+      throw Error(name + ": chunk " + std::to_string(chunk) + "'s header" + at(offset) +
+                  " needs 8 bytes, but " + std::to_string(length - offset) +
+                  " are left of the length the binary glTF header gives");
     }
     const size_t size = readUint32(bytes, offset);
     const uint32_t type = readUint32(bytes, offset + 4);
     const size_t data = offset + kChunkHeaderBytes;
     if (size > length - data) {
-      throw Error(name + ": chunk " + std::to_string(chunk) + " gives " + std::to_string(size) +
-                  " bytes of data, but " + std::to_string(length - data) +
-                  " are left of the length the binary glTF header gives" + at(offset));
+      throw Error(name + ": chunk " + std::to_string(chunk) + at(offset) + " gives " +
+                  std::to_string(size) + " bytes of data, but " + std::to_string(length - data) +
+                  " are left of the length the binary glTF header gives");
     }
     if (chunk == 0) {
       if (type != kJsonChunk) {
-        throw Error(name + ": the first chunk of a binary glTF must be its JSON" + at(offset + 4));
+        throw Error(name + ": chunk 0" + at(offset) +
+                    " is not JSON; a binary glTF starts with "
+                    "its JSON chunk");
       }
+      if (size == 0) throw Error(name + ": the JSON chunk" + at(offset) + " is empty");
       json = bytes.subspan(data, size);
     } else if (chunk == 1 && type != kBinChunk) {
-      // Later chunks of unknown types are skipped (§4.4.3); the second, if any, holds the buffer.
-      throw Error(name + ": the second chunk of a binary glTF must be its BIN buffer" +
-                  at(offset + 4));
+      // The specification has readers skip chunks of unknown types; tinygltf, which reads the
+      // buffer, takes the second chunk for the BIN chunk whatever its type.
+      throw Error(name + ": chunk 1" + at(offset) +
+                  " is not BIN; the second chunk of a binary glTF must hold its buffer here");
     }
     offset = data + size;
   }
-  if (json.empty()) throw Error(name + ": a binary glTF with no JSON chunk data" + at(12));
   return json;
 }
 

@@ -13,8 +13,9 @@ namespace penumbra::scene {
 bool isGlb(std::span<const uint8_t> bytes);
 
 // The JSON chunk of a GLB, after checking the header and that every chunk lies inside the
-// length the header gives, which lies inside the file. Throws Error "<name>: <what is wrong>, at
-// byte N".
+// length the header gives, which lies inside the file. Throws Error "<name>: <what is wrong>",
+// with the byte the fault is at. Chunk alignment is left to tinygltf, which refuses a BIN chunk
+// off a 4-byte boundary and reads a JSON chunk off one.
 std::span<const uint8_t> glbJsonChunk(std::span<const uint8_t> bytes, const std::string& name);
 
 }  // namespace penumbra::scene

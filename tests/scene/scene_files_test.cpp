@@ -150,6 +150,33 @@ TEST(GltfLoader, RefusesAnImageWhoseBufferViewRunsPastItsBuffer) {
   }
 }
 
+// Found by the fuzzer (2026-12-07): tinygltf bounds a GLB's BIN chunk by the header's length
+// without the chunk's 8-byte header, and this file's BIN chunk ends 8 bytes past that length and
+// 3 past the file: tinygltf read past the heap buffer. The fuzzer also changed the version to
+// 770, which is refused first; with the version mended in place, the chunk's bounds are.
+TEST(GltfLoader, RefusesTheFuzzersGlbWhoseBinChunkRunsPastTheFile) {
+  const fs::path kept = fs::path(PENUMBRA_TEST_DATA_DIR) / "fuzz_glb_bin_chunk_past_file.glb";
+  const auto message = [](const fs::path& file) {
+    try {
+      testing::loadAsWritten(file.string());
+      return std::string("loaded");
+    } catch (const Error& e) {
+      return std::string(e.what()).substr(file.string().size());
+    }
+  };
+  EXPECT_EQ(message(kept), ": binary glTF version 770 (at byte 4); only version 2 is read");
+  std::ifstream in(kept, std::ios::binary);
+  std::string bytes{std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+  ASSERT_EQ(bytes.size(), 1921u);
+  bytes[4] = 2;
+  bytes[5] = 0;
+  const fs::path mended =
+      testing::writeFile(fs::path(::testing::TempDir()) / "glb_bin_chunk_past_file.glb", bytes);
+  EXPECT_EQ(message(mended),
+            ": chunk 1 (at byte 1196) gives 720 bytes of data, but 712 are left of the length "
+            "the binary glTF header gives");
+}
+
 // Found by the fuzzer: a PNG whose first IDAT chunk is empty made stb_image copy zero bytes to a
 // null pointer (undefined behaviour: the sanitizer build aborts on it). Empty data chunks are
 // dropped before decoding. Images are decoded when a material uses them: the fuzzer's file
