@@ -66,8 +66,7 @@ std::span<const uint8_t> glbJsonChunk(std::span<const uint8_t> bytes, const std:
     if (chunk == 0) {
       if (type != kJsonChunk) {
         throw Error(name + ": chunk 0" + at(offset) +
-                    " is not JSON; a binary glTF starts with "
-                    "its JSON chunk");
+                    " is not JSON; a binary glTF starts with its JSON chunk");
       }
       if (size == 0) throw Error(name + ": the JSON chunk" + at(offset) + " is empty");
       json = bytes.subspan(data, size);

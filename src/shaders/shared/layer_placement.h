@@ -148,7 +148,7 @@ PENUMBRA_INLINE LayerSplits lloydUpdate(LloydStepSums sums, LayerSplits splits, 
         heaviestSum = sums.layerSum[l];
       }
     }
-    float teleported = layerSplit(splits, teleports % n + 1);
+    float teleported = layerSplit(splits, teleports + 1);  // teleports < n
     if (heaviestWeight > 0.0f) {
       teleported = heaviestSum / heaviestWeight;
       for (int l = 0; l < kMaxLayers; ++l) {
