@@ -168,9 +168,10 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
-// ESM with the classifier the minimal lookup can run (the threshold test): its camera pass also
-// stands beside a lookup that falls back where the pass does, so that the pass's cost besides
-// its fallback shows too.
+// ESM with the classifier the minimal lookup can run (the threshold test): its camera pass stands
+// beside a lookup that classifies and falls back where the pass does (the ESM paper's algorithm,
+// §3.3), and the same pass with the classification off beside the least lookup, so that each
+// row compares two passes that compute the same picture.
 bool hasFallbackYardstick(const RenderSettings& settings) {
   return settings.technique == Technique::Esm &&
          settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
@@ -184,10 +185,8 @@ std::string minimalLookupDescription(const RenderSettings& settings, bool summed
     return "minimal lookup: each channel's mean over the blur's box from the table, reconstruct, "
            "Lambert, RGBA8";
   }
-  const bool classified = hasFallbackYardstick(settings);
   std::string reconstruct = "reconstruct";
-  if (classified && !esmFallback) reconstruct += " (no classification or fallback)";
-  if (classified && esmFallback) {
+  if (esmFallback) {
     reconstruct += settings.params.esm.fallback == shaders::kEsmFallbackPaper
                        ? " with the threshold test, and where it fails the paper's 2x2 fallback"
                        : " with the threshold test, and where it fails the pass's own PCF "
@@ -308,11 +307,9 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   }};
 
   // After each frame, the same view drawn with the least lookup of the technique.
-  MinimalKernel minimalLookup{
-      std::function<double()>([&] { return renderer.timeMinimalLookup(false); })};
   const bool esmFallback = hasFallbackYardstick(settings);
-  MinimalKernel minimalLookupWithFallback{
-      std::function<double()>([&] { return renderer.timeMinimalLookup(true); })};
+  MinimalKernel cameraYardstick{
+      std::function<double()>([&] { return renderer.timeMinimalLookup(esmFallback); })};
 
   MinimalKernel yardstickCopy{[&] { yardstick.copy(); }};
   MinimalKernel yardstickBlur{[&] { yardstick.blurBothAxes(); }};
@@ -320,8 +317,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   if (blurs) beside.insert(beside.end(), {&blur, &yardstickBlur});
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
-  std::vector<MinimalKernel*> lookups{&minimalLookup};
-  if (esmFallback) lookups.push_back(&minimalLookupWithFallback);
+  const std::vector<MinimalKernel*> lookups{&cameraYardstick};
   const FramePasses passes =
       renderPasses(renderer, scene, separate, repeats, gpuTime, beside, lookups);
 
@@ -356,18 +352,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   }
   result.passes.push_back({"camera",
                            frameTimes(passes.camera),
-                           minimalLookupDescription(settings, summedArea, false),
-                           frameTimes(minimalLookup.times),
+                           minimalLookupDescription(settings, summedArea, esmFallback),
+                           frameTimes(cameraYardstick.times),
                            "",
                            {}});
-  if (esmFallback) {
-    result.passes.push_back({"camera",
-                             frameTimes(passes.camera),
-                             minimalLookupDescription(settings, summedArea, true),
-                             frameTimes(minimalLookupWithFallback.times),
-                             "",
-                             {}});
-  }
   // The fused path, where the settings allow it, whichever the caller chose (it is off by default).
   RenderSettings fusedSettings = settings;
   fusedSettings.fusePrefilter = true;
@@ -382,6 +370,25 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              "plain fused tile blur of depth, " + taps, frameTimes(fusedBlur.times),
                              yardstick.describe("copy + blur, " + taps),
                              frameTimes(sums(yardstickCopy.times, yardstickBlur.times))});
+  }
+  if (esmFallback) {
+    // ESM's camera pass with the classification off beside the least lookup, in frames of their
+    // own (the classification is compiled into the pass, lookupParameterDefines); run last, so
+    // that the pass's and the yardstick's targets show what they drew; listed after "camera".
+    RenderSettings unclassified = separate;
+    unclassified.params.esm.classifier = shaders::kEsmClassifyNone;
+    MinimalKernel leastLookup{
+        std::function<double()>([&] { return renderer.timeMinimalLookup(false); })};
+    const std::vector<MinimalKernel*> least{&leastLookup};
+    const FramePasses plain =
+        renderPasses(renderer, scene, unclassified, repeats, gpuTime, {}, least);
+    const auto camera = std::ranges::find(result.passes, "camera", &PassTiming::pass);
+    result.passes.insert(camera + 1, {"camera, classification off",
+                                      frameTimes(plain.camera),
+                                      minimalLookupDescription(unclassified, summedArea, false),
+                                      frameTimes(leastLookup.times),
+                                      "",
+                                      {}});
   }
   checkErrors("bench --passes");
   return result;

@@ -64,26 +64,29 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   const gl::PassBenchResult esm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Esm), 1);
   EXPECT_EQ(esm.format, "r32f x 1 layer");
-  // ESM's camera pass twice: beside the least lookup, and beside one that falls back as it does.
-  expectTimed(esm,
-              {"encode", "prefilter", "mips", "camera", "camera", "encode + prefilter, fused"});
+  // ESM's camera pass beside a lookup that falls back as it does, and with the classification off
+  // beside the least lookup.
+  expectTimed(esm, {"encode", "prefilter", "mips", "camera", "camera, classification off",
+                    "encode + prefilter, fused"});
   EXPECT_EQ(esm.passes[3].baseline,
-            "minimal lookup: each layer filtered once, reconstruct (no classification or "
-            "fallback), Lambert, RGBA8");
-  EXPECT_EQ(esm.passes[4].baseline,
             "minimal lookup: each layer filtered once, reconstruct with the threshold test, and "
             "where it fails the pass's own PCF fallback (the light's depth, a receiver plane from "
             "screen derivatives), Lambert, RGBA8");
+  const std::string leastLookup =
+      "minimal lookup: each layer filtered once, reconstruct, Lambert, RGBA8";
+  EXPECT_EQ(esm.passes[4].baseline, leastLookup);
   gl::RenderSettings paperFallback = small(Technique::Esm);
   paperFallback.params.esm.fallback = shaders::kEsmFallbackPaper;
   EXPECT_EQ(
-      gl::benchPasses(renderer, makeBuiltinScene("planar"), paperFallback, 1).passes[4].baseline,
+      gl::benchPasses(renderer, makeBuiltinScene("planar"), paperFallback, 1).passes[3].baseline,
       "minimal lookup: each layer filtered once, reconstruct with the threshold test, and where "
       "it fails the paper's 2x2 fallback, Lambert, RGBA8");
   gl::RenderSettings unclassified = small(Technique::Esm);
   unclassified.params.esm.classifier = shaders::kEsmClassifyNone;  // nothing falls back
-  expectTimed(gl::benchPasses(renderer, makeBuiltinScene("planar"), unclassified, 1),
-              {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
+  const gl::PassBenchResult plain =
+      gl::benchPasses(renderer, makeBuiltinScene("planar"), unclassified, 1);
+  expectTimed(plain, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
+  EXPECT_EQ(plain.passes[3].baseline, leastLookup);
   // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
   // the blur and the fused pass; the mips and the camera pass have none.
   const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",
@@ -196,9 +199,10 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   }
 }
 
-// The bench's second ESM camera row times the lookup with the fallback: it draws after the
-// first, so the picture it leaves is the fallback lookup's, not the least lookup's.
-TEST_F(PassBench, EsmsSecondCameraRowDrawsTheLookupWithItsFallback) {
+// ESM's row with the classification off draws what it says. It is timed last: the pass's and the
+// yardstick's targets hold its last draws, which must be the pass without the classification
+// (so without the fallback) and the least lookup.
+TEST_F(PassBench, EsmsCameraRowsDrawThePassesTheyName) {
   gl::Renderer renderer(*context);
   gl::RenderSettings s = small(Technique::Esm);
   s.shadowMapSize = 512;
@@ -207,18 +211,25 @@ TEST_F(PassBench, EsmsSecondCameraRowDrawsTheLookupWithItsFallback) {
   s.filter = gl::FilterMode::Bilinear;
   const Scene scene = makeBuiltinScene("backyard");
   const gl::PassBenchResult r = gl::benchPasses(renderer, scene, s, 1);
-  ASSERT_EQ(r.passes[3].pass, "camera");  // encode, prefilter, camera, camera (no mips: bilinear)
-  const Image left = renderer.readMinimalLookupColor();
-  renderer.render(scene, s);  // the separate passes' frame again (the bench ended on the fused)
-  renderer.timeMinimalLookup(true);
-  const Image withFallback = renderer.readMinimalLookupColor();
-  renderer.timeMinimalLookup(false);
-  const Image withoutFallback = renderer.readMinimalLookupColor();
+  // encode, prefilter, camera (no mips: bilinear)
+  ASSERT_EQ(r.passes[3].pass, "camera, classification off");
+  const Image pass = renderer.readCameraColor();
+  const Image yardstick = renderer.readMinimalLookupColor();
   const auto same = [](const Image& a, const Image& b) {
     return std::ranges::equal(a.data(), b.data());
   };
-  EXPECT_TRUE(same(left, withFallback));
-  EXPECT_FALSE(same(left, withoutFallback)) << "the view must show ESM's fallback";
+  gl::RenderSettings unclassified = s;
+  unclassified.params.esm.classifier = shaders::kEsmClassifyNone;
+  unclassified.readBack = gl::frame_image::kColor;
+  s.readBack = gl::frame_image::kColor;
+  const gl::RenderResult classifiedFrame = renderer.render(scene, s);
+  renderer.timeMinimalLookup(true);
+  const Image withFallback = renderer.readMinimalLookupColor();
+  EXPECT_FALSE(same(pass, classifiedFrame.color)) << "the view must show ESM's fallback";
+  EXPECT_FALSE(same(yardstick, withFallback));
+  EXPECT_TRUE(same(pass, renderer.render(scene, unclassified).color));
+  renderer.timeMinimalLookup(false);
+  EXPECT_TRUE(same(yardstick, renderer.readMinimalLookupColor()));
 }
 
 // The bench times the camera pass several times a frame (kCameraDrawsPerFrame): the draws after
