@@ -60,8 +60,8 @@ CameraPass::~CameraPass() {
 
 void CameraPass::prepare(int width, int height, bool diagnostics, bool lookupInputs) {
   diagnostics = diagnostics || lookupInputs;
-  if (framebuffer_ != 0 && width == width_ && height == height_ &&
-      diagnostics == diagnostics_ && lookupInputs == lookupInputs_) {
+  if (framebuffer_ != 0 && width == width_ && height == height_ && diagnostics == diagnostics_ &&
+      lookupInputs == lookupInputs_) {
     return;
   }
   if (framebuffer_ != 0) glDeleteFramebuffers(1, &framebuffer_);
@@ -169,8 +169,7 @@ void CameraPass::render(ProgramCache& programs, const GpuScene& scene,
 
 void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& scene,
                                      const RenderSettings& settings, const FrameGeometry& frame,
-                                     const ShadowFilter& shadows, int layers,
-                                     bool esmFallback) {
+                                     const ShadowFilter& shadows, int layers, bool esmFallback) {
   if (frame.cascaded || frame.pointLight) {
     throw Error("the minimal lookup runs on one map: no cascades, no point light");
   }
@@ -220,6 +219,7 @@ void CameraPass::renderMinimalLookup(ProgramCache& programs, const GpuScene& sce
   minimalTimer.end();
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   checkErrors("minimal lookup");
+  ++minimalDraws_[esmFallback ? 1 : 0];
 }
 
 Image CameraPass::readMinimalLookupColor() const {

@@ -58,7 +58,7 @@ class CameraPass {
   Image readUvDerivatives() const;
   Image readCascades() const;
   Image readDepth() const;  // window depth in [0,1], 1 where nothing is drawn
-  uint64_t bytes() const;  // frameBytes of the targets prepared: what the estimate counts
+  uint64_t bytes() const;   // frameBytes of the targets prepared: what the estimate counts
   // The targets' bytes as the GL reports their sizes and component bits: what is allocated.
   uint64_t measuredBytes() const;
 
@@ -71,6 +71,9 @@ class CameraPass {
                            const ShadowFilter& shadows, int layers, bool esmFallback);
 
   Image readMinimalLookupColor() const;  // RGBA in [0,1], linear, row 0 at the top
+  // How many times renderMinimalLookup has drawn with and without ESM's fallback: which
+  // yardstick a bench row timed leaves no picture once the other has drawn after it.
+  int minimalLookupDraws(bool esmFallback) const { return minimalDraws_[esmFallback ? 1 : 0]; }
 
   GpuTimer timer;
   GpuTimer minimalTimer;
@@ -88,6 +91,7 @@ class CameraPass {
   Texture minimalColor_, minimalDepth_;
   unsigned minimalFramebuffer_ = 0;
   int minimalWidth_ = 0, minimalHeight_ = 0;
+  int minimalDraws_[2] = {0, 0};  // without, with ESM's fallback
 };
 
 }  // namespace penumbra::gl

@@ -168,12 +168,18 @@ std::vector<double> sums(const std::vector<double>& a, const std::vector<double>
   return s;
 }
 
-// ESM with the classifier the minimal lookup can run (the threshold test): its camera pass stands
-// beside a lookup that classifies and falls back where the pass does (the ESM paper's algorithm,
-// §3.3), and the same pass with the classification off beside the least lookup, so that each
-// row compares two passes that compute the same picture.
-bool hasFallbackYardstick(const RenderSettings& settings) {
+// ESM that classifies its pixels (ESM paper §3.3) and shades the failing ones with its fallback:
+// its camera pass also stands, with the classification off, beside the least lookup.
+bool classifiesEsm(const RenderSettings& settings) {
   return settings.technique == Technique::Esm &&
+         settings.params.esm.classifier != shaders::kEsmClassifyNone;
+}
+
+// ESM with the classifier the minimal lookup can run (the threshold test; Z-max reads a pyramid
+// the yardstick does not build): its camera pass stands beside a lookup that classifies and
+// falls back as it does.
+bool hasFallbackYardstick(const RenderSettings& settings) {
+  return classifiesEsm(settings) &&
          settings.params.esm.classifier == shaders::kEsmClassifyThreshold;
 }
 
@@ -191,6 +197,8 @@ std::string minimalLookupDescription(const RenderSettings& settings, bool summed
                        ? " with the threshold test, and where it fails the paper's 2x2 fallback"
                        : " with the threshold test, and where it fails the pass's own PCF "
                          "fallback (the light's depth, a receiver plane from screen derivatives)";
+  } else if (classifiesEsm(settings)) {
+    reconstruct += " (no classification or fallback, which the pass has)";
   }
   return "minimal lookup: each layer filtered once, " + reconstruct + ", Lambert, RGBA8";
 }
@@ -306,7 +314,8 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
     columns.dispatch(groups(size, 64), unsigned(channelCount));
   }};
 
-  // After each frame, the same view drawn with the least lookup of the technique.
+  // After each frame, the same view drawn with the least lookup of the technique, or ESM's with
+  // its classification and fallback.
   const bool esmFallback = hasFallbackYardstick(settings);
   MinimalKernel cameraYardstick{
       std::function<double()>([&] { return renderer.timeMinimalLookup(esmFallback); })};
@@ -371,7 +380,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
                              yardstick.describe("copy + blur, " + taps),
                              frameTimes(sums(yardstickCopy.times, yardstickBlur.times))});
   }
-  if (esmFallback) {
+  if (classifiesEsm(settings)) {
     // ESM's camera pass with the classification off beside the least lookup, in frames of their
     // own (the classification is compiled into the pass, lookupParameterDefines); run last, so
     // that the pass's and the yardstick's targets show what they drew; listed after "camera".

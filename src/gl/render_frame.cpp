@@ -512,6 +512,10 @@ Image Renderer::readMinimalLookupColor() const {
   return state_->camera.readMinimalLookupColor();
 }
 
+int Renderer::minimalLookupDraws(bool esmFallback) const {
+  return state_->camera.minimalLookupDraws(esmFallback);
+}
+
 uint64_t Renderer::measuredChannelTextureBytes() const {
   const State& s = *state_;
   uint64_t bytes = 0;

@@ -87,6 +87,18 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
       gl::benchPasses(renderer, makeBuiltinScene("planar"), unclassified, 1);
   expectTimed(plain, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
   EXPECT_EQ(plain.passes[3].baseline, leastLookup);
+  // The Z-max classifier: no yardstick classifies as it does, so its pass stands beside the least
+  // lookup, which says what it leaves out, and with the classification off beside it too.
+  gl::RenderSettings zmax = small(Technique::Esm);
+  zmax.params.esm.classifier = shaders::kEsmClassifyZmax;
+  const gl::PassBenchResult pyramid =
+      gl::benchPasses(renderer, makeBuiltinScene("planar"), zmax, 1);
+  expectTimed(pyramid, {"encode", "prefilter", "mips", "camera", "camera, classification off",
+                        "encode + prefilter, fused"});
+  EXPECT_EQ(pyramid.passes[3].baseline,
+            "minimal lookup: each layer filtered once, reconstruct (no classification or "
+            "fallback, which the pass has), Lambert, RGBA8");
+  EXPECT_EQ(pyramid.passes[4].baseline, leastLookup);
   // The yardstick (rawblur's kernels on a 2D texture of the same components) beside the encode,
   // the blur and the fused pass; the mips and the camera pass have none.
   const std::vector<std::string> yardsticks{"rawblur copy, rgba32f",
@@ -199,10 +211,12 @@ TEST_F(PassBench, TheMinimalLookupDrawsTheCameraPassPicture) {
   }
 }
 
-// ESM's row with the classification off draws what it says. It is timed last: the pass's and the
+// ESM's two camera rows time what they name. The first row's yardstick is the lookup with the
+// fallback and the second's the least lookup, each drawn after a warm-up frame and then once
+// after each of the camera pass's draws. The second row is timed last: the pass's and the
 // yardstick's targets hold its last draws, which must be the pass without the classification
 // (so without the fallback) and the least lookup.
-TEST_F(PassBench, EsmsCameraRowsDrawThePassesTheyName) {
+TEST_F(PassBench, EsmsTwoCameraRowsTimeWhatTheyName) {
   gl::Renderer renderer(*context);
   gl::RenderSettings s = small(Technique::Esm);
   s.shadowMapSize = 512;
@@ -213,6 +227,9 @@ TEST_F(PassBench, EsmsCameraRowsDrawThePassesTheyName) {
   const gl::PassBenchResult r = gl::benchPasses(renderer, scene, s, 1);
   // encode, prefilter, camera (no mips: bilinear)
   ASSERT_EQ(r.passes[3].pass, "camera, classification off");
+  const int drawsPerRow = 1 + gl::kCameraDrawsPerFrame;  // the warm-up, then one frame's
+  EXPECT_EQ(renderer.minimalLookupDraws(true), drawsPerRow);
+  EXPECT_EQ(renderer.minimalLookupDraws(false), drawsPerRow);
   const Image pass = renderer.readCameraColor();
   const Image yardstick = renderer.readMinimalLookupColor();
   const auto same = [](const Image& a, const Image& b) {

@@ -30,8 +30,8 @@ constexpr int kCameraDrawsPerFrame = 4;
 FrameTimes frameTimes(const std::vector<double>& times);
 
 struct PassTiming {
-  // "encode", "prefilter", "encode + prefilter, fused", "mips", "camera", ... (ESM with the
-  // threshold classifier: also "camera, classification off")
+  // "encode", "prefilter", "encode + prefilter, fused", "mips", "camera", ... (ESM with a
+  // classifier: also "camera, classification off")
   std::string pass;
   FrameTimes passTimes;  // the renderer's pass
   std::string baseline;  // what the minimal kernel does
@@ -70,10 +70,11 @@ std::string passTimingDescription(const Renderer& renderer);
 // software rasterisers (llvmpipe's queries see only submission). The mip chain or, with the sat
 // filter, the summed-area table. The camera pass stands beside the least lookup of the technique;
 // ESM's with the threshold classifier beside a lookup that classifies and falls back as the pass
-// does (the ESM paper's algorithm, §3.3), and after the fused frames, in frames of its own, the
-// pass with the classification off beside the least lookup ("camera, classification off"): each
-// row compares two passes that draw the same picture but for what the yardstick leaves out (the
-// normal offset, the receiver plane, diagnostics). PCF and the hard test
+// does (the ESM paper's classification, §3.3, with the pass's fallback). ESM's with a classifier
+// also, after the fused frames, in frames of its own with the classification off beside the least
+// lookup ("camera, classification off"); the bench ends on those frames, whose draws the pass's
+// and the yardstick's targets then hold. The Z-max classifier reads a pyramid the yardstick does
+// not build: its "camera" row stands beside the least lookup, which says so. PCF and the hard test
 // have no prefilter, cascades and point lights have several maps, and soft lights a blocker
 // search the minimal lookup lacks: they are refused.
 PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,

@@ -276,6 +276,7 @@ class Renderer {
   double timeCameraPass();
   Image readCameraColor() const;         // the camera pass's colour target as its last draw left it
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
+  int minimalLookupDraws(bool esmFallback) const;  // its draws so far, with or without the fallback
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
   // size and component bit depths), to check MemoryReport::technique against.
   uint64_t measuredChannelTextureBytes() const;
