@@ -9,8 +9,8 @@
 // (shared/technique_dispatch.h), Lambert + ambient of the base colour, one RGBA8 target. No
 // normal offset, receiver plane, soft light, cascade, ESM fallback or diagnostics: what the
 // production pass (camera.frag) adds to this is its cost over the yardstick. With
-// WITH_ESM_FALLBACK, ESM's classification and fallback as well: what the pass adds besides its
-// fallback.
+// WITH_ESM_FALLBACK, ESM's threshold classification and fallback as well: the yardstick of ESM's
+// camera pass where it classifies so (without, of the pass with its classification off).
 #if SUMMED_AREA
 #extension GL_ARB_gpu_shader_int64 : require
 #endif
@@ -26,8 +26,8 @@
 #ifndef LAYER_COUNT
 #define LAYER_COUNT 1
 #endif
-// 1: ESM's classification and fallback too (bench --passes' second yardstick of ESM's camera
-// pass, beside the first, which has neither).
+// 1: ESM's classification and fallback too (bench --passes' yardstick of ESM's camera pass with
+// the threshold classifier).
 #ifndef WITH_ESM_FALLBACK
 #define WITH_ESM_FALLBACK 0
 #endif
