@@ -5,7 +5,9 @@
 // through the functions lookup_access.h declares, which each side defines over its own textures.
 // PENUMBRA_PRECISE marks arithmetic where GLSL compilers must not fuse or reorder operations, so
 // the GPU rounds as the C++ reference does: ill-conditioned (MSM's Hankel solve), or a sum whose
-// regrouping could overflow (the prefilter's taps, channel_reduction.h).
+// regrouping could overflow (the prefilter's taps, channel_reduction.h). No fma(): GLSL lets it
+// round once or twice (llvmpipe rounds twice, measured; a fused multiply-add unit once), so no
+// C++ twin could give every device's bits; precise a * b + c rounds twice everywhere.
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
 
