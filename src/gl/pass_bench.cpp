@@ -129,16 +129,20 @@ struct Yardstick {
 
 // The renderer's own pass times over `repeats` frames after a warm-up frame (shader compilation,
 // resources), each frame followed by one timed run of every minimal kernel in `kernels`
-// (warmed up too), and its camera pass drawn kCameraDrawsPerFrame times in all, each draw
-// followed by one timed run of every kernel in `lookups`. Times are GPU timer queries where they
-// measure execution, else wall time between glFinish calls.
+// (warmed up too), its camera pass drawn kCameraDrawsPerFrame times in all, each draw followed
+// by one timed run of every kernel in `lookups`, and, where `encodeKernels` are given, its
+// encode dispatched kEncodeDispatchesPerFrame times in all, each dispatch after the frame's
+// followed by one timed run of every kernel in `encodeKernels` (the frame's own by `kernels`).
+// Times are GPU timer queries where they measure execution, else wall time between glFinish
+// calls.
 struct FramePasses {
   std::vector<double> encode, prefilter, mipsOrSat, camera;
 };
 
 FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSettings& settings,
                          int repeats, bool gpuTime, std::span<MinimalKernel* const> kernels,
-                         std::span<MinimalKernel* const> lookups = {}) {
+                         std::span<MinimalKernel* const> lookups = {},
+                         std::span<MinimalKernel* const> encodeKernels = {}) {
   FramePasses p;
   RenderSettings timed = settings;
   timed.readBack = frame_image::kNone;  // the times are all a repeat gives
@@ -153,10 +157,17 @@ FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSet
     p.mipsOrSat.push_back(t.mipsOrSat);
     p.camera.push_back(t.camera);
     for (MinimalKernel* k : kernels) k->time(gpuTime);
-    if (lookups.empty()) continue;
-    for (int draw = 0; draw < kCameraDrawsPerFrame; ++draw) {
-      if (draw > 0) p.camera.push_back(renderer.timeCameraPass());
-      for (MinimalKernel* k : lookups) k->time(gpuTime);
+    if (!lookups.empty()) {
+      for (int draw = 0; draw < kCameraDrawsPerFrame; ++draw) {
+        if (draw > 0) p.camera.push_back(renderer.timeCameraPass());
+        for (MinimalKernel* k : lookups) k->time(gpuTime);
+      }
+    }
+    // After the camera draws, which read the prefiltered channels the dispatches overwrite.
+    if (encodeKernels.empty()) continue;
+    for (int dispatch = 1; dispatch < kEncodeDispatchesPerFrame; ++dispatch) {
+      p.encode.push_back(renderer.timeEncodePass());
+      for (MinimalKernel* k : encodeKernels) k->time(gpuTime);
     }
   }
   return p;
@@ -327,8 +338,10 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
   const std::vector<MinimalKernel*> lookups{&cameraYardstick};
+  // The yardstick's copy, informative and slower than both, stays at one run a frame.
+  const std::vector<MinimalKernel*> encodeBeside{&copy};
   const FramePasses passes =
-      renderPasses(renderer, scene, separate, repeats, gpuTime, beside, lookups);
+      renderPasses(renderer, scene, separate, repeats, gpuTime, beside, lookups, encodeBeside);
 
   PassBenchResult result;
   result.technique = settings.technique;

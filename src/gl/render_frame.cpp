@@ -504,6 +504,17 @@ double Renderer::timeCameraPass() {
   return ms;
 }
 
+double Renderer::timeEncodePass() {
+  ShadowFilter::State& f = state_->shadows.state();
+  if (!f.filtered || f.fused) {
+    throw Error(
+        "no separate encode pass to dispatch again: call Renderer::render or filterDepthMap "
+        "first, without fusePrefilter");
+  }
+  return f.maps.timeEncode(f.programs, f.parameters, f.depth.texture, f.depth.samples,
+                           timerQueriesMeasureExecution());
+}
+
 Image Renderer::readCameraColor() const {
   return state_->camera.readColor();
 }

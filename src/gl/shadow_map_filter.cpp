@@ -199,6 +199,19 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
   checkErrors("prefiltering the channels");
 }
 
+double ShadowMapFilter::timeEncode(ProgramCache& programs, const ParameterBlock& parameters,
+                                   unsigned depthTexture, int samples, bool gpuTime) {
+  const bool enabled = encodeTimer.enabled();
+  encodeTimer.setEnabled(true);
+  encodeTimer.reset();  // the frame's own time is not this dispatch's
+  encodeTimer.begin();
+  encode(programs, parameters, depthTexture, samples);
+  encodeTimer.end();
+  const double ms = gpuTime ? encodeTimer.gpuMilliseconds() : encodeTimer.wallMilliseconds();
+  encodeTimer.setEnabled(enabled);
+  return ms;
+}
+
 void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& parameters,
                              unsigned depthTexture, int samples) {
   std::vector<ShaderDefine> defines = formatDefines(shape_.layout);

@@ -51,6 +51,11 @@ class ShadowMapFilter {
   uint64_t summedAreaBytes() const;
 
   GpuTimer encodeTimer, prefilterTimer, mipsTimer;
+  // bench --passes: the last prefilter's encode dispatched again on its own (level 0 then holds
+  // the unfiltered channels until the next prefilter), timed by encodeTimer; its milliseconds,
+  // the GPU query's (gpuTime) or the wall clock's.
+  double timeEncode(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
+                    int samples, bool gpuTime);
 
  private:
   void encode(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,

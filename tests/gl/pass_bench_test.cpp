@@ -285,6 +285,36 @@ TEST_F(PassBench, TheCameraPassDrawnAgainIsTheFramesOwn) {
   EXPECT_THROW(renderer.timeCameraPass(), Error);
 }
 
+// The bench dispatches the encode several times a frame (kEncodeDispatchesPerFrame): the
+// dispatches after the frame's own must be its encode again, of the frame's depth, into the
+// channels it filtered (level 0 then holds them unblurred), not a cheaper pass nor none.
+TEST_F(PassBench, TheEncodeDispatchedAgainIsTheFramesOwn) {
+  gl::Renderer renderer(*context);
+  EXPECT_THROW(renderer.timeEncodePass(), Error);  // nothing filtered yet
+  Image depth(64, 64, 1);
+  for (int y = 0; y < 64; ++y) {
+    for (int x = 0; x < 64; ++x) depth.at(x, y) = 0.2f + 0.05f * float((7 * x + 3 * y) % 13);
+  }
+  gl::RenderSettings s = small(Technique::Csm);  // the row the repeated dispatches are for
+  s.filter = gl::FilterMode::Bilinear;
+  s.params.csm.storage = shaders::kStorageFloat32;
+  s.blur = BlurSpec{BlurKernel::Box, 2, 1.0f};
+  renderer.filterDepthMap(depth, s);
+  const Image blurred = renderer.readChannels(0);
+  EXPECT_GT(renderer.timeEncodePass(), 0.0);
+  const Image again = renderer.readChannels(0);
+  gl::RenderSettings unblurred = s;
+  unblurred.blur.radius = 0;
+  renderer.filterDepthMap(depth, unblurred);
+  const Image encoded = renderer.readChannels(0);
+  EXPECT_FALSE(std::ranges::equal(blurred.data(), encoded.data()));  // the blur shows
+  EXPECT_TRUE(std::ranges::equal(again.data(), encoded.data()));
+  // The fused path has no encode of its own to dispatch.
+  s.fusePrefilter = true;
+  renderer.filterDepthMap(depth, s);
+  EXPECT_THROW(renderer.timeEncodePass(), Error);
+}
+
 TEST_F(PassBench, TechniquesWithoutAPrefilterAreRefused) {
   gl::Renderer renderer(*context);
   for (Technique t : {Technique::Pcf, Technique::Hard}) {

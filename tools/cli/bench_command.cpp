@@ -171,9 +171,11 @@ void runBench(const BenchOptions& o) {
   const std::string timing = gl::passTimingDescription(renderer);
   std::cout << "The fastest of " << o.repeat << " warm frames (the camera pass's: of "
             << o.repeat * gl::kCameraDrawsPerFrame << " draws, " << gl::kCameraDrawsPerFrame
-            << " a frame, each before its minimal lookup), " << timing << ", on "
-            << renderer.deviceDescription() << " (" << scene.name << ", " << settings.shadowMapSize
-            << "², " << (2 * settings.blur.radius + 1) << "-tap "
+            << " a frame, each before its minimal lookup; the separate encode's: of "
+            << o.repeat * gl::kEncodeDispatchesPerFrame << " dispatches, "
+            << gl::kEncodeDispatchesPerFrame << " a frame, each before its copy), " << timing
+            << ", on " << renderer.deviceDescription() << " (" << scene.name << ", "
+            << settings.shadowMapSize << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
             << filterModeName(settings.filter) << "):\n\n"
             << "| technique | format | pass | ms | minimal kernel | ms | ratio | yardstick | ms | "
@@ -229,7 +231,10 @@ void runBench(const BenchOptions& o) {
       {"device", renderer.deviceDescription()},
       {"timing", "the fastest of the warm frames (the camera pass's: of its " +
                      std::to_string(gl::kCameraDrawsPerFrame) +
-                     " draws a frame, each before its minimal lookup; medians beside), " + timing +
+                     " draws a frame, each before its minimal lookup; the separate encode's: of "
+                     "its " +
+                     std::to_string(gl::kEncodeDispatchesPerFrame) +
+                     " dispatches a frame, each before its copy; medians beside), " + timing +
                      (renderer.timerQueriesMeasureExecution()
                           ? ""
                           : "; a software rasteriser's timer queries see only submission")},
@@ -267,7 +272,9 @@ void registerBenchCommand(CLI::App& app) {
                   "timed frames after one warm-up: --experiment takes their medians; --passes "
                   "(15 frames unless given) the fastest frame's ratios (the camera pass drawn " +
                       std::to_string(gl::kCameraDrawsPerFrame) +
-                      " times a frame), medians beside them in the CSV and JSON")
+                      " times a frame, the separate encode " +
+                      std::to_string(gl::kEncodeDispatchesPerFrame) +
+                      " times), medians beside them in the CSV and JSON")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   addOutputOptions(*cmd, o->output, "the results");
