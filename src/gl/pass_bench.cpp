@@ -218,7 +218,8 @@ std::string minimalLookupDescription(const RenderSettings& settings, bool summed
 
 FrameTimes frameTimes(const std::vector<double>& times) {
   if (times.empty()) return {};
-  return {*std::min_element(times.begin(), times.end()), penumbra::median(times)};
+  return {*std::min_element(times.begin(), times.end()), penumbra::median(times),
+          int(times.size())};
 }
 
 std::string passTimingDescription(const Renderer& renderer) {
@@ -338,7 +339,7 @@ PassBenchResult benchPasses(Renderer& renderer, const Scene& scene, const Render
   if (summedArea) beside.push_back(&prefix);
   if (!summedArea && levels > 1) beside.push_back(&generateMips);
   const std::vector<MinimalKernel*> lookups{&cameraYardstick};
-  // The yardstick's copy, informative and slower than both, stays at one run a frame.
+  // The yardstick's copy, informative, stays at one run a frame.
   const std::vector<MinimalKernel*> encodeBeside{&copy};
   const FramePasses passes =
       renderPasses(renderer, scene, separate, repeats, gpuTime, beside, lookups, encodeBeside);

@@ -201,15 +201,10 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
 
 double ShadowMapFilter::timeEncode(ProgramCache& programs, const ParameterBlock& parameters,
                                    unsigned depthTexture, int samples, bool gpuTime) {
-  const bool enabled = encodeTimer.enabled();
-  encodeTimer.setEnabled(true);
-  encodeTimer.reset();  // the frame's own time is not this dispatch's
-  encodeTimer.begin();
+  repeatedEncodeTimer_.begin();
   encode(programs, parameters, depthTexture, samples);
-  encodeTimer.end();
-  const double ms = gpuTime ? encodeTimer.gpuMilliseconds() : encodeTimer.wallMilliseconds();
-  encodeTimer.setEnabled(enabled);
-  return ms;
+  repeatedEncodeTimer_.end();
+  return gpuTime ? repeatedEncodeTimer_.gpuMilliseconds() : repeatedEncodeTimer_.wallMilliseconds();
 }
 
 void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& parameters,

@@ -52,8 +52,8 @@ class ShadowMapFilter {
 
   GpuTimer encodeTimer, prefilterTimer, mipsTimer;
   // bench --passes: the last prefilter's encode dispatched again on its own (level 0 then holds
-  // the unfiltered channels until the next prefilter), timed by encodeTimer; its milliseconds,
-  // the GPU query's (gpuTime) or the wall clock's.
+  // the unfiltered channels until the next prefilter), timed by a timer of its own (encodeTimer
+  // keeps the prefilter's); its milliseconds, the GPU query's (gpuTime) or the wall clock's.
   double timeEncode(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
                     int samples, bool gpuTime);
 
@@ -68,6 +68,7 @@ class ShadowMapFilter {
                           std::span<const BlurSpec> cascadeBlurs, AlikeTaps alike);
   void buildSummedAreaTable(ProgramCache& programs);
 
+  GpuTimer repeatedEncodeTimer_;  // timeEncode's
   ChannelShape shape_;
   bool prepared_ = false;
   Texture channels_;  // 2D array: layout.layers x cascades layers, `levels` levels

@@ -198,8 +198,8 @@ TEST(Csm, ScalingByTwoHalvesTheTransitionAndLightsTheOccludersOwnDepth) {
 // map at k = 16, where the argument 31 pi z (up to 91) rounds by half an ulp, and the walk
 // measured 4.3e-6 over 200001 depths (this grid: 3.6e-6). The recurrence multiplies its start's
 // and step's roundings by up to its 7 steps, the step's by their square where sin 4 pi z = 0:
-// with 2 cos(4 pi z) as cos^2 2a - sin^2 2a there instead of the form chosen for it
-// (csmBasisWalk) it measured 1.9e-5. A wrong recurrence or start is off by O(1).
+// with cos(4 pi z) as cos^2 2 pi z - sin^2 2 pi z everywhere instead of the form chosen per
+// depth (csmBasisWalk) it measured 1.9e-5. A wrong recurrence or start is off by O(1).
 TEST(Csm, BasisRecurrenceStaysWithinItsRoundingOfTheDirectBasis) {
   const shaders::CsmParams p = shaders::csmDefaultParams();
   float worst = 0.0f;

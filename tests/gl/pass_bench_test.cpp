@@ -60,6 +60,13 @@ TEST_F(PassBench, MeasuresEveryPrefilterPassBesideItsMinimalKernel) {
   EXPECT_EQ(evsm.timing, gl::passTimingDescription(renderer));
   expectTimed(evsm, {"encode", "prefilter", "mips", "camera", "encode + prefilter, fused"});
   EXPECT_EQ(evsm.passes[4].baseline, "plain fused tile blur of depth, 5 taps");
+  // Each row's sides timed alike: the separate encode and its copy, the camera pass and its
+  // lookup several times a frame, the others once (2 frames).
+  const int perFrame[] = {gl::kEncodeDispatchesPerFrame, 1, 1, gl::kCameraDrawsPerFrame, 1};
+  for (size_t i = 0; i < evsm.passes.size(); ++i) {
+    EXPECT_EQ(evsm.passes[i].passTimes.samples, 2 * perFrame[i]) << evsm.passes[i].pass;
+    EXPECT_EQ(evsm.passes[i].baselineTimes.samples, 2 * perFrame[i]) << evsm.passes[i].pass;
+  }
   // R32F: the fused pass's and its minimal kernel's one-component tiles compile and run.
   const gl::PassBenchResult esm =
       gl::benchPasses(renderer, makeBuiltinScene("planar"), small(Technique::Esm), 1);

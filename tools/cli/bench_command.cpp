@@ -173,8 +173,8 @@ void runBench(const BenchOptions& o) {
             << o.repeat * gl::kCameraDrawsPerFrame << " draws, " << gl::kCameraDrawsPerFrame
             << " a frame, each before its minimal lookup; the separate encode's: of "
             << o.repeat * gl::kEncodeDispatchesPerFrame << " dispatches, "
-            << gl::kEncodeDispatchesPerFrame << " a frame, each before its copy), " << timing
-            << ", on " << renderer.deviceDescription() << " (" << scene.name << ", "
+            << gl::kEncodeDispatchesPerFrame << " a frame, each timed beside a run of its copy), "
+            << timing << ", on " << renderer.deviceDescription() << " (" << scene.name << ", "
             << settings.shadowMapSize << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
             << filterModeName(settings.filter) << "):\n\n"
@@ -234,7 +234,8 @@ void runBench(const BenchOptions& o) {
                      " draws a frame, each before its minimal lookup; the separate encode's: of "
                      "its " +
                      std::to_string(gl::kEncodeDispatchesPerFrame) +
-                     " dispatches a frame, each before its copy; medians beside), " + timing +
+                     " dispatches a frame, each timed beside a run of its copy; medians beside), " +
+                     timing +
                      (renderer.timerQueriesMeasureExecution()
                           ? ""
                           : "; a software rasteriser's timer queries see only submission")},

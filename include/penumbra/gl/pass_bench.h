@@ -17,6 +17,7 @@ namespace penumbra::gl {
 struct FrameTimes {
   double fastestMs = 0.0;
   double medianMs = 0.0;
+  int samples = 0;  // the times they are of
 };
 
 // The camera pass's draws a frame, each followed by its minimal lookups: its first draw is the
@@ -25,10 +26,11 @@ struct FrameTimes {
 // outside llvmpipe's slow phases (both rasteriser threads on one core) and a ratio up to 1.47x
 // where the next run read 1.18x (docs/results/passes-llvmpipe-2026-12-06-night.md).
 constexpr int kCameraDrawsPerFrame = 4;
-// The encode pass's dispatches a frame, each followed by its minimal copy: its first is the frame's
-// own, the others Renderer::timeEncodePass. With one a frame the fastest of 15 frames moved CSM's
-// encode against its copy 1.19-1.46x from run to run; the fastest of 60 frames 1.22-1.29x
-// (docs/results/passes-llvmpipe-2026-12-07.md, "CSM's encode").
+// The encode pass's dispatches a frame, each timed beside a run of its minimal copy (the
+// yardstick's copy, informative, stays at one a frame): its first is the frame's own, the others
+// Renderer::timeEncodePass. With one a frame the fastest of 15 frames moved CSM's encode against
+// its copy 1.19-1.46x from run to run, the fastest of 60 frames 1.22-1.29x
+// (docs/results/passes-llvmpipe-2026-12-07/csm-encode-experiments.txt, N).
 constexpr int kEncodeDispatchesPerFrame = 4;
 
 // The fastest and the median of a pass's frame times; zeros for none.

@@ -277,8 +277,8 @@ class Renderer {
   // bench --passes: the last frame's encode pass dispatched again (the same program, depth and
   // channel texture, whose level 0 then holds the unfiltered channels until the next render),
   // so that the pass and its copy can be timed alternately several times a frame. Its
-  // milliseconds, as timeMinimalLookup's; after render() or filterDepthMap() with the separate
-  // passes (not fusePrefilter).
+  // milliseconds, as timeMinimalLookup's; after render() or filterDepthMap() whose prefilter ran
+  // as separate passes (not fused).
   double timeEncodePass();
   Image readCameraColor() const;         // the camera pass's colour target as its last draw left it
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top

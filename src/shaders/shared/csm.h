@@ -86,18 +86,19 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalk(float z) {
   CsmBasisWalk w;
   w.terms = vec4(s, c, s3, c3);
   w.previous = vec4(-s3, c3, -s, c);
-  // The step 2 cos 4a by double angles, in the form whose rounding vanishes where the recurrence
-  // magnifies it. An error e in the step changes the walk's frequency by e / |sin 4a|: at
-  // sin 4a = 0 it grows with the square of the steps instead (7^2 e). 2 cos^2 2a - 1 carries
-  // cos 2a's rounding d times 4 |cos 2a|, 1 - 2 sin^2 2a sin 2a's times 4 |sin 2a|; the first,
-  // where |cos 2a| <= |sin 2a|, is within 4 |cos 2a| d <= 2 sqrt(2) |sin 4a| d (sin 4a =
-  // 2 sin 2a cos 2a), and the second likewise, so the frequency is off by at most 2 sqrt(2) d
-  // everywhere. Measured against sin and cos in double over 200001 depths: 4.3e-6; 1.9e-5 with
-  // cos^2 2a - sin^2 2a, whose error stays where sin 4a = 0; 3.9e-6 with the step by its own
-  // sinCosPi, which cost CSM's encode 3-4 ms more on llvmpipe (docs/results/
-  // passes-llvmpipe-2026-12-07/csm-encode-experiments.txt).
+  // The step 2 cos 4a (a = pi z) by double angles, in the form whose error carried from cos 2a
+  // or sin 2a vanishes where the recurrence magnifies it. An error e in cos 4a changes the
+  // walk's frequency by e / |sin 4a|: at sin 4a = 0 it grows with the square of the steps instead
+  // (7^2 e). 2 cos^2 2a - 1 carries cos 2a's rounding d times 4 |cos 2a|, 1 - 2 sin^2 2a sin 2a's
+  // times 4 |sin 2a|; the first, where |cos 2a| < |sin 2a|, is within 4 |cos 2a| d <=
+  // 2 sqrt(2) |sin 4a| d (sin 4a = 2 sin 2a cos 2a), the second likewise, so the carried error
+  // moves the frequency by at most 2 sqrt(2) d anywhere. What stays is the step's own last
+  // rounding, as with any float step. Against sin and cos in double over 200001 depths: 4.3e-6;
+  // 3.9e-6 with the step by its own sinCosPi, which cost CSM's encode about 3 ms more on llvmpipe
+  // (docs/results/passes-llvmpipe-2026-12-07/csm-encode-experiments.txt); cos^2 2a - sin^2 2a
+  // everywhere, whose carried error stays where sin 4a = 0, 1.9e-5 on the test's grid.
   float c2 = (c - s) * (c + s);  // cos 2a
-  float s2 = 2.0f * s * c;        // sin 2a
+  float s2 = 2.0f * s * c;       // sin 2a
   w.twiceCosStep = c2 * c2 < s2 * s2 ? 4.0f * c2 * c2 - 2.0f : 2.0f - 4.0f * s2 * s2;
   return w;
 }
