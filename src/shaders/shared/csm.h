@@ -81,8 +81,9 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalk(float z) {
   float s = first[0];
   float c = first[1];
   float cc = c * c;
-  float s3 = s * (4.0f * cc - 1.0f);  // sin 3a = sin a (4 cos^2 a - 1)
-  float c3 = c * (4.0f * cc - 3.0f);  // cos 3a = cos a (4 cos^2 a - 3)
+  // Each value the walk keeps is precise, as sinCosPi's: the GPU rounds as the C++ build does.
+  PENUMBRA_PRECISE float s3 = s * (4.0f * cc - 1.0f);  // sin 3a = sin a (4 cos^2 a - 1)
+  PENUMBRA_PRECISE float c3 = c * (4.0f * cc - 3.0f);  // cos 3a = cos a (4 cos^2 a - 3)
   CsmBasisWalk w;
   w.terms = vec4(s, c, s3, c3);
   w.previous = vec4(-s3, c3, -s, c);
@@ -99,7 +100,8 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalk(float z) {
   // everywhere, whose carried error stays where sin 4a = 0, 1.9e-5 on the test's grid.
   float c2 = (c - s) * (c + s);  // cos 2a
   float s2 = 2.0f * s * c;       // sin 2a
-  w.twiceCosStep = c2 * c2 < s2 * s2 ? 4.0f * c2 * c2 - 2.0f : 2.0f - 4.0f * s2 * s2;
+  PENUMBRA_PRECISE float step = c2 * c2 < s2 * s2 ? 4.0f * c2 * c2 - 2.0f : 2.0f - 4.0f * s2 * s2;
+  w.twiceCosStep = step;
   return w;
 }
 
@@ -110,7 +112,8 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalkStart(float depth, CsmParams p) {
 // The walk one texture on.
 PENUMBRA_INLINE CsmBasisWalk csmBasisWalkNext(CsmBasisWalk w) {
   CsmBasisWalk next;
-  next.terms = w.twiceCosStep * w.terms - w.previous;
+  PENUMBRA_PRECISE vec4 terms = w.twiceCosStep * w.terms - w.previous;
+  next.terms = terms;
   next.previous = w.terms;
   next.twiceCosStep = w.twiceCosStep;
   return next;
@@ -120,7 +123,8 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalkNext(CsmBasisWalk w) {
 // the map is affine, so filtering commutes. The recurrence's roundings may carry a term a few
 // ulps past +-1: clamped, as unorm storage does.
 PENUMBRA_INLINE vec4 csmBasisTexture(CsmBasisWalk w) {
-  return clamp(w.terms * 0.5f + vec4(0.5f), vec4(0.0f), vec4(1.0f));
+  PENUMBRA_PRECISE vec4 mapped = w.terms * 0.5f + vec4(0.5f);
+  return clamp(mapped, vec4(0.0f), vec4(1.0f));
 }
 
 // Basis texture `index` alone (terms 2 index + 1 and 2 index + 2), by the same walk as the

@@ -6,8 +6,9 @@
 // PENUMBRA_PRECISE marks arithmetic where GLSL compilers must not fuse or reorder operations, so
 // the GPU rounds as the C++ reference does: ill-conditioned (MSM's Hankel solve), or a sum whose
 // regrouping could overflow (the prefilter's taps, channel_reduction.h). GLSL 4.50 §4.7.1 does not
-// carry precise into the functions a precise value calls; Mesa inlines them first, so on
-// llvmpipe it reaches the shared functions. No fma(): GLSL lets it round once or twice (Mesa
+// carry precise into the functions a precise value calls (Mesa inlines them first, so on
+// llvmpipe it does reach them): a function whose values must keep the CPU's bits on any GPU
+// marks its own (sin_cos_pi.h, csm.h's walk). No fma(): GLSL lets it round once or twice (Mesa
 // 22.3's llvmpipe rounds twice, measured; a fused multiply-add unit once), so no C++ twin could
 // give every device's bits.
 #ifndef PENUMBRA_SHARED_PRELUDE_H

@@ -24,7 +24,10 @@ PENUMBRA_INLINE vec2 sinCosPi(float x) {
   c = u2 * (1.0f / 24.0f - u2 * (1.0f / 720.0f - c));
   c = 1.0f - u2 * (0.5f - c);
   float sign = 1.0f - 4.0f * (0.5f * n - floor(0.5f * n));  // (-1)^n
-  return vec2(sign * s, sign * c);
+  // Precise here, not only where a caller's precise value reaches (GLSL does not carry it into
+  // called functions): the GPU rounds as the C++ build does (RendererTest.EncodeBlurAndMips...).
+  PENUMBRA_PRECISE vec2 sinCos = vec2(sign * s, sign * c);
+  return sinCos;
 }
 
 PENUMBRA_END_SHARED
