@@ -222,6 +222,13 @@ FrameTimes frameTimes(const std::vector<double>& times) {
           int(times.size())};
 }
 
+std::string passSamplingDescription() {
+  return "the camera pass drawn " + std::to_string(kCameraDrawsPerFrame) +
+         " times a frame, each draw before its minimal lookup, and the separate encode "
+         "dispatched " +
+         std::to_string(kEncodeDispatchesPerFrame) + " times, each timed beside a run of its copy";
+}
+
 std::string passTimingDescription(const Renderer& renderer) {
   return renderer.timerQueriesMeasureExecution() ? "GPU timer queries"
                                                  : "wall clock (glFinish around each pass)";

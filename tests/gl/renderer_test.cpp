@@ -182,9 +182,9 @@ TEST_F(RendererTest, EncodeBlurAndMipsMatchTheCpuReference) {
         ASSERT_EQ(renderer->channelMipLevels(), int(reference.size()));
         // A box summed at unit weight over channels whose encode is exact on both sides
         // (polynomials of depth: VSM, MSM, the power CDF; CSM's sines and cosines by polynomial
-        // and its walk, precise multiplies and adds, its depth scale
-        // a division by a power of two at the defaults: with GLSL's fma, which llvmpipe rounds
-        // twice and std::fma once, they part by an ulp) and stored in fp32 adds the same floats
+        // and its walk, precise multiplies and adds, its depth scale a division by a power of two
+        // at the defaults: with GLSL's fma, which llvmpipe rounds twice and std::fma once, they
+        // part by an ulp) and stored in fp32 adds the same floats
         // in the same order and scales once: the CPU's bits, in every level (a halving mip level
         // sums four exact products in order: EachMipLevelIsTheCpuReductionOfTheGpuLevelAboveIt).
         const bool sameBits = storage == StorageFormat::Float32 &&

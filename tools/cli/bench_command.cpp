@@ -169,13 +169,9 @@ void runBench(const BenchOptions& o) {
   csv << "technique,format,pass,pass_ms,baseline,baseline_ms,ratio,yardstick,yardstick_ms,"
          "baseline_to_yardstick,pass_median_ms,baseline_median_ms,yardstick_median_ms\n";
   const std::string timing = gl::passTimingDescription(renderer);
-  std::cout << "The fastest of " << o.repeat << " warm frames (the camera pass's: of "
-            << o.repeat * gl::kCameraDrawsPerFrame << " draws, " << gl::kCameraDrawsPerFrame
-            << " a frame, each before its minimal lookup; the separate encode's: of "
-            << o.repeat * gl::kEncodeDispatchesPerFrame << " dispatches, "
-            << gl::kEncodeDispatchesPerFrame << " a frame, each timed beside a run of its copy), "
-            << timing << ", on " << renderer.deviceDescription() << " (" << scene.name << ", "
-            << settings.shadowMapSize << "², " << (2 * settings.blur.radius + 1) << "-tap "
+  std::cout << "The fastest of " << o.repeat << " warm frames (" << gl::passSamplingDescription()
+            << "), " << timing << ", on " << renderer.deviceDescription() << " (" << scene.name
+            << ", " << settings.shadowMapSize << "², " << (2 * settings.blur.radius + 1) << "-tap "
             << (settings.blur.kernel == BlurKernel::Box ? "box" : "Gaussian") << " blur, "
             << filterModeName(settings.filter) << "):\n\n"
             << "| technique | format | pass | ms | minimal kernel | ms | ratio | yardstick | ms | "
@@ -229,13 +225,8 @@ void runBench(const BenchOptions& o) {
   const nlohmann::ordered_json record = {
       {"experiment", "passes"},
       {"device", renderer.deviceDescription()},
-      {"timing", "the fastest of the warm frames (the camera pass's: of its " +
-                     std::to_string(gl::kCameraDrawsPerFrame) +
-                     " draws a frame, each before its minimal lookup; the separate encode's: of "
-                     "its " +
-                     std::to_string(gl::kEncodeDispatchesPerFrame) +
-                     " dispatches a frame, each timed beside a run of its copy; medians beside), " +
-                     timing +
+      {"timing", "the fastest of the warm frames (" + gl::passSamplingDescription() +
+                     "; medians beside), " + timing +
                      (renderer.timerQueriesMeasureExecution()
                           ? ""
                           : "; a software rasteriser's timer queries see only submission")},
@@ -271,11 +262,8 @@ void registerBenchCommand(CLI::App& app) {
   addRenderOptions(*cmd, o->render);
   cmd->add_option("--repeat", o->repeat,
                   "timed frames after one warm-up: --experiment takes their medians; --passes "
-                  "(15 frames unless given) the fastest frame's ratios (the camera pass drawn " +
-                      std::to_string(gl::kCameraDrawsPerFrame) +
-                      " times a frame, the separate encode " +
-                      std::to_string(gl::kEncodeDispatchesPerFrame) +
-                      " times), medians beside them in the CSV and JSON")
+                  "(15 frames unless given) the fastest frame's ratios (" +
+                      gl::passSamplingDescription() + "), medians beside them in the CSV and JSON")
       ->check(CLI::Range(1, 100))
       ->capture_default_str();
   addOutputOptions(*cmd, o->output, "the results");

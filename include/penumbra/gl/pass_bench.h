@@ -69,6 +69,10 @@ struct PassBenchResult {
 // How bench --passes times on this renderer's device: "GPU timer queries" where they measure
 // execution, else "wall clock (glFinish around each pass)" (PassBenchResult::timing).
 std::string passTimingDescription(const Renderer& renderer);
+// Which rows take more than one sample a frame, for bench's texts: "the camera pass drawn 4 times
+// a frame, each draw before its minimal lookup, and the separate encode dispatched 4 times, each
+// timed beside a run of its copy".
+std::string passSamplingDescription();
 
 // Renders `scene` with `settings` (1 warm-up frame, then `repeats` frames) with the separate
 // passes and, where the settings allow it, with the fused prefilter, and runs the minimal kernels
