@@ -430,24 +430,30 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
     ImGui::Text("window frame %.1f ms (longest of the last %zu: %.1f ms)", state.frameMs.back(),
                 state.frameMs.size(), longest);
   }
-  // llvmpipe's timer queries do not time execution (the renderer reports 0 GPU ms there);
-  // the wall clock between glFinish calls is what it spends.
-  // Both are kept, the graph shows the one chosen.
-  ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);
-  drawPassGraph(state.graphGpuTimes ? state.gpuTimes : state.wallTimes);
-  const gl::PassTimes& g = r.gpuTimes;
+  // The wall clock between glFinish calls, and GPU timer queries where they time execution
+  // (not llvmpipe's: the frame then has none); both are kept, the graph shows the one chosen.
+  const bool gpuTimed = r.gpuTimes.has_value();
+  if (gpuTimed) {
+    ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);
+  } else {
+    ImGui::TextWrapped("no GPU times: this device's timer queries see only the submission");
+  }
+  drawPassGraph(gpuTimed && state.graphGpuTimes ? state.gpuTimes : state.wallTimes);
+  const gl::PassTimes g = r.gpuTimes.value_or(gl::PassTimes{});  // read only when gpuTimed
   const gl::PassTimes& w = r.wallTimes;
-  if (ImGui::BeginTable("passes", 3, ImGuiTableFlags_SizingFixedFit)) {
+  if (ImGui::BeginTable("passes", gpuTimed ? 3 : 2, ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("pass");
-    ImGui::TableSetupColumn("GPU ms");
+    if (gpuTimed) ImGui::TableSetupColumn("GPU ms");
     ImGui::TableSetupColumn("wall ms");
     ImGui::TableHeadersRow();
-    const auto row = [](const char* name, double gpu, double wall) {
+    const auto row = [gpuTimed](const char* name, double gpu, double wall) {
       ImGui::TableNextRow();
       ImGui::TableNextColumn();
       ImGui::TextUnformatted(name);
-      ImGui::TableNextColumn();
-      ImGui::Text("%.2f", gpu);
+      if (gpuTimed) {
+        ImGui::TableNextColumn();
+        ImGui::Text("%.2f", gpu);
+      }
       ImGui::TableNextColumn();
       ImGui::Text("%.2f", wall);
     };

@@ -230,12 +230,15 @@ class Viewer {
       result_ = std::make_shared<const gl::RenderResult>(renderer_.render(settings, currentView()));
       resultView_ = currentView();
       ++renderGeneration_;
-      state_.gpuTimes.push_back(result_->gpuTimes);
-      state_.wallTimes.push_back(result_->wallTimes);
-      if (state_.wallTimes.size() > kTimeHistory) {
-        state_.gpuTimes.pop_front();
-        state_.wallTimes.pop_front();
+      // GPU times where the device's timer queries measure them, for every frame kept.
+      if (result_->gpuTimes) {
+        state_.gpuTimes.push_back(*result_->gpuTimes);
+      } else {
+        state_.gpuTimes.clear();
       }
+      state_.wallTimes.push_back(result_->wallTimes);
+      if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
+      if (state_.gpuTimes.size() > kTimeHistory) state_.gpuTimes.pop_front();
       resultSettings_ = settings;
       // A trace of another camera, light or frame size stops (the view starts the next one).
       if (truthJob_ && !sameTrueShadowView(truthJob_->request(), trueShadowRequest())) {

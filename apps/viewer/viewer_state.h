@@ -30,7 +30,8 @@ struct ViewerState {
   std::string settingsPath = "penumbra-viewer.json";  // the panel's save / load file
   std::string message;  // the last error or confirmation, shown in the panel
   bool messageIsError = false;
-  // The last frames' per-pass times, oldest first: GPU timer queries and wall clock.
+  // The last frames' per-pass times, oldest first: GPU timer queries (none where the device's
+  // queries do not time execution: RenderResult::gpuTimes) and wall clock.
   std::deque<gl::PassTimes> gpuTimes;
   std::deque<gl::PassTimes> wallTimes;
   bool graphGpuTimes = false;

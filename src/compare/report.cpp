@@ -1,6 +1,7 @@
 // The comparison report's files and index.html.
 #include "penumbra/compare/report.h"
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <iomanip>
@@ -96,7 +97,7 @@ ordered_json errorsJson(const VisibilityErrors& e) {
           {"dark_mean_excess", e.darkMeanExcess}};
 }
 
-ordered_json timesJson(const gl::PassTimes& t) {
+ordered_json timesJson(const std::optional<gl::PassTimes>& t) {
   return ordered_json::parse(gl::passTimesJson(t));
 }
 
@@ -293,8 +294,9 @@ void writeMetrics(const ComparisonResult& r, const fs::path& dir) {
       csv << t.shimmer->stabilized << "," << t.shimmer->tight;  // else both empty
     else
       csv << ",";
-    csv << "," << t.failureRatePercent << "," << t.wallTimes.total() << "," << t.gpuTimes.total()
-        << "," << techniqueBytes(t) << ",";
+    csv << "," << t.failureRatePercent << "," << t.wallTimes.total() << ",";
+    if (t.gpuTimes) csv << t.gpuTimes->total();  // else empty: not measured
+    csv << "," << techniqueBytes(t) << ",";
     if (t.truth && r.truth) {  // else all four empty
       csv << t.truth->rmse << "," << t.truth->leakShare << "," << t.truth->darkShare << ","
           << r.truth->referenceVsTruth.rmse;
@@ -454,6 +456,9 @@ std::string shimmerSection(const ComparisonResult& r) {
 
 void writeHtml(const ComparisonResult& r, const fs::path& dir, bool hasCurves) {
   const auto& spots = r.scene.troubleSpots;
+  // The GPU column only where some technique's frame has GPU times (never on llvmpipe).
+  const bool gpuTimed = std::ranges::any_of(
+      r.techniques, [](const TechniqueResult& t) { return t.gpuTimes.has_value(); });
   std::ostringstream h;
   h << std::setprecision(4);
   h << R"(<!DOCTYPE html>
@@ -520,8 +525,8 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
        "dB</th><th>leak "
        "share</th>"
        "<th>leak excess</th><th>dark share</th><th>dark excess</th><th>RMSE GT</th><th>flicker</th>"
-       "<th>ESM fail %</th><th>wall ms</th><th>GPU ms</th><th>memory "
-       "MiB</th></tr></thead><tbody>\n";
+       "<th>ESM fail %</th><th>wall ms</th>"
+    << (gpuTimed ? "<th>GPU ms</th>" : "") << "<th>memory MiB</th></tr></thead><tbody>\n";
   const std::vector<const TechniqueResult*> ranked = rankTechniques(r);
   for (size_t rank = 0; rank < ranked.size(); ++rank) {
     const TechniqueResult& t = *ranked[rank];
@@ -536,10 +541,23 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
       << e.psnr << "</td><td>" << e.leakShare << "</td><td>" << e.leakMeanExcess << "</td><td>"
       << e.darkShare << "</td><td>" << e.darkMeanExcess << "</td><td>" << t.groundTruth.rmse
       << "</td><td>" << t.flicker << "</td><td>" << t.failureRatePercent << "</td><td>"
-      << t.wallTimes.total() << "</td><td>" << t.gpuTimes.total() << "</td><td>"
-      << mib(techniqueBytes(t)) << "</td></tr>\n";
+      << t.wallTimes.total() << "</td><td>";
+    if (gpuTimed) {
+      if (t.gpuTimes) {
+        h << t.gpuTimes->total();
+      } else {
+        h << "—";
+      }
+      h << "</td><td>";
+    }
+    h << mib(techniqueBytes(t)) << "</td></tr>\n";
   }
   h << "</tbody></table>\n"
+    << "<p><b>Times</b>: the camera path's last frame (warm: no first-use shader compilation); "
+       "<i>wall ms</i> between glFinish calls around each pass, "
+    << (gpuTimed ? "<i>GPU ms</i> by timer queries.</p>\n"
+                 : "no GPU ms: this device's timer queries see only the submission, not the "
+                   "execution (a software rasteriser).</p>\n")
     << shimmerSection(r) << "<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
     << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";

@@ -389,7 +389,7 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   };
   // A software rasteriser's queries see only submission, and llvmpipe's lose their start
   // around draws that change framebuffers (the mip pass read its uptime): no GPU times there.
-  if (timerQueriesMeasureExecution()) {
+  if (settings.timing && timerQueriesMeasureExecution()) {
     result.gpuTimes = times([](const GpuTimer& t) { return t.gpuMilliseconds(); });
   }
   result.wallTimes = times([](const GpuTimer& t) { return t.wallMilliseconds(); });

@@ -55,6 +55,10 @@ std::string passTimesJson(const PassTimes& t) {
       .dump();
 }
 
+std::string passTimesJson(const std::optional<PassTimes>& t) {
+  return t ? passTimesJson(*t) : "null";
+}
+
 std::string cascadeSettingsJson(const CascadeSettings& c) {
   nlohmann::ordered_json out = {{"count", c.count}};
   if (c.distances.empty()) {
@@ -87,7 +91,7 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
     hi = std::max(hi, double(v));
   }
   const MemoryReport& m = result.memory;
-  auto times = [](const PassTimes& t) { return ordered_json::parse(passTimesJson(t)); };
+  auto times = [](const auto& t) { return ordered_json::parse(passTimesJson(t)); };
   ordered_json record = {
       {"scene", scene.name},
       {"technique", techniqueId(settings.technique)},

@@ -10,6 +10,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "penumbra/compare/comparison.h"
 #include "penumbra/compare/report.h"
@@ -264,6 +268,70 @@ TEST_F(ComparisonTest, AReportWithANaNVisibilityIsWrittenWithTheTechniqueLast) {
   EXPECT_NE(text.find("\"non_finite_pixels\": 1"), std::string::npos);
   EXPECT_NE(text.find("\"psnr_db\": null"), std::string::npos);
   EXPECT_EQ(compare::rankTechniques(r).back()->technique, Technique::Vsm);
+}
+
+// The report prints GPU times only where they were measured: a frame without them (llvmpipe's
+// queries see only submission) gets null in metrics.json, an empty CSV field and no GPU column,
+// never a measured-looking 0; with one technique's times given, the column shows them and a dash
+// for the other.
+TEST_F(ComparisonTest, GpuTimesAppearOnlyWhereTheyWereMeasured) {
+  compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
+  q.settings.shadowMapSize = 128;
+  q.settings.width = 64;
+  q.settings.height = 36;
+  compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("penumbra-gpu-times-" + std::to_string(getpid()));
+  auto write = [&] {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    compare::writeReportFiles(r, dir);
+    std::ifstream metrics(dir / "metrics.json"), page(dir / "index.html"), csv(dir / "metrics.csv");
+    struct Files {
+      nlohmann::json metrics;
+      std::string html, csv;
+    } f{nlohmann::json::parse(metrics), std::string(std::istreambuf_iterator<char>(page), {}),
+        std::string(std::istreambuf_iterator<char>(csv), {})};
+    return f;
+  };
+  for (compare::TechniqueResult& t : r.techniques) t.gpuTimes.reset();
+  auto none = write();
+  for (const nlohmann::json& t : none.metrics["techniques"]) EXPECT_TRUE(t["gpu_ms"].is_null());
+  EXPECT_EQ(none.html.find("GPU ms</th>"), std::string::npos);
+  EXPECT_NE(none.html.find("no GPU ms"), std::string::npos);
+  // The VSM row's wall_ms holds a time, its gpu_ms nothing.
+  auto fields = [](const std::string& line) {
+    std::vector<std::string> out;
+    std::istringstream in(line);
+    for (std::string field; std::getline(in, field, ',');) out.push_back(field);
+    if (!line.empty() && line.back() == ',') out.emplace_back();
+    return out;
+  };
+  std::istringstream csvLines(none.csv);
+  std::string header, row;
+  std::getline(csvLines, header);
+  while (std::getline(csvLines, row) && row.rfind("vsm,", 0) != 0) {
+  }
+  const std::vector<std::string> names = fields(header), vsm = fields(row);
+  ASSERT_EQ(vsm.size(), names.size()) << row;
+  auto column = [&](const char* name) {
+    return size_t(std::ranges::find(names, name) - names.begin());
+  };
+  ASSERT_LT(column("gpu_ms"), names.size());
+  EXPECT_GT(std::stod(vsm[column("wall_ms")]), 0.0);
+  EXPECT_EQ(vsm[column("gpu_ms")], "");
+
+  gl::PassTimes measured;
+  measured.camera = 2.5;
+  r.techniques[0].gpuTimes = measured;
+  auto one = write();
+  std::filesystem::remove_all(dir);
+  EXPECT_EQ(one.metrics["techniques"][0]["gpu_ms"]["camera"], 2.5);
+  EXPECT_EQ(one.metrics["techniques"][0]["gpu_ms"]["total"], 2.5);
+  EXPECT_TRUE(one.metrics["techniques"][1]["gpu_ms"].is_null());
+  EXPECT_NE(one.html.find("GPU ms</th>"), std::string::npos);
+  EXPECT_NE(one.html.find("<td>2.5</td>"), std::string::npos);
+  EXPECT_NE(one.html.find("<td>—</td>"), std::string::npos);
 }
 
 }  // namespace

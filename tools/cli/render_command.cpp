@@ -197,9 +197,7 @@ void runRender(const RenderCommandOptions& options) {
     writeTextFile(dir / files.at("settings"), gl::settingsJson(again));
     std::ostringstream summary;
     summary << "wrote " << (output.target() / files.at("color")).string() << "  (";
-    if (renderer.timerQueriesMeasureExecution()) {
-      summary << "GPU " << result.gpuTimes.total() << " ms, ";
-    }
+    if (result.gpuTimes) summary << "GPU " << result.gpuTimes->total() << " ms, ";
     summary << "wall " << result.wallTimes.total() << " ms, technique memory "
             << double(result.memory.technique + result.memory.summedArea) / (1024.0 * 1024.0)
             << " MiB)";

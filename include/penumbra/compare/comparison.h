@@ -70,7 +70,9 @@ struct TechniqueResult {
   // Cascaded directional lights only: shimmer with stabilised and with tight cascades.
   std::optional<CascadeShimmer> shimmer;
   double failureRatePercent = 0.0;  // ESM classification; 0 otherwise
-  gl::PassTimes gpuTimes;           // the last frame (warm: no first-use shader compilation)
+  // The last frame's times (warm: no first-use shader compilation); GPU times only where the
+  // device's timer queries time execution (gl::RenderResult::gpuTimes).
+  std::optional<gl::PassTimes> gpuTimes;
   gl::PassTimes wallTimes;
   gl::MemoryReport memory;
   Image color;  // frame 0, row 0 at the top

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 
 #include "penumbra/gl/renderer.h"
@@ -18,8 +19,10 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
 // "target", "fov"}} — the render record's and compare's metrics' "view".
 std::string viewJson(const Scene& scene);
 
-// Milliseconds per pass as a compact JSON object, for the render record and compare's metrics.
+// Milliseconds per pass as a compact JSON object, for the render record and compare's metrics;
+// null for times that were not measured (RenderResult::gpuTimes on a software rasteriser).
 std::string passTimesJson(const PassTimes& times);
+std::string passTimesJson(const std::optional<PassTimes>& times);
 
 // The cascade settings as a compact JSON object (count, split scheme or distances, fit, depth
 // bounds, blend band, shadow distance), for the render record and compare's metrics.

@@ -173,9 +173,10 @@ struct RenderResult {
   CascadeFrame cascadeFrame;           // the frame's cascades (count 1: one map, identity box)
   std::vector<BlurSpec> cascadeBlurs;  // the prefilter kernel of each cascade
   DepthRange depthBounds;              // the depth range the cascades split
-  // GL_TIME_ELAPSED queries: exact on vendor drivers; 0 where timerQueriesMeasureExecution is
-  // false (software rasterisers, whose queries do not time execution).
-  PassTimes gpuTimes;
+  // GL_TIME_ELAPSED queries of a timed frame (RenderSettings::timing) where they time execution
+  // (timerQueriesMeasureExecution); absent otherwise: a software rasteriser's queries see only
+  // submission, so what they read is not a GPU time and is not reported as one.
+  std::optional<PassTimes> gpuTimes;
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
   // Whether encode and blur ran as one dispatch per map (RenderSettings::fusePrefilter).
