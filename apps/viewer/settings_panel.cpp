@@ -436,7 +436,8 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
   if (gpuTimed) {
     ImGui::Checkbox("graph GPU timer queries (else wall clock)", &state.graphGpuTimes);
   } else {
-    ImGui::TextWrapped("no GPU times: this device's timer queries see only the submission");
+    ImGui::TextWrapped("wall clock between glFinish calls; no GPU times: %s",
+                       gl::kNoGpuTimesReason);
   }
   drawPassGraph(gpuTimed && state.graphGpuTimes ? state.gpuTimes : state.wallTimes);
   const gl::PassTimes g = r.gpuTimes.value_or(gl::PassTimes{});  // read only when gpuTimed

@@ -142,9 +142,9 @@ ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
   const bool gpuTimers = renderer.timerQueriesMeasureExecution();
   ExperimentResult result;
   result.experiment = experiment;
-  result.timing = gpuTimers ? "GPU timer queries (GL_TIME_ELAPSED)"
-                            : "wall clock, glFinish around each pass (this device's timer "
-                              "queries see only command submission)";
+  result.timing = gpuTimers ? std::string("GPU timer queries (GL_TIME_ELAPSED)")
+                            : std::string("wall clock, glFinish around each pass (") +
+                                  gl::kNoGpuTimesReason + ")";
   renderer.setScene(scene);
   const gl::FrameView view{scene.camera, scene.light};
   for (const BenchCase& c : experiment.cases) {

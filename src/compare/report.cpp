@@ -556,8 +556,7 @@ img{max-width:100%;border:1px solid #ddd}.row{display:flex;flex-wrap:wrap;gap:12
     << "<p><b>Times</b>: the camera path's last frame (warm: no first-use shader compilation); "
        "<i>wall ms</i> between glFinish calls around each pass"
     << (gpuTimed ? ", <i>GPU ms</i> by timer queries.</p>\n"
-                 : "; no GPU ms: this device's timer queries see only the submission, not the "
-                   "execution (a software rasteriser).</p>\n")
+                 : std::string("; no GPU ms: ") + gl::kNoGpuTimesReason + ".</p>\n")
     << shimmerSection(r) << "<h2>Error against cost</h2>\n<div class=\"row\">"
     << "<img src=\"plots/error_vs_memory.png\" alt=\"error against memory\">"
     << "<img src=\"plots/error_vs_time.png\" alt=\"error against time\"></div>\n";

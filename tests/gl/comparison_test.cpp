@@ -270,36 +270,27 @@ TEST_F(ComparisonTest, AReportWithANaNVisibilityIsWrittenWithTheTechniqueLast) {
   EXPECT_EQ(compare::rankTechniques(r).back()->technique, Technique::Vsm);
 }
 
-// The report prints GPU times only where they were measured: a frame without them (llvmpipe's
-// queries see only submission) gets null in metrics.json, an empty CSV field and no GPU column,
-// never a measured-looking 0; with one technique's times given, the column shows them and a dash
-// for the other.
+// The report prints GPU times only where they were measured: the comparison carries the
+// renderer's (none on llvmpipe, whose queries time the submission); a result without them gets
+// null in metrics.json, an empty CSV field and no GPU column, never a measured-looking 0; with one
+// technique's times given, the column shows them and a dash for the other.
 TEST_F(ComparisonTest, GpuTimesAppearOnlyWhereTheyWereMeasured) {
   compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
   q.settings.shadowMapSize = 128;
   q.settings.width = 64;
   q.settings.height = 36;
   compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  ASSERT_EQ(r.techniques.size(), 2u);
+  for (const compare::TechniqueResult& t : r.techniques) {
+    EXPECT_EQ(t.gpuTimes.has_value(), renderer->timerQueriesMeasureExecution());
+  }
   const std::filesystem::path dir =
       std::filesystem::temp_directory_path() / ("penumbra-gpu-times-" + std::to_string(getpid()));
-  auto write = [&] {
-    std::filesystem::remove_all(dir);
-    std::filesystem::create_directories(dir);
-    compare::writeReportFiles(r, dir);
-    std::ifstream metrics(dir / "metrics.json"), page(dir / "index.html"), csv(dir / "metrics.csv");
-    struct Files {
-      nlohmann::json metrics;
-      std::string html, csv;
-    } f{nlohmann::json::parse(metrics), std::string(std::istreambuf_iterator<char>(page), {}),
-        std::string(std::istreambuf_iterator<char>(csv), {})};
-    return f;
+  struct Files {
+    nlohmann::json metrics;
+    std::string html;
+    std::vector<std::string> csvHeader, vsmCsvRow, pcfCsvRow;
   };
-  for (compare::TechniqueResult& t : r.techniques) t.gpuTimes.reset();
-  auto none = write();
-  for (const nlohmann::json& t : none.metrics["techniques"]) EXPECT_TRUE(t["gpu_ms"].is_null());
-  EXPECT_EQ(none.html.find("GPU ms</th>"), std::string::npos);
-  EXPECT_NE(none.html.find("no GPU ms"), std::string::npos);
-  // The VSM row's wall_ms holds a time, its gpu_ms nothing.
   auto fields = [](const std::string& line) {
     std::vector<std::string> out;
     std::istringstream in(line);
@@ -307,29 +298,54 @@ TEST_F(ComparisonTest, GpuTimesAppearOnlyWhereTheyWereMeasured) {
     if (!line.empty() && line.back() == ',') out.emplace_back();
     return out;
   };
-  std::istringstream csvLines(none.csv);
-  std::string header, row;
-  std::getline(csvLines, header);
-  while (std::getline(csvLines, row) && row.rfind("vsm,", 0) != 0) {
-  }
-  const std::vector<std::string> names = fields(header), vsm = fields(row);
-  ASSERT_EQ(vsm.size(), names.size()) << row;
-  auto column = [&](const char* name) {
-    return size_t(std::ranges::find(names, name) - names.begin());
+  auto write = [&] {
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    compare::writeReportFiles(r, dir);
+    std::ifstream metrics(dir / "metrics.json"), page(dir / "index.html"), csv(dir / "metrics.csv");
+    Files f;
+    f.metrics = nlohmann::json::parse(metrics);
+    f.html = std::string(std::istreambuf_iterator<char>(page), {});
+    std::string line;
+    std::getline(csv, line);
+    f.csvHeader = fields(line);
+    while (std::getline(csv, line)) {
+      if (line.rfind("vsm,", 0) == 0) f.vsmCsvRow = fields(line);
+      if (line.rfind("pcf,", 0) == 0) f.pcfCsvRow = fields(line);
+    }
+    return f;
   };
-  ASSERT_LT(column("gpu_ms"), names.size());
-  EXPECT_GT(std::stod(vsm[column("wall_ms")]), 0.0);
-  EXPECT_EQ(vsm[column("gpu_ms")], "");
+  auto field = [](const Files& f, const std::vector<std::string>& row, const char* name) {
+    const size_t at = size_t(std::ranges::find(f.csvHeader, name) - f.csvHeader.begin());
+    return at < row.size() && row.size() == f.csvHeader.size() ? row[at] : "(no such field)";
+  };
 
+  for (compare::TechniqueResult& t : r.techniques) t.gpuTimes.reset();
+  const Files none = write();
+  ASSERT_EQ(none.metrics.at("techniques").size(), 2u);
+  for (const nlohmann::json& t : none.metrics.at("techniques")) {
+    EXPECT_TRUE(t.at("gpu_ms").is_null());
+  }
+  EXPECT_EQ(none.html.find("GPU ms</th>"), std::string::npos);
+  EXPECT_NE(none.html.find("no GPU ms"), std::string::npos);
+  EXPECT_GT(std::stod(field(none, none.vsmCsvRow, "wall_ms")), 0.0);
+  EXPECT_EQ(field(none, none.vsmCsvRow, "gpu_ms"), "");
+
+  // Techniques are listed VSM then PCF: times for the second only, so a column decided by the
+  // first technique alone would be missing.
   gl::PassTimes measured;
   measured.camera = 2.5;
-  r.techniques[0].gpuTimes = measured;
-  auto one = write();
+  r.techniques[1].gpuTimes = measured;
+  const Files one = write();
   std::filesystem::remove_all(dir);
-  EXPECT_EQ(one.metrics["techniques"][0]["gpu_ms"]["camera"], 2.5);
-  EXPECT_EQ(one.metrics["techniques"][0]["gpu_ms"]["total"], 2.5);
-  EXPECT_TRUE(one.metrics["techniques"][1]["gpu_ms"].is_null());
+  const nlohmann::json& techniques = one.metrics.at("techniques");
+  EXPECT_TRUE(techniques.at(0).at("gpu_ms").is_null());
+  EXPECT_EQ(techniques.at(1).at("gpu_ms").at("camera"), 2.5);
+  EXPECT_EQ(techniques.at(1).at("gpu_ms").at("total"), 2.5);
+  EXPECT_EQ(field(one, one.pcfCsvRow, "gpu_ms"), "2.5");
+  EXPECT_EQ(field(one, one.vsmCsvRow, "gpu_ms"), "");
   EXPECT_NE(one.html.find("GPU ms</th>"), std::string::npos);
+  EXPECT_EQ(one.html.find("no GPU ms"), std::string::npos);
   EXPECT_NE(one.html.find("<td>2.5</td>"), std::string::npos);
   EXPECT_NE(one.html.find("<td>—</td>"), std::string::npos);
 }

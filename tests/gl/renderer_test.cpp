@@ -793,7 +793,9 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
     EXPECT_FALSE(r.gpuTimes.has_value()) << "an untimed frame reported GPU times";
   }
   // Timing on again: the passes are timed.
-  EXPECT_GT(renderer->render(scene, s).wallTimes.total(), 0.0);
+  const gl::RenderResult again = renderer->render(scene, s);
+  EXPECT_GT(again.wallTimes.total(), 0.0);
+  EXPECT_EQ(again.gpuTimes.has_value(), gpuTimed);
 }
 
 // A frame that reads neither the visibility nor the diagnostic, and writes no lookup inputs,

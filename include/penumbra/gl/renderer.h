@@ -93,8 +93,8 @@ struct RenderSettings {
   // the colour, visibility and diagnostic asked for, averaged).
   unsigned readBack = frame_image::kAll;
   // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
-  // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,
-  // and the times read 0.
+  // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame;
+  // its wall times read 0 and it has no GPU times.
   bool timing = true;
 };
 
@@ -107,6 +107,12 @@ struct FrameView {
   // like engines' frozen-shadow-camera debug views. Unset: `camera`.
   std::optional<Camera> shadowCamera = std::nullopt;
 };
+
+// Why a device has no GPU times (Renderer::timerQueriesMeasureExecution false), as the reports
+// and the viewer say it.
+inline constexpr const char* kNoGpuTimesReason =
+    "this device is a software rasteriser, whose timer queries time the command submission, not "
+    "the execution";
 
 struct PassTimes {  // milliseconds per pass
   double light = 0.0;
@@ -176,7 +182,7 @@ struct RenderResult {
   // GL_TIME_ELAPSED queries of a timed frame (RenderSettings::timing) where they time execution
   // (timerQueriesMeasureExecution); absent otherwise: a software rasteriser's queries see only
   // submission, so what they read is not a GPU time and is not reported as one.
-  std::optional<PassTimes> gpuTimes;
+  std::optional<PassTimes> gpuTimes;  // kNoGpuTimesReason says why where absent
   PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
   MemoryReport memory;
   // Whether encode and blur ran as one dispatch per map (RenderSettings::fusePrefilter).

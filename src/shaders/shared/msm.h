@@ -70,7 +70,11 @@ PENUMBRA_INLINE vec4 msmPowers(float depth) {
 PENUMBRA_INLINE vec4 msmEncode(float depth, MsmParams p) {
   vec4 b = msmPowers(depth);
   if (p.storage != kStorageUnorm16) return b;
-  return msmQuantizationMatrix() * b + vec4(kMsmQuantizationOffset, 0.0f, 0.0f, 0.0f);
+  // Precise, as the decode: the only encode of any technique with products to add, which a GPU
+  // could otherwise fuse and round apart from the CPU's (prelude.h).
+  PENUMBRA_PRECISE vec4 quantized =
+      msmQuantizationMatrix() * b + vec4(kMsmQuantizationOffset, 0.0f, 0.0f, 0.0f);
+  return quantized;
 }
 
 PENUMBRA_INLINE vec4 msmDecode(vec4 stored, MsmParams p) {

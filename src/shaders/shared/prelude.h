@@ -8,9 +8,11 @@
 // regrouping could overflow (the prefilter's taps, channel_reduction.h). GLSL 4.50 §4.7.1 does not
 // carry precise into the functions a precise value calls (Mesa inlines them first, so on
 // llvmpipe it does reach them): a function whose values must keep the CPU's bits on any GPU
-// marks its own (sin_cos_pi.h, csm.h's walk). No fma(): GLSL lets it round once or twice (Mesa
-// 22.3's llvmpipe rounds twice, measured; a fused multiply-add unit once), so no C++ twin could
-// give every device's bits.
+// marks its own (sin_cos_pi.h, csm.h's walk, msm.h's quantisation; the other encodes add no
+// rounded product: VSM's, LVSM's and MSM's powers, the power CDF's clamp, the exponentials of a
+// product, EVSM's 2z - 1 whose doubling is exact). No fma(): GLSL lets it round once or twice
+// (Mesa 22.3's llvmpipe rounds twice, measured; a fused multiply-add unit once), so no C++ twin
+// could give every device's bits.
 #ifndef PENUMBRA_SHARED_PRELUDE_H
 #define PENUMBRA_SHARED_PRELUDE_H
 
