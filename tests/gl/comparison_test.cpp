@@ -43,6 +43,14 @@ class ComparisonTest : public testing::GlTest {
     r.pathFrames = 2;
     return r;
   }
+  // VSM and PCF on the bench scene, small: for what the report writes of a result.
+  compare::ComparisonResult smallVsmAndPcfComparison() const {
+    compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
+    q.settings.shadowMapSize = 128;
+    q.settings.width = 64;
+    q.settings.height = 36;
+    return compare::runComparison(q, *renderer);
+  }
 
   const compare::TechniqueResult& find(const compare::ComparisonResult& r, Technique t) {
     for (const auto& k : r.techniques) {
@@ -243,11 +251,7 @@ namespace {
 // which once failed the whole report): its errors are NaN (null in metrics.json, with the count),
 // it ranks last, and the page says which pixels were drawn in place of NaN.
 TEST_F(ComparisonTest, AReportWithANaNVisibilityIsWrittenWithTheTechniqueLast) {
-  compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
-  q.settings.shadowMapSize = 128;
-  q.settings.width = 64;
-  q.settings.height = 36;
-  compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  compare::ComparisonResult r = smallVsmAndPcfComparison();
   compare::TechniqueResult& vsm = r.techniques[0];
   int x = 0, y = 0;
   while (r.coverage.at(x, y) <= 0.5f) {  // a covered pixel
@@ -275,11 +279,7 @@ TEST_F(ComparisonTest, AReportWithANaNVisibilityIsWrittenWithTheTechniqueLast) {
 // null in metrics.json, an empty CSV field and no GPU column, never a measured-looking 0; with one
 // technique's times given, the column shows them and a dash for the other.
 TEST_F(ComparisonTest, GpuTimesAppearOnlyWhereTheyWereMeasured) {
-  compare::ComparisonRequest q = request("bench", {Technique::Vsm, Technique::Pcf});
-  q.settings.shadowMapSize = 128;
-  q.settings.width = 64;
-  q.settings.height = 36;
-  compare::ComparisonResult r = compare::runComparison(q, *renderer);
+  compare::ComparisonResult r = smallVsmAndPcfComparison();
   ASSERT_EQ(r.techniques.size(), 2u);
   for (const compare::TechniqueResult& t : r.techniques) {
     EXPECT_EQ(t.gpuTimes.has_value(), renderer->timerQueriesMeasureExecution());
