@@ -25,6 +25,11 @@ class GpuTimer {
   void reset();                    // the pass did not run: both times read 0
   double gpuMilliseconds() const;  // waits for the query result
   double wallMilliseconds() const { return enabled_ ? wallMilliseconds_ : 0.0; }
+  // The query's time where it measures execution (Renderer::timerQueriesMeasureExecution), else
+  // the wall clock's.
+  double milliseconds(bool queriesMeasureExecution) const {
+    return queriesMeasureExecution ? gpuMilliseconds() : wallMilliseconds();
+  }
 
  private:
   bool enabled_ = true;

@@ -64,7 +64,7 @@ struct MinimalKernel {
     timer.begin();
     work();
     timer.end();
-    times.push_back(gpuTime ? timer.gpuMilliseconds() : timer.wallMilliseconds());
+    times.push_back(timer.milliseconds(gpuTime));
   }
 };
 

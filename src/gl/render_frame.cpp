@@ -483,8 +483,7 @@ double Renderer::timeMinimalLookup(bool esmFallback) {
   const ChannelLayout layout = channelLayout(s.settings.technique, s.shadows.params());
   s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows, layout.layers,
                                esmFallback);
-  return timerQueriesMeasureExecution() ? s.camera.minimalTimer.gpuMilliseconds()
-                                        : s.camera.minimalTimer.wallMilliseconds();
+  return s.camera.minimalTimer.milliseconds(timerQueriesMeasureExecution());
 }
 
 double Renderer::timeCameraPass() {
@@ -498,8 +497,7 @@ double Renderer::timeCameraPass() {
   s.camera.timer.setEnabled(true);
   s.camera.timer.reset();  // the frame's own time is not this draw's
   s.camera.render(s.programs, *s.scene, s.settings, s.frame, s.shadows, false);
-  const double ms = timerQueriesMeasureExecution() ? s.camera.timer.gpuMilliseconds()
-                                                   : s.camera.timer.wallMilliseconds();
+  const double ms = s.camera.timer.milliseconds(timerQueriesMeasureExecution());
   s.camera.timer.setEnabled(timing);
   return ms;
 }

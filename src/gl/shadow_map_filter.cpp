@@ -204,7 +204,7 @@ double ShadowMapFilter::timeEncode(ProgramCache& programs, const ParameterBlock&
   repeatedEncodeTimer_.begin();
   encode(programs, parameters, depthTexture, samples);
   repeatedEncodeTimer_.end();
-  return gpuTime ? repeatedEncodeTimer_.gpuMilliseconds() : repeatedEncodeTimer_.wallMilliseconds();
+  return repeatedEncodeTimer_.milliseconds(gpuTime);
 }
 
 void ShadowMapFilter::encode(ProgramCache& programs, const ParameterBlock& parameters,
