@@ -155,7 +155,10 @@ MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   const uint64_t cascades = uint64_t(layers);
   MemoryReport m;
   m.lightPass = lightPassBytes(size, s.msaaSamples) * cascades;
-  m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1) * cascades;
+  // PCF and the hard test read the light pass's depth: no channel texture (ChannelShape).
+  if (prefiltersChannels(s.technique)) {
+    m.technique = channelTextureBytes(layout, size, size, channelLevelsFor(s) > 1) * cascades;
+  }
   if (buildsSummedAreaTable(s)) {
     const SummedAreaSizes sat = summedAreaSizes(layout.channels * layers, size);
     m.summedArea = sat.extremes + sat.stats + sat.sums;
@@ -184,13 +187,15 @@ std::vector<PlannedTexture> plannedTextures(const RenderSettings& s, LightKind k
   // Each of the two targets, every cascade.
   const uint64_t half = lightPassBytes(size, s.msaaSamples) / 2 * uint64_t(cascades);
   std::vector<PlannedTexture> t{
-      {"channel texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), levels, size, size,
-       layout.layers * cascades, 1,
-       channelTextureBytes(layout, size, size, levels > 1) * uint64_t(cascades)},
       {"light-pass depth", light, GL_R32F, 1, size, size, cascades, s.msaaSamples, half},
       {"light-pass depth buffer", light, GL_DEPTH_COMPONENT32F, 1, size, size, cascades,
        s.msaaSamples, half},
   };
+  if (prefiltersChannels(s.technique)) {
+    t.push_back({"channel texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), levels, size,
+                 size, layout.layers * cascades, 1,
+                 channelTextureBytes(layout, size, size, levels > 1) * uint64_t(cascades)});
+  }
   if (blursIntoScratch(s)) {
     t.push_back({"blur scratch texture", GL_PROXY_TEXTURE_2D_ARRAY, internalFormat(layout), 1, size,
                  size, layout.layers * cascades, 1,

@@ -528,6 +528,7 @@ int Renderer::minimalLookupDraws(bool esmFallback) const {
 uint64_t Renderer::measuredChannelTextureBytes() const {
   const State& s = *state_;
   uint64_t bytes = 0;
+  if (s.shadows.state().maps.channels().id() == 0) return 0;  // PCF, the hard test: none
   for (int level = 0; level < s.shadows.state().maps.shape().levels; ++level) {
     GLint width = 0, height = 0, depth = 0, bits = 0;
     const GLuint t = s.shadows.state().maps.channels().id();
@@ -550,11 +551,32 @@ uint64_t Renderer::measuredFrameBytes() const {
   return state_->camera.measuredBytes();
 }
 
+namespace {
+
+// PCF's and the hard test's one channel, which no texture holds: a cascade's light-pass depth as
+// their lookup reads it (passes/light_depth_texels.comp).
+Image readLightDepthTexels(ProgramCache& programs, const ShadowFilter& shadows, int size,
+                           int cascade) {
+  const Program& program = programs.compute("passes/light_depth_texels.comp",
+                                            lookupVariantDefines(shadows.state(), false));
+  Texture target(GL_TEXTURE_2D);
+  glTextureStorage2D(target.id(), 1, GL_R32F, size, size);
+  shadows.bind();
+  program.set("cascade", cascade);
+  glBindImageTexture(0, target.id(), 0, GL_FALSE, 0, GL_WRITE_ONLY, GL_R32F);
+  program.dispatch((unsigned(size) + 7u) / 8u, (unsigned(size) + 7u) / 8u);
+  glMemoryBarrier(GL_TEXTURE_UPDATE_BARRIER_BIT);
+  return readTexture(target.id(), 0, size, size, 1, 1, GL_RED, false);
+}
+
+}  // namespace
+
 Image Renderer::readChannels(int level, int cascade) const {
   const State& s = *state_;
   const ChannelShape& shape = s.shadows.state().maps.shape();
   checkRange("mip level", level, 0, shape.levels - 1);
   checkRange("cascade", cascade, 0, shape.cascades - 1);
+  if (!shape.texture) return readLightDepthTexels(state_->programs, s.shadows, shape.size, cascade);
   const int size = std::max(1, shape.size >> level);
   const ChannelLayout& layout = shape.layout;
   const GLenum formats[5] = {0, GL_RED, GL_RG, GL_RGBA, GL_RGBA};

@@ -539,7 +539,12 @@ void ShadowFilter::bind(const ShadowBindings& b) const {
   const State& s = *state_;
   if (s.depth.texture == 0) throw Error("ShadowFilter::bind: nothing filtered yet");
   s.checkBindings(b);
-  setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings, s.anisotropicFiltering);
+  // PCF and the hard test have no channel texture (their lookup reads the depth): the unit is
+  // left empty.
+  if (s.maps.channels().id() != 0) {
+    setChannelSampling(s.maps.channels(), s.maps.shape().levels, s.settings,
+                       s.anisotropicFiltering);
+  }
   glBindTextureUnit(unsigned(b.channelUnit), s.maps.channels().id());
   glBindSampler(unsigned(b.channelUnit), 0);
   if (s.filtered && s.zmax.built()) {

@@ -12,7 +12,9 @@
 #include "channel_dispatch.h"
 #include "gl_formats.h"
 #include "memory_plan.h"
+#include "penumbra/error.h"
 #include "penumbra/gl/context.h"
+#include "penumbra/technique.h"
 
 namespace penumbra::gl {
 
@@ -111,11 +113,13 @@ bool ChannelShape::operator==(const ChannelShape& o) const {
   return layout.channels == o.layout.channels && layout.layers == o.layout.layers &&
          layout.componentsPerTexel == o.layout.componentsPerTexel &&
          layout.format == o.layout.format && size == o.size && levels == o.levels &&
-         cascades == o.cascades && scratch == o.scratch && summedArea == o.summedArea;
+         cascades == o.cascades && scratch == o.scratch && summedArea == o.summedArea &&
+         texture == o.texture;
 }
 
 ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
-  // PCF and the hard test read raw depth: no prefilter, no mips, no scratch (memory_plan.h).
+  // PCF and the hard test read the light pass's depth: no channel texture, prefilter, mips or
+  // scratch (memory_plan.h).
   ChannelShape shape;
   shape.layout = channelLayout(settings.technique, settings.params);
   shape.size = settings.shadowMapSize;
@@ -123,6 +127,7 @@ ChannelShape channelShapeFor(const RenderSettings& settings, int cascades) {
   shape.cascades = cascades;
   shape.scratch = blursIntoScratch(settings);
   shape.summedArea = buildsSummedAreaTable(settings);
+  shape.texture = prefiltersChannels(settings.technique);
   return shape;
 }
 
@@ -141,9 +146,12 @@ void ShadowMapFilter::prepare(const ChannelShape& shape) {
   shape_ = shape;
   prepared_ = true;
   const int layers = shape.layout.layers * shape.cascades;
-  channels_ = Texture(GL_TEXTURE_2D_ARRAY);
-  glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
-                     shape.size, layers);
+  channels_ = Texture();
+  if (shape.texture) {
+    channels_ = Texture(GL_TEXTURE_2D_ARRAY);
+    glTextureStorage3D(channels_.id(), shape.levels, internalFormat(shape.layout), shape.size,
+                       shape.size, layers);
+  }
   scratch_ = Texture();
   if (shape.scratch) {
     scratch_ = Texture(GL_TEXTURE_2D_ARRAY);
@@ -173,7 +181,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
     defines.push_back(std::move(d));
   }
   encodeTimer.begin();
-  if (!fused) encode(programs, parameters, depthTexture, samples);
+  if (!fused && shape_.texture) encode(programs, parameters, depthTexture, samples);
   encodeTimer.end();
   prefilterTimer.begin();
   const AlikeTaps alike = alikeTapsFor(technique, params);
@@ -201,6 +209,7 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
 
 double ShadowMapFilter::timeEncode(ProgramCache& programs, const ParameterBlock& parameters,
                                    unsigned depthTexture, int samples, bool gpuTime) {
+  if (!shape_.texture) throw Error("no encode to time: this technique reads the light's depth");
   repeatedEncodeTimer_.begin();
   encode(programs, parameters, depthTexture, samples);
   repeatedEncodeTimer_.end();
@@ -320,6 +329,7 @@ void ShadowMapFilter::buildSummedAreaTable(ProgramCache& programs) {
 }
 
 uint64_t ShadowMapFilter::channelBytes() const {
+  if (!shape_.texture) return 0;
   return channelTextureBytes(shape_.layout, shape_.size, shape_.size, shape_.levels > 1) *
          uint64_t(shape_.cascades);
 }

@@ -24,6 +24,10 @@ struct ChannelShape {
   int cascades = 1;  // the texture holds layout.layers layers per cascade
   bool scratch = false;
   bool summedArea = false;
+  // False for PCF and the hard test: their lookup reads the light pass's depth, so there is no
+  // channel texture and no encode (the encode's copy of the depth took 4.5 of the hard test's
+  // 14 ms frame at compare's defaults on llvmpipe).
+  bool texture = true;
   bool operator==(const ChannelShape& o) const;
 };
 
@@ -35,13 +39,14 @@ class ShadowMapFilter {
   // Depth (2D array, one layer per cascade, or its multisample twin) -> the technique's channels,
   // each cascade blurred with its own kernel, then mips or the summed-area table. `fused`: encode
   // and blur in one dispatch per cascade (passes/prefilter_fused.comp; fusesPrefilter decides),
-  // else encode, then the two axes through the scratch texture. PCF and the hard test read raw
-  // depth: the channels are their depth, nothing to blur.
+  // else encode, then the two axes through the scratch texture. PCF and the hard test filter after
+  // the test, over the light pass's depth: nothing runs for them (their timers read no work).
   void prefilter(ProgramCache& programs, const ParameterBlock& parameters, unsigned depthTexture,
                  int samples, Technique technique, const TechniqueParams& params,
                  std::span<const BlurSpec> cascadeBlurs, bool fused);
 
   const ChannelShape& shape() const { return shape_; }
+  // The channel texture; id 0 where the shape has none (PCF, the hard test).
   const Texture& channels() const { return channels_; }
   bool hasSummedAreaTable() const { return satSums_.has_value(); }
   const Buffer& summedAreaStats() const { return *satStats_; }

@@ -612,11 +612,11 @@ struct TechniqueBytes {
   Technique technique;
   uint64_t bytesPerTexel;
 };
-constexpr TechniqueBytes kDefaultTexelBytes[] = {{Technique::Esm, 4},
-                                                 {Technique::Vsm, 2 * 4},
-                                                 {Technique::Evsm4, 4 * 4},
-                                                 {Technique::Msm, 4 * 2},
-                                                 {Technique::Csm, 8 * 4 * 1}};
+// PCF and the hard test: none, their lookup reads the light pass's depth (no channel texture).
+constexpr TechniqueBytes kDefaultTexelBytes[] = {
+    {Technique::Hard, 0},       {Technique::Pcf, 0},       {Technique::Esm, 4},
+    {Technique::Vsm, 2 * 4},    {Technique::Evsm4, 4 * 4}, {Technique::Msm, 4 * 2},
+    {Technique::Csm, 8 * 4 * 1}};
 
 TEST_F(RendererTest, ReportedAndAllocatedMemoryEqualTexelsTimesTexelBytes) {
   const Scene scene = makeBuiltinScene("planar");
@@ -978,11 +978,12 @@ TEST_F(RendererTest, GaussianPcfIsTheFilteredReferenceForEveryBlurRadius) {
 TEST_F(RendererTest, MsaaEncodeOfEveryTechniqueReducesItsEncodedSamplesLikeTheCpu) {
   // Each light-pass sample encoded, then the samples reduced like filter taps of equal weight:
   // means for moments and basis terms, the power CDF's min and max, ESM's log-mean-exp under
-  // log filtering, the nearest sample for hard and PCF (encode.comp). Against the CPU doing that
-  // to the samples the GPU rendered, rounded to storage: the tolerance is the prefilter parity's
-  // (two storage roundings, or 2e-5 relative in fp32 for the GPU's own rounding of exponentials
-  // and of CSM's walk). Each case must also tell this from encoding the samples' mean depth,
-  // which silhouette texels (samples differ) would give away on a few hundred texels.
+  // log filtering (encode.comp); for PCF, which has no encode, the nearest sample its lookup reads
+  // (lightDepthTexel, through readChannels' passes/light_depth_texels.comp). Against the CPU doing
+  // that to the samples the GPU rendered, rounded to storage: the tolerance is the prefilter
+  // parity's (two storage roundings, or 2e-5 relative in fp32 for the GPU's own rounding of
+  // exponentials and of CSM's walk). Each case must also tell this from encoding the samples' mean
+  // depth, which silhouette texels (samples differ) would give away on a few hundred texels.
   const Scene scene = makeBuiltinScene("backyard");
   struct Case {
     Technique technique;

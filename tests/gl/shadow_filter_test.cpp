@@ -125,12 +125,21 @@ TEST_F(GlTest, ShadowFilterHostShaderSeesOccluderThroughEveryTechnique) {
     filter.filter(depth.input(), settings);
     // Receivers at window depth 0.7, a quarter of the map from the edge (the 5-tap kernel
     // reaches 2 texels): behind the occluder on the left, in front of nothing on the right.
-    const std::vector<float> v =
-        sampleAsHost(filter, t, movedBindings(), {{0.25f, 0.5f, 0.7f, 0.0f}, {0.75f, 0.5f, 0.7f, 0.0f}});
+    const std::vector<float> v = sampleAsHost(
+        filter, t, movedBindings(), {{0.25f, 0.5f, 0.7f, 0.0f}, {0.75f, 0.5f, 0.7f, 0.0f}});
     // Each technique's error at a lone step 0.4 deep is well under 0.05 (ESM: exp(-80 * 0.4),
     // moments: no variance, CSM: its ringing at that distance); 0.05 still tells 0 from 1.
     EXPECT_LT(v[0], 0.05f);
     EXPECT_GT(v[1], 0.95f);
+    // PCF and the hard test filter the depth after the test: no channel texture is made (and no
+    // encode copies the depth into one); the others' channels are 64^2 texels of 4+ bytes.
+    if (prefiltersChannels(t)) {
+      EXPECT_NE(filter.channelTexture(), 0u);
+      EXPECT_GE(filter.memory().channels, uint64_t(n * n * 4));
+    } else {
+      EXPECT_EQ(filter.channelTexture(), 0u);
+      EXPECT_EQ(filter.memory().channels, 0u);
+    }
   }
 }
 

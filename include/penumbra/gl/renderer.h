@@ -267,7 +267,9 @@ class Renderer {
   // Every light-pass sample of a cascade's depth (MSAA), one image channel per sample.
   Image readDepthSamples(int cascade = 0) const;
   // A cascade's technique channels at a mip level after the last render (encoded and
-  // prefiltered), one image channel per technique channel, row 0 at the bottom.
+  // prefiltered), one image channel per technique channel, row 0 at the bottom. PCF and the hard
+  // test have no channel texture: their one channel is the light pass's depth as their lookup
+  // reads it (the nearest sample under MSAA), level 0 only.
   Image readChannels(int level, int cascade = 0) const;
   int channelMipLevels() const;
   // bench --passes' yardstick for the camera pass: the last frame's view drawn again with the
@@ -291,7 +293,8 @@ class Renderer {
   Image readMinimalLookupColor() const;  // its picture: RGBA in [0,1], linear, row 0 at the top
   int minimalLookupDraws(bool esmFallback) const;  // its draws so far, with or without the fallback
   // Bytes of the technique's channel texture measured from the GL object itself (each level's
-  // size and component bit depths), to check MemoryReport::technique against.
+  // size and component bit depths), to check MemoryReport::technique against; 0 for PCF and the
+  // hard test, which have none.
   uint64_t measuredChannelTextureBytes() const;
   // The camera pass's render targets of the last frame, measured on the GL objects the same way
   // (RenderResult::memory.frame is computed from the settings, as estimateMemory's).

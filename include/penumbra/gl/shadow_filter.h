@@ -81,7 +81,7 @@ struct ShadowBindings {
 
 // Every byte filter() holds on the GPU.
 struct FilterMemory {
-  uint64_t channels = 0;       // the channel texture, mips included
+  uint64_t channels = 0;       // the channel texture, mips included (none for PCF, hard)
   uint64_t scratch = 0;        // the separable blur's intermediate
   uint64_t summedArea = 0;     // summed-area sums and statistics
   uint64_t auxiliary = 0;      // ESM's Z-max pyramid, LVSM's Lloyd samples
@@ -130,9 +130,9 @@ class ShadowFilter {
   // The GL names behind bind(), owned by the filter and valid until the next filter() or
   // prepareRawDepth() (which may recreate them when the shape changes): for a host that binds
   // or inspects them itself. The channel texture is a 2D array of layers x channel layers
-  // (docs/integration.md); the depth is penumbra's linear metric in R32F layers (the host's own
-  // texture when it was given as a linear 2D array); the Z-max pyramid is 0 unless ESM's zmax
-  // classifier built it.
+  // (docs/integration.md), 0 for PCF and the hard test, whose lookup reads the depth; the depth is
+  // penumbra's linear metric in R32F layers (the host's own texture when it was given as a linear
+  // 2D array); the Z-max pyramid is 0 unless ESM's zmax classifier built it.
   unsigned channelTexture() const;
   unsigned linearDepthTexture() const;
   unsigned zmaxTexture() const;

@@ -2,7 +2,7 @@
 // its storage format, for every cascade (the dispatch's z) at once. Each depth is fetched once and
 // its texel layers encoded in order (CSM's basis waves rotate from one layer to the next). With
 // MSAA every sample is encoded, then the samples are reduced like filter taps (moments are
-// averaged after encoding); hard and PCF keep the nearest sample.
+// averaged after encoding). Hard and PCF have no encode: their lookup reads the depth.
 #include "../lib/technique_block.glsl"
 #include "../shared/channel_reduction.h"
 
@@ -25,15 +25,12 @@ const int layerCount = LAYER_COUNT;
 
 #if MSAA
 vec4 encodeSamples(ivec3 p, int texelLayer) {
-  bool depthOnly = !techniquePrefiltersChannels(penumbraTechnique);
   int count = techniqueChannelCount(penumbraTechnique, penumbraParams);
   ChannelAccumulator acc[4];
   for (int c = 0; c < 4; ++c) {
     int channel = 4 * texelLayer + c;
-    int reduction = depthOnly ? kReduceMin
-                              : (channel < count
-                                     ? channelReduction(penumbraTechnique, channel, penumbraParams)
-                                                 : kReduceMean);
+    int reduction = channel < count ? channelReduction(penumbraTechnique, channel, penumbraParams)
+                                    : kReduceMean;
     acc[c] = startReduction(reduction, penumbraParams.esm.exponent);
   }
   for (int s = 0; s < sampleCount; ++s) {

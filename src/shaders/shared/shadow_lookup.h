@@ -236,12 +236,15 @@ PENUMBRA_INLINE vec4 lightDepthQuadOfTexels(LookupSources s, ivec2 texel, int si
               lightDepthTexel(s, clampTexel(texel + ivec2(1, 1), size)));
 }
 
-// PCF (or the hard test, a 1-tap PCF) over raw depth: the channel texture holds it for PCF and
-// the hard test; ESM's fallback reads the light pass's depth (fromLightDepth), which its
-// prefilter never touched. depthPerTexel is the receiver plane's depth gradient per shadow-map
-// texel (receiver-plane depth bias).
-PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, vec2 uv,
-                                float receiverDepth, vec2 depthPerTexel, PcfParams pcf) {
+// PCF (or the hard test, a 1-tap PCF) over the light pass's depth, which no prefilter touches:
+// the map of PCF and the hard test, and ESM's fallback. depthPerTexel is the receiver plane's
+// depth gradient per shadow-map texel (receiver-plane depth bias). `quads`: the taps 2x2 at a time,
+// one quad each (lightDepthQuad; a quad's taps beyond an odd tap count weigh 0 and are skipped),
+// else tap by tap. On llvmpipe (480x270, 1024^2, backyard, four alternating runs) the quads took
+// ESM's camera pass, whose fallback is paid by every pixel, from 10.6-11.1 ms to 8.8-10.8, and
+// PCF's from 25-31 ms to 35-56: ESM's fallback reads quads, PCF and the hard test single taps.
+PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool quads, vec2 uv, float receiverDepth,
+                                vec2 depthPerTexel, PcfParams pcf) {
   vec2 position = uv * float(size);
   bool bilinear = kernelHasBilinearTent(pcf.kernel);
   vec2 origin = bilinear ? floor(position - 0.5f) : floor(position);
@@ -249,20 +252,17 @@ PENUMBRA_INLINE float pcfLookup(LookupSources s, int size, bool fromLightDepth, 
   float slope = abs(depthPerTexel.x) + abs(depthPerTexel.y);
   float lit = 0.0f;
   float kernelSum = pcfKernelSum(pcf);  // once per lookup (pcf.h)
-  // The light pass's depth 2x2 taps at a time, one quad each (lightDepthQuad; a quad's taps
-  // beyond an odd tap count weigh 0 and are skipped); the channel texture's (PCF, the hard test's
-  // single tap) tap by tap, in rows as ever.
-  int step = fromLightDepth ? 2 : 1;
+  int step = quads ? 2 : 1;
   for (int j = pcfFirstTap(pcf); j <= pcfLastTap(pcf); j += step) {
     for (int i = pcfFirstTap(pcf); i <= pcfLastTap(pcf); i += step) {
       vec2 corner = origin + vec2(float(i), float(j));
-      vec4 quad = fromLightDepth ? lightDepthQuad(s, ivec2(corner), size) : vec4(0.0f);
+      vec4 quad = quads ? lightDepthQuad(s, ivec2(corner), size) : vec4(0.0f);
       for (int k = 0; k < step * step; ++k) {
         ivec2 offset = ivec2(k % step, k / step);
         float w = pcfTapWeightWithSum(i + offset.x, j + offset.y, fraction, pcf, kernelSum);
         if (w <= 0.0f) continue;
         vec2 tap = corner + vec2(offset);
-        float z = fromLightDepth ? quad[k] : channelTexel(s, 0, clampTexel(ivec2(tap), size), 0).x;
+        float z = quads ? quad[k] : lightDepthTexel(s, clampTexel(ivec2(tap), size));
         float d = receiverDepth;
         if (pcf.receiverPlane != 0) d += dot(depthPerTexel, tap + 0.5f - position);
         lit += w * hardVisibility(z, biasedReceiverDepth(d, slope, pcf.bias));
