@@ -175,13 +175,18 @@ void ShadowMapFilter::prefilter(ProgramCache& programs, const ParameterBlock& pa
                                 unsigned depthTexture, int samples, Technique technique,
                                 const TechniqueParams& params,
                                 std::span<const BlurSpec> cascadeBlurs, bool fused) {
+  if (!shape_.texture) {
+    // PCF and the hard test: nothing is encoded or filtered, and no stage's time is measured.
+    for (GpuTimer* t : {&encodeTimer, &prefilterTimer, &mipsTimer}) t->reset();
+    return;
+  }
   const bool prefilters = prefiltersChannels(technique);
   std::vector<ShaderDefine> defines = formatDefines(shape_.layout);
   for (ShaderDefine& d : reductionDefines(technique, params, shape_.layout)) {
     defines.push_back(std::move(d));
   }
   encodeTimer.begin();
-  if (!fused && shape_.texture) encode(programs, parameters, depthTexture, samples);
+  if (!fused) encode(programs, parameters, depthTexture, samples);
   encodeTimer.end();
   prefilterTimer.begin();
   const AlikeTaps alike = alikeTapsFor(technique, params);

@@ -635,6 +635,32 @@ TEST_F(RendererTest, ReportedAndAllocatedMemoryEqualTexelsTimesTexelBytes) {
   }
 }
 
+// PCF and the hard test filter after the test, over the light pass's depth: a timed frame runs no
+// encode, blur or mips for them (their stages read exactly 0, a stage that ran and was timed
+// reads its glFinish round trip at least) and holds no channel texture; VSM's frame, the same
+// settings otherwise, times each of its stages.
+TEST_F(RendererTest, PcfAndTheHardTestRunNoEncodeBlurOrMips) {
+  const Scene scene = makeBuiltinScene("planar");
+  for (Technique t : {Technique::Hard, Technique::Pcf, Technique::Vsm}) {
+    gl::RenderSettings s = small(t);
+    s.filter = gl::FilterMode::Trilinear;
+    const gl::RenderResult r = renderer->render(scene, s);
+    if (t == Technique::Vsm) {
+      EXPECT_GT(r.wallTimes.encode, 0.0);
+      EXPECT_GT(r.wallTimes.prefilter, 0.0);
+      EXPECT_GT(r.wallTimes.mipsOrSat, 0.0);
+      EXPECT_GT(r.memory.technique, 0u);
+      continue;
+    }
+    EXPECT_EQ(r.wallTimes.encode, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.wallTimes.prefilter, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.wallTimes.mipsOrSat, 0.0) << techniqueId(t);
+    EXPECT_GT(r.wallTimes.camera, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.memory.technique, 0u) << techniqueId(t);
+    EXPECT_EQ(renderer->measuredChannelTextureBytes(), 0u) << techniqueId(t);
+  }
+}
+
 // ESM paper Fig. 1 at a 2048^2 shadow map, mip maps included "(a factor of 1.3)", §5: ESM 21 MB,
 // VSM 42 MB, CSM 170 MB. Its MB are MiB (2048^2 x 4 bytes = 16 MiB, x 1.3 = 20.8 -> 21; in 10^6
 // bytes it would be 22), rounded to whole MiB, CSM's to two digits (128 x 1.3 = 166.4 -> 170).
