@@ -49,6 +49,24 @@ TEST_F(PaperBench, GumbauCasesAreSetAgainstVsmWithTheirFormatsMemory) {
   }
 }
 
+// CSM's Table 1 against PCF: PCF keeps its R32F depth map (4 bytes a texel, no channel texture
+// of its own), CSM M/2 RGBA8 layers with mips (trilinear, as the paper's anisotropic filtering):
+// M = 4 is 2 layers x 4 bytes x 4/3 of PCF's texels (the mip chain of 64^2: 5461/4096).
+TEST_F(PaperBench, CsmMemoryIsSetAgainstPcfsDepthMap) {
+  gl::Renderer renderer(*context);
+  compare::Experiment e = compare::makePaperExperiment("csm-table1", tiny());
+  std::erase_if(e.cases, [](const compare::BenchCase& c) { return c.x > 1.0; });
+  const compare::ExperimentResult r =
+      compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 1);
+  const double mips = 5461.0 / 4096.0;
+  const std::map<std::string, double> memory{
+      {"PCF", 1.0}, {"CSM M=4", 2.0 * mips}, {"CSM M=8", 4.0 * mips}, {"CSM M=16", 8.0 * mips}};
+  ASSERT_EQ(r.cases.size(), memory.size());
+  for (const compare::CaseMeasurement& m : r.cases) {
+    EXPECT_NEAR(m.memoryRatio, memory.at(m.benchCase.series), 1e-12) << m.benchCase.label;
+  }
+}
+
 TEST_F(PaperBench, EachKernelIsSetAgainstTheBaselineOfTheSameKernel) {
   gl::Renderer renderer(*context);
   compare::Experiment e = compare::makePaperExperiment("esm-table1", tiny());

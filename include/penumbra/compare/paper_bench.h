@@ -63,7 +63,8 @@ struct CaseMeasurement {
   double minMs = 0.0;
   double maxMs = 0.0;
   gl::PassTimes medianPasses;  // per pass, medians over the timed frames
-  uint64_t shadowBytes = 0;    // channel texture, summed-area table and auxiliary (no scratch)
+  uint64_t shadowBytes = 0;    // channel texture, summed-area table and auxiliary (no scratch);
+                               // PCF, the hard test: the light pass's R32F depth
   double timeRatio = 0.0;      // median over the baseline's median
   double memoryRatio = 0.0;
 };
