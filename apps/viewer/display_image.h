@@ -23,7 +23,7 @@ enum class View {
   FailureMask,  // ESM with a classifier: failing pixels red
   Layers,       // LVSM: each receiver's layer in its colour
   ShadowMap,    // the light pass's linear depth, cascade 0
-  Channel,      // one of the technique's prefiltered channels (level 0), normalised to its range
+  Channel,      // a prefiltered channel (level 0; PCF, hard: their depth), normalised to its range
 };
 inline constexpr View kViews[] = {View::Shaded,      View::Visibility, View::Error,
                                   View::TrueError,   View::FailureMask, View::Layers,

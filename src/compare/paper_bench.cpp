@@ -30,17 +30,6 @@ gl::PassTimes medianPasses(const std::vector<gl::PassTimes>& frames) {
   return m;
 }
 
-// What the papers count as a technique's memory: the storage a shadow map keeps between frames
-// (channels and their mips, the summed-area table, ESM's Z-max pyramid). The blur's scratch is
-// a transient a renderer shares across maps, and whether a frame needs it depends on how the
-// prefilter runs (none when fused: docs/renderer.md), not on the technique. PCF and the hard
-// test keep the light pass's R32F depth, which their lookup reads (no channel texture): the
-// half of the light pass's two targets (a depth buffer of the same size beside it).
-uint64_t shadowStorageBytes(const gl::MemoryReport& m, Technique technique) {
-  if (!prefiltersChannels(technique)) return m.lightPass / 2;
-  return m.technique + m.summedArea + m.auxiliary;
-}
-
 const CaseMeasurement* baselineOf(const std::vector<CaseMeasurement>& all, const BenchCase& c,
                                   const std::string& series) {
   for (const CaseMeasurement& m : all) {
@@ -163,7 +152,7 @@ ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
       const gl::PassTimes& t = gpuTimers ? r.gpuTimes.value() : r.wallTimes;
       frames.push_back(t);
       m.frameMs.push_back(t.total());
-      m.shadowBytes = shadowStorageBytes(r.memory, settings.technique);
+      m.shadowBytes = gl::shadowMapBytes(r.memory, settings.technique);
     }
     m.medianMs = median(m.frameMs);
     m.minMs = *std::min_element(m.frameMs.begin(), m.frameMs.end());

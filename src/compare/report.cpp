@@ -29,7 +29,7 @@ double mib(uint64_t bytes) {
 }
 
 uint64_t techniqueBytes(const TechniqueResult& t) {
-  return t.memory.technique + t.memory.summedArea + t.memory.auxiliary;
+  return gl::shadowMapBytes(t.memory, t.technique);
 }
 
 std::string html(const std::string& text) {

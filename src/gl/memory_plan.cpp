@@ -148,6 +148,11 @@ int shadowMapLayers(const RenderSettings& s, LightKind light) {
   return light == LightKind::Point ? kPointLightFaceCount : s.cascades.count;
 }
 
+uint64_t shadowMapBytes(const MemoryReport& m, Technique technique) {
+  if (!prefiltersChannels(technique)) return m.lightPass / 2;
+  return m.technique + m.summedArea + m.auxiliary;
+}
+
 MemoryReport estimateMemory(const RenderSettings& s, LightKind light) {
   const int size = s.shadowMapSize;
   const ChannelLayout layout = channelLayout(s.technique, s.params);

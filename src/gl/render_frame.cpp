@@ -480,6 +480,10 @@ double Renderer::timeMinimalLookup(bool esmFallback) {
   if (!s.scene || s.camera.bytes() == 0) {
     throw Error("no frame to draw the minimal lookup of: call Renderer::render first");
   }
+  if (!prefiltersChannels(s.settings.technique)) {
+    throw Error(std::string(techniqueId(s.settings.technique)) +
+                " has no minimal lookup: it filters after the test, over the light pass's depth");
+  }
   const ChannelLayout layout = channelLayout(s.settings.technique, s.shadows.params());
   s.camera.renderMinimalLookup(s.programs, *s.scene, s.settings, s.frame, s.shadows, layout.layers,
                                esmFallback);

@@ -502,7 +502,8 @@ void ShadowFilter::prepareRawDepth(const DepthInput& depth, const FilterSettings
   s.auxiliaryTimer.reset();
   for (GpuTimer* t : {&s.maps.encodeTimer, &s.maps.prefilterTimer, &s.maps.mipsTimer}) t->reset();
   // The raw-depth lookup reads no channels, but takes the map's size and levels from the channel
-  // shape (and binds the texture): keep it this input's (a no-op when equal).
+  // shape (and binds its texture, if the technique has one): keep it this input's (a no-op when
+  // equal).
   s.maps.prepare(channelShapeFor(renderSettingsFor(settings, depth), depth.layers));
   s.fused = false;
   uploadBlurWeights(s);

@@ -331,6 +331,11 @@ TEST_F(PassBench, TechniquesWithoutAPrefilterAreRefused) {
     } catch (const Error& e) {
       EXPECT_NE(std::string(e.what()).find("no prefilter"), std::string::npos) << e.what();
     }
+    // Their frame has neither an encode to repeat nor channels for a minimal lookup to fetch
+    // (it would draw every pixel from an empty unit).
+    renderer.render(makeBuiltinScene("planar"), small(t));
+    EXPECT_THROW(renderer.timeEncodePass(), Error) << techniqueId(t);
+    EXPECT_THROW(renderer.timeMinimalLookup(), Error) << techniqueId(t);
   }
 }
 

@@ -661,6 +661,27 @@ TEST_F(RendererTest, PcfAndTheHardTestRunNoEncodeBlurOrMips) {
   }
 }
 
+// Their one channel, read back (the viewer's channel view, readChannels), is each cascade's own
+// light-pass depth, texel for texel.
+TEST_F(RendererTest, TheHardTestsChannelIsEachCascadesLightDepth) {
+  gl::RenderSettings s = small(Technique::Hard);
+  s.shadowMapSize = 64;
+  s.cascades.count = 3;
+  renderer->render(makeBuiltinScene("street"), s);
+  int differing = 0;
+  for (int cascade = 0; cascade < 3; ++cascade) {
+    const Image channel = renderer->readChannels(0, cascade);
+    const Image depth = renderer->readDepthMap(cascade);
+    ASSERT_EQ(channel.channels(), 1);
+    ASSERT_EQ(channel.data().size(), depth.data().size());
+    differing += int(!std::ranges::equal(channel.data(), depth.data()));
+  }
+  EXPECT_EQ(differing, 0);
+  // The cascades' maps differ (else the cascade index would not be tested).
+  EXPECT_FALSE(
+      std::ranges::equal(renderer->readDepthMap(0).data(), renderer->readDepthMap(2).data()));
+}
+
 // ESM paper Fig. 1 at a 2048^2 shadow map, mip maps included "(a factor of 1.3)", §5: ESM 21 MB,
 // VSM 42 MB, CSM 170 MB. Its MB are MiB (2048^2 x 4 bytes = 16 MiB, x 1.3 = 20.8 -> 21; in 10^6
 // bytes it would be 22), rounded to whole MiB, CSM's to two digits (128 x 1.3 = 166.4 -> 170).

@@ -1,5 +1,6 @@
 // Offline shader validation: expands each shader like the renderer does and pipes it to
 // glslangValidator. Usage: penumbra-shader-lint [EXTRA_NAME=FILE ...]; exits non-zero on failure.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -74,6 +75,14 @@ std::vector<std::string> validate(
     if (problems[0].empty()) problems[0] = "glslangValidator failed without a message";
   } else {
     for (size_t i = 0; i < sources.size(); ++i) problems[i] = validate({sources[i]})[0];
+    // A run that failed while each of its files passes alone (killed, out of memory) still
+    // failed: each of its files is reported with the run's log.
+    if (std::all_of(problems.begin(), problems.end(),
+                    [](const std::string& p) { return p.empty(); })) {
+      problems.assign(sources.size(), "glslangValidator failed on these files together (exit " +
+                                          std::to_string(result.exitCode) +
+                                          ") and passed each alone:\n" + output);
+    }
   }
   return problems;
 }

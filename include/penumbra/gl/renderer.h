@@ -129,7 +129,7 @@ struct PassTimes {  // milliseconds per pass
 
 struct MemoryReport {       // exact bytes allocated
   uint64_t lightPass = 0;   // linear depth target and depth buffer (times MSAA samples)
-  uint64_t technique = 0;   // the technique's channel texture, mips included when allocated
+  uint64_t technique = 0;   // the technique's channel texture, mips included (PCF, hard: none)
   uint64_t summedArea = 0;  // summed-area table sums and statistics
   uint64_t scratch = 0;     // the blur's intermediate texture
   uint64_t auxiliary = 0;   // ESM's Z-max pyramid (R32F, mips) or LVSM's Lloyd samples
@@ -141,6 +141,13 @@ struct MemoryReport {       // exact bytes allocated
     return lightPass + technique + summedArea + scratch + auxiliary + frame + geometry;
   }
 };
+
+// What a technique's shadow map keeps between frames, as the papers count a technique's memory
+// and `compare` and the paper bench report it: the channels and their mips, the summed-area
+// table, ESM's Z-max pyramid or LVSM's Lloyd samples; for PCF and the hard test, which have no
+// channel texture, the light pass's R32F depth their lookup reads (half of its two targets). Not
+// the blur's scratch, a transient whose need depends on how the prefilter runs (none fused).
+uint64_t shadowMapBytes(const MemoryReport& memory, Technique technique);
 
 // The bytes render() allocates for these settings (its RenderResult::memory, geometry aside),
 // computed up front from the same formulas; Renderer::validate refuses settings whose
@@ -278,6 +285,7 @@ class Renderer {
   // the reconstruction, Lambert, one RGBA8 target), after render() of one map. esmFallback: with
   // ESM's threshold classification and its fallback as well, where the pass has them.
   // The draw's milliseconds: a GPU timer query where they measure execution, else wall clock.
+  // Throws for PCF and the hard test, which prefilter nothing (no channels to fetch).
   double timeMinimalLookup(bool esmFallback = false);
   // bench --passes: the last frame's camera pass drawn again (the same program, inputs and
   // targets), so that the pass and its minimal lookup can be timed alternately several times a

@@ -68,7 +68,8 @@ struct FilterSettings {
 // Where bind() puts the shadow map, and the GLSL names them (shaderPreamble()). Defaults are
 // the renderer's; a host moves any that collide with its own bindings.
 struct ShadowBindings {
-  int channelUnit = 0;      // sampler2DArray: the technique's channels (mips when filtered)
+  int channelUnit = 0;      // sampler2DArray: the technique's channels (mips when filtered);
+                            // left empty for PCF and the hard test, which read depthUnit
   int zmaxUnit = 1;         // ESM with the zmax classifier: its Z-max pyramid
   int depthUnit = 2;        // the unfiltered linear depth (ESM's fallback, PCF, the hard test)
   int parameterBlock = 0;   // uniform block: TechniqueParams
@@ -111,7 +112,8 @@ class ShadowFilter {
   // Checks settings against their ranges and this GL (the summed-area table needs
   // GL_ARB_gpu_shader_int64 and fp64; the input's format must be a depth or R32F texture of
   // the stated size), then filters: (import) -> encode -> prefilter -> mips or summed-area
-  // table (+ ESM's Z-max pyramid, LVSM's Lloyd placement) for every layer. GL state is as before.
+  // table (+ ESM's Z-max pyramid, LVSM's Lloyd placement) for every layer; for PCF and the hard
+  // test the import alone (their lookup reads the depth). GL state is as before.
   void filter(const DepthInput& depth, const FilterSettings& settings);
   // For the filtered reference, which reads raw depth only: makes the input the depth bind()
   // binds and the lookup block the reference's (every mip level the lookup may use), without
