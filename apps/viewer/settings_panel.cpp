@@ -440,8 +440,8 @@ void statsSection(ViewerState& state, const FrameStats& stats) {
                        gl::kNoGpuTimesReason);
   }
   drawPassGraph(gpuTimed && state.graphGpuTimes ? state.gpuTimes : state.wallTimes);
-  const gl::PassTimes g = r.gpuTimes.value_or(gl::PassTimes{});  // read only when gpuTimed
-  const gl::PassTimes& w = r.wallTimes;
+  const gl::PassTimes g = r.gpuTimes.value_or(gl::PassTimes{});   // read only when gpuTimed
+  const gl::PassTimes w = r.wallTimes.value_or(gl::PassTimes{});  // the viewer times every frame
   if (ImGui::BeginTable("passes", gpuTimed ? 3 : 2, ImGuiTableFlags_SizingFixedFit)) {
     ImGui::TableSetupColumn("pass");
     if (gpuTimed) ImGui::TableSetupColumn("GPU ms");

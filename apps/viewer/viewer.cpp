@@ -236,7 +236,7 @@ class Viewer {
       } else {
         state_.gpuTimes.clear();
       }
-      state_.wallTimes.push_back(result_->wallTimes);
+      if (result_->wallTimes) state_.wallTimes.push_back(*result_->wallTimes);
       if (state_.wallTimes.size() > kTimeHistory) state_.wallTimes.pop_front();
       if (state_.gpuTimes.size() > kTimeHistory) state_.gpuTimes.pop_front();
       resultSettings_ = settings;

@@ -75,10 +75,6 @@ class CpuShadowLookup {
   // depth test. What the GPU's texture unit returns for the same lookup, but for rounding.
   std::vector<float> filteredChannels(const LookupPixel& pixel) const;
 
-  // The technique's prefiltered channels at a mip level (row 0 at the bottom).
-  const Image& channels(int level) const;
-  int channelLevels() const;
-
  private:
   std::unique_ptr<shaders::CpuLookupTextures> textures_;
   LookupConfig config_;

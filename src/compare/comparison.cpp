@@ -277,7 +277,7 @@ ComparisonResult runComparison(const ComparisonRequest& request, gl::Renderer& r
       masks[k].push_back(litSurfaceMask(r.lookup));
       // Times of the last frame: warm, without the driver's first-use shader compilation.
       out.gpuTimes = r.gpuTimes;
-      out.wallTimes = r.wallTimes;
+      if (r.wallTimes) out.wallTimes = *r.wallTimes;
       if (frame > 0) continue;
       out.technique = t;
       out.params = r.params;

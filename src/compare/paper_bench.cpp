@@ -149,7 +149,7 @@ ExperimentResult runPaperExperiment(gl::Renderer& renderer, const Scene& scene,
     std::vector<gl::PassTimes> frames;
     for (int i = 0; i < repeats; ++i) {
       const gl::RenderResult r = renderer.render(settings, view);
-      const gl::PassTimes& t = gpuTimers ? r.gpuTimes.value() : r.wallTimes;
+      const gl::PassTimes& t = gpuTimers ? r.gpuTimes.value() : r.wallTimes.value();
       frames.push_back(t);
       m.frameMs.push_back(t.total());
       m.shadowBytes = gl::shadowMapBytes(r.memory, settings.technique);

@@ -29,7 +29,7 @@ struct CpuLookupTextures {
 };
 
 vec4 channelTexel(LookupSources s, int layer, ivec2 texel, int level) {
-  const Image& image = s.textures->channels[size_t(level)];
+  const Image& image = s.textures->channels.at(size_t(level));  // none for PCF and the hard test
   vec4 v(0.0f);
   for (int k = 0; k < 4; ++k) {
     const int c = 4 * layer + k;
@@ -97,6 +97,46 @@ bool isPowerOfTwo(int n) {
   return n > 0 && (n & (n - 1)) == 0;
 }
 
+// The channels the renderer's encode and prefilter make (shadow_map_filter.cpp), every stage
+// rounded to the storage format as the GPU's textures round it: level 0, then its mip chain where
+// the filter mode reads one.
+std::vector<Image> prefilteredChannels(const Image& depth, const LookupConfig& config) {
+  const Technique technique = config.technique;
+  const TechniqueParams& params = config.params;
+  const int size = depth.width();
+  const int count = channelCount(technique, params);
+  const StorageFormat storage = techniqueStorage(technique, params);
+  const HalfRounding rounding = config.halfRounding;
+  Image channels(size, size, count);
+  std::vector<float> encoded(static_cast<size_t>(count));
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) {
+      encodeDepth(technique, params, depth.at(x, y), encoded);
+      for (int c = 0; c < count; ++c)
+        channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage, rounding);
+    }
+  }
+  std::vector<ChannelReduction> reductions;
+  for (int c = 0; c < count; ++c) reductions.push_back(channelReduction(technique, params, c));
+  const float logExponent = params.esm.exponent;
+  if (config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
+    const AlikeTaps alike = alikeTapsFor(technique, params);
+    for (const bool horizontal : {true, false}) {
+      channels = quantized(
+          separableFilterPass(channels, config.blur, horizontal, reductions, logExponent, alike),
+          storage, rounding);
+    }
+  }
+  std::vector<Image> levels{std::move(channels)};
+  if (usesMips(config.filter)) {
+    while (levels.back().width() > 1) {
+      levels.push_back(
+          quantized(reduceMipLevel(levels.back(), reductions, logExponent), storage, rounding));
+    }
+  }
+  return levels;
+}
+
 // The settings the reference reads: every mip level for the mip-mapped filter modes.
 shaders::LookupSettings referenceSettings(shaders::LookupSettings settings, FilterMode filter) {
   const int size = settings.shadowMapSize;
@@ -133,40 +173,12 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
   t.depth = depth;
   t.blurCumulative = cumulativeBlurWeights(config.blur);
 
-  // Encode, then the prefilter the renderer runs (shadow_map_filter.cpp), every stage rounded to
-  // the storage format as the GPU's textures round it.
-  const int count = channelCount(technique, params);
-  const StorageFormat storage = techniqueStorage(technique, params);
-  const HalfRounding rounding = config.halfRounding;
-  Image channels(size, size, count);
-  std::vector<float> encoded(static_cast<size_t>(count));
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      encodeDepth(technique, params, depth.at(x, y), encoded);
-      for (int c = 0; c < count; ++c)
-        channels.at(x, y, c) = quantizeToStorage(encoded[size_t(c)], storage, rounding);
-    }
+  // PCF and the hard test read the depth itself (lightDepthTexel): like the renderer, the twin
+  // encodes and prefilters nothing for them.
+  if (prefiltersChannels(technique)) {
+    t.channels = prefilteredChannels(depth, config);
+    if (config.filter == FilterMode::SummedArea) t.summedArea.emplace(t.channels.front());
   }
-  std::vector<ChannelReduction> reductions;
-  for (int c = 0; c < count; ++c) reductions.push_back(channelReduction(technique, params, c));
-  const bool prefiltered = prefiltersChannels(technique);
-  const float logExponent = params.esm.exponent;
-  if (prefiltered && config.blur.radius > 0 && config.filter != FilterMode::SummedArea) {
-    const AlikeTaps alike = alikeTapsFor(technique, params);
-    for (const bool horizontal : {true, false}) {
-      channels = quantized(
-          separableFilterPass(channels, config.blur, horizontal, reductions, logExponent, alike),
-          storage, rounding);
-    }
-  }
-  t.channels.push_back(channels);
-  if (prefiltered && usesMips(config.filter)) {
-    while (t.channels.back().width() > 1) {
-      t.channels.push_back(
-          quantized(reduceMipLevel(t.channels.back(), reductions, logExponent), storage, rounding));
-    }
-  }
-  if (prefiltered && config.filter == FilterMode::SummedArea) t.summedArea.emplace(channels);
   if (technique == Technique::Esm && params.esm.classifier == shaders::kEsmClassifyZmax) {
     const std::vector<ChannelReduction> max{ChannelReduction::Max};
     t.zmax = buildMipChain(depth, max);
@@ -174,7 +186,7 @@ CpuShadowLookup::CpuShadowLookup(const Image& depth, const LookupConfig& config)
 
   t.settings.filterMode = int(config.filter);
   t.settings.shadowMapSize = size;
-  t.settings.channelLevels = int(t.channels.size());
+  t.settings.channelLevels = std::max(1, int(t.channels.size()));  // as the renderer's: 1 unmipped
   t.settings.anisotropy = config.anisotropy;
   t.settings.blurKernel = blurKernelId(config.blur.kernel);
   t.settings.blurRadius = config.blur.radius;
@@ -214,14 +226,6 @@ float CpuShadowLookup::referenceVisibility(const LookupPixel& p) const {
   return std::clamp(shaders::referenceVisibility(sources, settings, p.uv, p.receiverDepth, p.uvDx,
                                                  p.uvDy, p.depthPerTexel),
                     0.0f, 1.0f);
-}
-
-const Image& CpuShadowLookup::channels(int level) const {
-  return textures_->channels.at(size_t(level));
-}
-
-int CpuShadowLookup::channelLevels() const {
-  return int(textures_->channels.size());
 }
 
 }  // namespace penumbra

@@ -120,8 +120,8 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
   Image weighted(hard.width, hard.height, 1);
   Image weightedColor(hard.width, hard.height, 4);
   Image weights(hard.width, hard.height, 1);
-  PassTimes wall;
-  std::optional<PassTimes> gpu = PassTimes{};  // while every sample's frame has GPU times
+  std::optional<PassTimes> wall = PassTimes{};  // while every sample's frame is timed
+  std::optional<PassTimes> gpu = PassTimes{};   // while every sample's frame has GPU times
   // A light sample's frame gives its colour and visibility only: the lookup's inputs are the
   // centre's (below), so the samples' frames neither write nor read them.
   RenderSettings sampleSettings = hard;
@@ -145,8 +145,12 @@ RenderResult Renderer::renderAreaLightReference(const RenderSettings& settings,
         }
       }
     }
-    wall.light += r.wallTimes.light;
-    wall.camera += r.wallTimes.camera;
+    if (wall && r.wallTimes) {
+      wall->light += r.wallTimes->light;
+      wall->camera += r.wallTimes->camera;
+    } else {
+      wall.reset();
+    }
     if (gpu && r.gpuTimes) {
       gpu->light += r.gpuTimes->light;
       gpu->camera += r.gpuTimes->camera;

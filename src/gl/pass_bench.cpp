@@ -151,7 +151,7 @@ FramePasses renderPasses(Renderer& renderer, const Scene& scene, const RenderSet
   for (MinimalKernel* k : lookups) k->work();
   for (int i = 0; i < repeats; ++i) {
     const RenderResult r = renderer.render(scene, timed);
-    const PassTimes& t = gpuTime ? r.gpuTimes.value() : r.wallTimes;
+    const PassTimes& t = gpuTime ? r.gpuTimes.value() : r.wallTimes.value();
     p.encode.push_back(t.encode);
     p.prefilter.push_back(t.prefilter);
     p.mipsOrSat.push_back(t.mipsOrSat);

@@ -392,7 +392,9 @@ RenderResult Renderer::renderFrame(const RenderSettings& settings, const FrameVi
   if (settings.timing && timerQueriesMeasureExecution()) {
     result.gpuTimes = times([](const GpuTimer& t) { return t.gpuMilliseconds(); });
   }
-  result.wallTimes = times([](const GpuTimer& t) { return t.wallMilliseconds(); });
+  if (settings.timing) {
+    result.wallTimes = times([](const GpuTimer& t) { return t.wallMilliseconds(); });
+  }
   result.memory = s.memory();
   return result;
 }

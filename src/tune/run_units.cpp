@@ -303,7 +303,7 @@ class SceneTuner {
   // All passes of a frame: GPU queries where they time execution, else the wall clock.
   double frameTime(const gl::RenderResult& r) const {
     return renderer_.timerQueriesMeasureExecution() ? r.gpuTimes.value().total()
-                                                    : r.wallTimes.total();
+                                                    : r.wallTimes.value().total();
   }
 
   const TuneRequest& request_;

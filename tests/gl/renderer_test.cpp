@@ -645,17 +645,18 @@ TEST_F(RendererTest, PcfAndTheHardTestRunNoEncodeBlurOrMips) {
     gl::RenderSettings s = small(t);
     s.filter = gl::FilterMode::Trilinear;
     const gl::RenderResult r = renderer->render(scene, s);
+    ASSERT_TRUE(r.wallTimes.has_value()) << techniqueId(t);
     if (t == Technique::Vsm) {
-      EXPECT_GT(r.wallTimes.encode, 0.0);
-      EXPECT_GT(r.wallTimes.prefilter, 0.0);
-      EXPECT_GT(r.wallTimes.mipsOrSat, 0.0);
+      EXPECT_GT(r.wallTimes->encode, 0.0);
+      EXPECT_GT(r.wallTimes->prefilter, 0.0);
+      EXPECT_GT(r.wallTimes->mipsOrSat, 0.0);
       EXPECT_GT(r.memory.technique, 0u);
       continue;
     }
-    EXPECT_EQ(r.wallTimes.encode, 0.0) << techniqueId(t);
-    EXPECT_EQ(r.wallTimes.prefilter, 0.0) << techniqueId(t);
-    EXPECT_EQ(r.wallTimes.mipsOrSat, 0.0) << techniqueId(t);
-    EXPECT_GT(r.wallTimes.camera, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.wallTimes->encode, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.wallTimes->prefilter, 0.0) << techniqueId(t);
+    EXPECT_EQ(r.wallTimes->mipsOrSat, 0.0) << techniqueId(t);
+    EXPECT_GT(r.wallTimes->camera, 0.0) << techniqueId(t);
     EXPECT_EQ(r.memory.technique, 0u) << techniqueId(t);
     EXPECT_EQ(renderer->measuredChannelTextureBytes(), 0u) << techniqueId(t);
   }
@@ -808,7 +809,7 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
   s.params.esm.classifier = shaders::kEsmClassifyZmax;
   const gl::RenderResult full = renderer->render(scene, s);
   ASSERT_GT(full.failureRatePercent, 0.0) << "the view must show ESM's classifier failing";
-  EXPECT_GT(full.wallTimes.total(), 0.0);
+  EXPECT_GT(full.wallTimes.value().total(), 0.0);
   // A software rasteriser reports no GPU times even for a timed frame (its queries see only
   // submission, so what they read is not a GPU time); where the queries measure execution a
   // timed frame has them, an untimed none.
@@ -836,12 +837,12 @@ TEST_F(RendererTest, AFrameReadsBackOnlyTheImagesAskedForAndTimesOnlyWhenAsked) 
     }
     EXPECT_TRUE(std::ranges::equal((r.*image).data(), (full.*image).data())) << bit;
     EXPECT_EQ(r.failureRatePercent, bit == fi::kDiagnostic ? full.failureRatePercent : 0.0) << bit;
-    EXPECT_EQ(r.wallTimes.total(), 0.0) << "an untimed frame reported times";
+    EXPECT_FALSE(r.wallTimes.has_value()) << "an untimed frame reported wall times";
     EXPECT_FALSE(r.gpuTimes.has_value()) << "an untimed frame reported GPU times";
   }
   // Timing on again: the passes are timed.
   const gl::RenderResult again = renderer->render(scene, s);
-  EXPECT_GT(again.wallTimes.total(), 0.0);
+  EXPECT_GT(again.wallTimes.value().total(), 0.0);
   EXPECT_EQ(again.gpuTimes.has_value(), gpuTimed);
 }
 

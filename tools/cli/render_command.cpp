@@ -198,7 +198,7 @@ void runRender(const RenderCommandOptions& options) {
     std::ostringstream summary;
     summary << "wrote " << (output.target() / files.at("color")).string() << "  (";
     if (result.gpuTimes) summary << "GPU " << result.gpuTimes->total() << " ms, ";
-    summary << "wall " << result.wallTimes.total() << " ms, technique memory "
+    summary << "wall " << result.wallTimes.value().total() << " ms, technique memory "
             << double(result.memory.technique + result.memory.summedArea) / (1024.0 * 1024.0)
             << " MiB)";
     summaries.push_back(summary.str());

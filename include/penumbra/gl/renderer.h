@@ -93,8 +93,8 @@ struct RenderSettings {
   // the colour, visibility and diagnostic asked for, averaged).
   unsigned readBack = frame_image::kAll;
   // Whether the frame times its passes (RenderResult::gpuTimes, wallTimes): each pass between
-  // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame;
-  // its wall times read 0 and it has no GPU times.
+  // glFinish calls, which keep a GPU from overlapping the passes. Off: no wait inside the frame,
+  // and no times (both absent).
   bool timing = true;
 };
 
@@ -190,7 +190,9 @@ struct RenderResult {
   // (timerQueriesMeasureExecution); absent otherwise: a software rasteriser's queries see only
   // submission, so what they read is not a GPU time and is not reported as one.
   std::optional<PassTimes> gpuTimes;  // kNoGpuTimesReason says why where absent
-  PassTimes wallTimes;  // wall clock between glFinish calls: what llvmpipe really spends
+  // Wall clock between glFinish calls, what llvmpipe really spends; absent where the frame was
+  // not timed (RenderSettings::timing): a 0 would read as a pass that cost nothing.
+  std::optional<PassTimes> wallTimes;
   MemoryReport memory;
   // Whether encode and blur ran as one dispatch per map (RenderSettings::fusePrefilter).
   bool fusedPrefilter = false;
