@@ -1,7 +1,8 @@
 // The camera pass's per-pixel shadow lookup on the CPU: the twin of the GPU's, running the same
 // shared code (shared/shadow_lookup.h, shared/filtered_reference.h) over channels built by the
 // CPU reference filters (encode, blur, mips, summed-area table, Z-max pyramid, each rounded to
-// the technique's storage format as the GPU's textures are). Only texture access differs, so the
+// the technique's storage format as the GPU's textures are; PCF and the hard test read the depth
+// itself, as the renderer's do, and have none). Only texture access differs, so the
 // GPU renderer can be tested pixel by pixel against it (tests/gl/lookup_parity_test.cpp).
 #pragma once
 

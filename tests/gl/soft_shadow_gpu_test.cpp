@@ -142,6 +142,26 @@ TEST_F(SoftShadowGpu, ASphereLightReferenceReadingOnlyItsVisibilityWeighsItsSamp
   EXPECT_TRUE(std::ranges::equal(lean.visibility.data(), all.data()));
 }
 
+// A reference's wall times sum its samples' frames: present when they were timed, absent (not 0)
+// when they were not.
+TEST_F(SoftShadowGpu, AnAreaLightReferenceReportsWallTimesOnlyWhenItsFramesAreTimed) {
+  gl::Renderer renderer(*context);
+  const Scene scene = sphereEdgeScene();
+  gl::RenderSettings s;
+  s.shadowMapSize = 128;
+  s.width = 24;
+  s.height = 16;
+  renderer.setScene(scene);
+  const gl::FrameView view{scene.camera, scene.light};
+  const gl::RenderResult timed = renderer.renderAreaLightReference(s, view, 64, 1);
+  ASSERT_TRUE(timed.wallTimes.has_value());
+  EXPECT_GT(timed.wallTimes->camera, 0.0);
+  s.timing = false;
+  const gl::RenderResult untimed = renderer.renderAreaLightReference(s, view, 64, 1);
+  EXPECT_FALSE(untimed.wallTimes.has_value());
+  EXPECT_FALSE(untimed.gpuTimes.has_value());
+}
+
 // Every pixel's |GPU - CPU| under a soft light. LookupParity holds each pixel to an envelope
 // derived from the twin's filtered channels, but CpuShadowLookup::filteredChannels does not
 // model the soft probes, so this bound is not derived: it is the largest difference on these

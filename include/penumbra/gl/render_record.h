@@ -20,7 +20,8 @@ std::string renderRecordJson(const Scene& scene, const RenderSettings& settings,
 std::string viewJson(const Scene& scene);
 
 // Milliseconds per pass as a compact JSON object, for the render record and compare's metrics;
-// null for times that were not measured (RenderResult::gpuTimes on a software rasteriser).
+// null for times that were not measured (RenderResult::gpuTimes on a software rasteriser, and
+// both on a frame that was not timed).
 std::string passTimesJson(const PassTimes& times);
 std::string passTimesJson(const std::optional<PassTimes>& times);
 
