@@ -26,6 +26,14 @@ compare::BenchSizes tiny() {
   return z;
 }
 
+// A paper experiment at the tiny sizes, its cases up to x = maxX, one frame each.
+compare::ExperimentResult runTinyExperiment(gl::Renderer& renderer, const std::string& id,
+                                            double maxX) {
+  compare::Experiment e = compare::makePaperExperiment(id, tiny());
+  std::erase_if(e.cases, [maxX](const compare::BenchCase& c) { return c.x > maxX; });
+  return compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 1);
+}
+
 TEST_F(PaperBench, GumbauCasesAreSetAgainstVsmWithTheirFormatsMemory) {
   gl::Renderer renderer(*context);
   const compare::Experiment e = compare::makePaperExperiment("gumbau-table1", tiny());
@@ -54,10 +62,7 @@ TEST_F(PaperBench, GumbauCasesAreSetAgainstVsmWithTheirFormatsMemory) {
 // M = 4 is 2 layers x 4 bytes x 4/3 of PCF's texels (the mip chain of 64^2: 5461/4096).
 TEST_F(PaperBench, CsmMemoryIsSetAgainstPcfsDepthMap) {
   gl::Renderer renderer(*context);
-  compare::Experiment e = compare::makePaperExperiment("csm-table1", tiny());
-  std::erase_if(e.cases, [](const compare::BenchCase& c) { return c.x > 1.0; });
-  const compare::ExperimentResult r =
-      compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 1);
+  const compare::ExperimentResult r = runTinyExperiment(renderer, "csm-table1", 1.0);
   const double mips = 5461.0 / 4096.0;
   const std::map<std::string, double> memory{
       {"PCF", 1.0}, {"CSM M=4", 2.0 * mips}, {"CSM M=8", 4.0 * mips}, {"CSM M=16", 8.0 * mips}};
@@ -69,10 +74,7 @@ TEST_F(PaperBench, CsmMemoryIsSetAgainstPcfsDepthMap) {
 
 TEST_F(PaperBench, EachKernelIsSetAgainstTheBaselineOfTheSameKernel) {
   gl::Renderer renderer(*context);
-  compare::Experiment e = compare::makePaperExperiment("esm-table1", tiny());
-  std::erase_if(e.cases, [](const compare::BenchCase& c) { return c.x > 3.0; });
-  const compare::ExperimentResult r =
-      compare::runPaperExperiment(renderer, makeBuiltinScene("planar"), e, 1);
+  const compare::ExperimentResult r = runTinyExperiment(renderer, "esm-table1", 3.0);
   for (const compare::CaseMeasurement& m : r.cases) {
     const compare::CaseMeasurement* esm = nullptr;
     for (const compare::CaseMeasurement& b : r.cases) {
