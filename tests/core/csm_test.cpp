@@ -219,15 +219,10 @@ TEST(Csm, BasisRecurrenceStaysWithinItsRoundingOfTheDirectBasis) {
   EXPECT_GT(worst, 0.0f);  // float arithmetic: exactness would mean the test reads nothing
 }
 
-TEST(Csm, BasisFitsUnorm8AndPacksTwoTermsPerTexture) {
-  for (int i = 0; i <= 100; ++i) {
-    const glm::vec4 b =
-        shaders::csmEncodeTexture(float(i) / 100.0f, 3, shaders::csmDefaultParams());
-    for (int c = 0; c < 4; ++c) {
-      EXPECT_GE(b[c], 0.0f);
-      EXPECT_LE(b[c], 1.0f);
-    }
-  }
+// (The basis's range needs no test of its own: within 5e-6 of the exact basis, above, it is within
+// rounding of [0, 1], which unorm storage clamps as it converts:
+// StorageFormat.UnormRoundsToTheNearestCodeAwayFromTies.)
+TEST(Csm, PacksTwoTermsPerTexture) {
   shaders::CsmParams p = shaders::csmDefaultParams();
   p.termCount = 16;
   EXPECT_EQ(shaders::csmTextureCount(p), 8);  // 2M channels = M/2 RGBA textures

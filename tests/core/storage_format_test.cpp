@@ -33,6 +33,9 @@ TEST(StorageFormat, UnormRoundsTiesToEven) {
 TEST(StorageFormat, UnormRoundsToTheNearestCodeAwayFromTies) {
   EXPECT_EQ(quantizeToStorage(10.4f / 255.0f, StorageFormat::Unorm8) * 255.0f, 10.0f);
   EXPECT_EQ(quantizeToStorage(10.6f / 255.0f, StorageFormat::Unorm8) * 255.0f, 11.0f);
+  // Out of range clamps (CSM's basis relies on it: shared/csm.h).
+  EXPECT_EQ(quantizeToStorage(-0.5f, StorageFormat::Unorm8), 0.0f);
+  EXPECT_EQ(quantizeToStorage(1.5f, StorageFormat::Unorm8), 1.0f);
   EXPECT_EQ(quantizeToStorage(-0.5f, StorageFormat::Unorm16), 0.0f);
   EXPECT_EQ(quantizeToStorage(1.5f, StorageFormat::Unorm16), 1.0f);
 }
