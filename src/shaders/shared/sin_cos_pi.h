@@ -13,10 +13,10 @@ PENUMBRA_BEGIN_SHARED
 // u^12 are alternating, so each is within its first omitted term of exact: u^13/13! <= 5.7e-8
 // and u^14/14! <= 6.4e-9, below float's rounding of values near 1 (6e-8).
 // Each series is summed in powers of w = u^2, w^2 and w^4 (Estrin's scheme), not by Horner's
-// rule: a chain of 6-8 dependent operations instead of 11-13. A CPU's GL (llvmpipe) runs a
+// rule: a chain of 6-8 dependent operations instead of 12-13. A CPU's GL (llvmpipe) runs a
 // texel's start of CSM's walk with little else to overlap it, so its cost is that chain's
 // latency: by perf samples the encode's start fell from 0.12-0.14 of its copy's time to
-// 0.07-0.11 (csm-encode-experiments.txt, U). The sine adds u w times the rest of its series
+// 0.06-0.09 (csm-encode-experiments.txt, U). The sine adds u w times the rest of its series
 // to u, which rounds less than u times the whole series (1.9e-7 against sin in double, Horner's
 // 2.0e-7; 2.3e-7 as u times the series).
 PENUMBRA_INLINE vec2 sinCosPi(float x) {
