@@ -123,10 +123,7 @@ PENUMBRA_INLINE CsmBasisWalk csmBasisWalkNext(CsmBasisWalk w) {
 // the map is affine, so filtering commutes. The recurrence's roundings may carry a mapped value
 // past [0, 1], by at most its 5e-6 from the exact basis (Csm.BasisRecurrence...). Not clamped:
 // unorm storage clamps as it converts, and float storage keeps a value that close as the basis
-// it is. The clamp was two of the six operations per value and layer (`precise` keeps each
-// multiply and add apart); without it the encode's mean over four rounds on llvmpipe read 49.7
-// ms against 51.2, within the spread (docs/results/passes-llvmpipe-2026-12-07/
-// csm-encode-experiments.txt, T).
+// it is; a clamp here was a third of the encode's arithmetic per value (docs/techniques.md, CSM).
 PENUMBRA_INLINE vec4 csmBasisTexture(CsmBasisWalk w) {
   PENUMBRA_PRECISE vec4 mapped = w.terms * 0.5f + vec4(0.5f);
   return mapped;
